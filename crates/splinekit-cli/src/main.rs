@@ -1,0 +1,69 @@
+//! `splinekit`: the command-line tool of the splinekit toolkit.
+//!
+//! `main` stays thin: parse the command line, run one subcommand, and map the outcome to an
+//! exit code (0 success, 1 error, 2 usage error from clap). A closed output pipe
+//! (`splinekit curve f.swp | head`) counts as success.
+
+mod arclen_cmd;
+mod curve_cmd;
+mod output;
+mod select;
+
+use std::io::{self, Write};
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Spline curves from SWP files: arc length, u–s tables, arc-length resampling and
+/// tessellated points.
+///
+/// Reads SWP curve descriptions (bez2/bez3 Bézier, bsp2/bsp3 uniform B-spline, cr2/cr3
+/// Catmull-Rom, her2/her3 Hermite, circ) and prints results as text, CSV or JSON on
+/// standard output. Errors go to standard error and give a non-zero exit status (1; 2 for
+/// command-line usage errors); SWP syntax errors name the file, line and column.
+#[derive(Debug, Parser)]
+#[command(name = "splinekit", version, propagate_version = true)]
+#[command(after_help = "Examples:\n  \
+    splinekit arclen scene.swp --curve path --method gauss3\n  \
+    splinekit arclen scene.swp --method adaptive --at-s 0.417 --spacing 0.5 --json\n  \
+    splinekit curve scene.swp --curve 1 --steps 50 --format json\n\n\
+    Run `splinekit <COMMAND> --help` for the flags of each command.")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    Arclen(arclen_cmd::ArclenArgs),
+    Curve(curve_cmd::CurveArgs),
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
+    let stdout = io::stdout();
+    let mut out = io::BufWriter::new(stdout.lock());
+    match cli.command {
+        Command::Arclen(args) => arclen_cmd::run(&args, &mut out)?,
+        Command::Curve(args) => curve_cmd::run(&args, &mut out)?,
+    }
+    out.flush()?;
+    Ok(())
+}
+
+/// True when the error comes from writing to a closed pipe.
+fn is_broken_pipe(err: &anyhow::Error) -> bool {
+    err.chain().any(|e| e.downcast_ref::<io::Error>().is_some_and(|e| e.kind() == io::ErrorKind::BrokenPipe))
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
+        Err(err) => {
+            // If stderr is gone too there is nobody left to tell.
+            let _ = writeln!(io::stderr(), "error: {err:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

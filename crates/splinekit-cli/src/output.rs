@@ -1,0 +1,81 @@
+//! Number and string formatting shared by the commands.
+//!
+//! Floats are written with the shortest text that reads back to the same `f64`, so output
+//! is exact and the same bytes on every run. In JSON a float always keeps a decimal point
+//! or an exponent (`0.0`, `1.5`, `1e-7`), so readers see a float, never an integer. JSON is written by hand, in a
+//! fixed key order, one array element per line.
+
+use std::fmt;
+
+/// A float as JSON: shortest round-trip text with a `.0` or exponent (Rust's `{:?}`), or
+/// `null` when not finite
+/// (JSON has no NaN or infinity).
+#[derive(Clone, Copy)]
+pub struct JsonNum(pub f64);
+
+impl fmt::Display for JsonNum {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_finite() { write!(f, "{:?}", self.0) } else { f.write_str("null") }
+    }
+}
+
+/// A string as a JSON string literal (quoted and escaped).
+pub fn json_str(s: &str) -> String {
+    // Serializing a &str cannot fail.
+    serde_json::to_string(s).unwrap_or_else(|_| String::from("\"\""))
+}
+
+/// Writes `[` + the items (one per line, indented, comma-separated) + `]`.
+pub fn json_array<W, I, F>(out: &mut W, indent: &str, items: I, mut write_item: F) -> std::io::Result<()>
+where
+    W: std::io::Write,
+    I: IntoIterator,
+    F: FnMut(&mut W, I::Item) -> std::io::Result<()>,
+{
+    let mut first = true;
+    out.write_all(b"[")?;
+    for item in items {
+        out.write_all(if first { b"\n" } else { b",\n" })?;
+        write!(out, "{indent}  ")?;
+        write_item(out, item)?;
+        first = false;
+    }
+    if !first {
+        write!(out, "\n{indent}")?;
+    }
+    out.write_all(b"]")
+}
+
+#[cfg(test)]
+mod tests {
+    use std::io::Write;
+
+    use super::*;
+
+    #[test]
+    fn numbers_and_strings() {
+        assert_eq!(JsonNum(0.0).to_string(), "0.0");
+        assert_eq!(JsonNum(5.0).to_string(), "5.0");
+        assert_eq!(JsonNum(0.1).to_string(), "0.1");
+        assert_eq!(JsonNum(-1e-7).to_string(), "-1e-7");
+        assert_eq!(JsonNum(1e300).to_string(), "1e300");
+        for x in [0.0, 5.0, -1e-7, 1e300, 0.1 + 0.2] {
+            assert!(serde_json::from_str::<serde_json::Value>(&JsonNum(x).to_string()).unwrap().is_f64());
+        }
+        assert_eq!(JsonNum(f64::NAN).to_string(), "null");
+        assert_eq!(JsonNum(f64::INFINITY).to_string(), "null");
+        assert_eq!(json_str("a\"b\\c"), r#""a\"b\\c""#);
+        let x = 0.1 + 0.2;
+        assert_eq!(JsonNum(x).to_string().parse::<f64>().unwrap(), x);
+    }
+
+    #[test]
+    fn arrays() {
+        let mut out = Vec::new();
+        json_array(&mut out, "  ", [1, 2], |o, i| write!(o, "{i}")).unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), "[\n    1,\n    2\n  ]");
+        let mut out = Vec::new();
+        json_array(&mut out, "  ", Vec::<i32>::new(), |o, i| write!(o, "{i}")).unwrap();
+        assert_eq!(out, b"[]");
+    }
+}

@@ -1,0 +1,526 @@
+//! Integration tests of the `splinekit` binary: run it on small SWP files in a temporary
+//! directory and check its output, exit status and messages.
+
+use std::ffi::OsStr;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+use serde_json::Value;
+
+// ---------------------------------------------------------------------------------------
+// Harness
+
+/// The outcome of one run of the binary.
+struct Run {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+}
+
+impl Run {
+    /// Asserts success and returns stdout.
+    #[track_caller]
+    fn ok(&self) -> &str {
+        assert_eq!(self.code, Some(0), "expected success\nstdout:\n{}\nstderr:\n{}", self.stdout, self.stderr);
+        &self.stdout
+    }
+
+    /// Asserts a non-zero exit with nothing on stdout, and returns stderr.
+    #[track_caller]
+    fn fails(&self) -> &str {
+        assert!(
+            self.code.is_some_and(|c| c != 0),
+            "expected failure, got {:?}\nstdout:\n{}\nstderr:\n{}",
+            self.code,
+            self.stdout,
+            self.stderr
+        );
+        assert!(self.stdout.is_empty(), "partial output on failure:\n{}", self.stdout);
+        assert!(!self.stderr.trim().is_empty(), "no message on failure");
+        &self.stderr
+    }
+
+    /// Asserts success and parses stdout as one JSON value.
+    #[track_caller]
+    fn json(&self) -> Value {
+        serde_json::from_str(self.ok()).unwrap_or_else(|e| panic!("bad JSON ({e}):\n{}", self.stdout))
+    }
+}
+
+fn splinekit<S: AsRef<OsStr>>(args: &[S]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_splinekit")).args(args).output().expect("running splinekit");
+    Run {
+        code: out.status.code(),
+        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
+        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
+    }
+}
+
+/// Runs `splinekit` with `file` as the argument after the subcommand.
+fn on(command: &str, file: &Path, rest: &[&str]) -> Run {
+    let mut args: Vec<&OsStr> = vec![command.as_ref(), file.as_os_str()];
+    args.extend(rest.iter().map(OsStr::new));
+    splinekit(&args)
+}
+
+#[track_caller]
+fn assert_close(a: f64, b: f64, eps: f64, what: &str) {
+    assert!((a - b).abs() <= eps, "{what}: {a} vs {b}, diff {} > {eps}", (a - b).abs());
+}
+
+fn num(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+/// A temporary directory holding SWP files.
+struct Dir(tempfile::TempDir);
+
+impl Dir {
+    fn new() -> Self {
+        Self(tempfile::tempdir().expect("temp dir"))
+    }
+    fn file(&self, name: &str, text: &str) -> PathBuf {
+        let path = self.0.path().join(name);
+        std::fs::write(&path, text).expect("writing test file");
+        path
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// The reference scene of SPEC §1.4
+
+/// Chord table `s` column of SPEC §1.4 (u = 0.0, 0.2, …, 5.0).
+const REFERENCE_CHORD_S: [f64; 26] = [
+    0.00000, 0.13984, 0.35788, 0.59640, 0.77689, 0.82383, 0.99348, 1.31196, 1.68453, 2.01578, 2.21177, 2.28435,
+    2.43888, 2.63035, 2.78487, 2.85746, 3.05345, 3.38470, 3.75727, 4.07574, 4.24539, 4.29233, 4.47283, 4.71135,
+    4.92939, 5.06923,
+];
+/// Agreement "to 5 decimals": half a unit in the 5th decimal, plus rounding slack.
+const DEC5: f64 = 5e-6 + 1e-12;
+
+/// The 8 control points: αᵢ = i/7, θ = 2παᵢ, r = cos 2θ, Pᵢ = (r cos θ, r sin θ, −0.5 + αᵢ).
+fn scene_points() -> Vec<[f64; 3]> {
+    (0..8)
+        .map(|i| {
+            let a = i as f64 / 7.0;
+            let theta = std::f64::consts::TAU * a;
+            let r = (2.0 * theta).cos();
+            [r * theta.cos(), r * theta.sin(), -0.5 + a]
+        })
+        .collect()
+}
+
+/// The scene as a `cr3` curve named `scene`, followed by an anonymous circle of radius 1.
+fn scene_swp() -> String {
+    let mut text = String::from("# SPEC 1.4 reference scene\ncr3 scene 20 8\n");
+    for [x, y, z] in scene_points() {
+        text.push_str(&format!("[{x} {y} {z}]\n"));
+    }
+    text.push_str("circ . 30 1\n");
+    text
+}
+
+fn scene() -> (Dir, PathBuf) {
+    let dir = Dir::new();
+    let path = dir.file("scene.swp", &scene_swp());
+    (dir, path)
+}
+
+/// The bundled SWP files: the io crate's test data, else the shared data directory.
+fn data_dir() -> PathBuf {
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let candidates = [
+        crate_dir.join("../splinekit-io/tests/data/swp"),
+        crate_dir.join("../../../shared/data/swp"),
+        crate_dir.join("../../shared/data/swp"),
+    ];
+    candidates
+        .iter()
+        .find(|d| d.join("core.swp").is_file())
+        .cloned()
+        .unwrap_or_else(|| panic!("no core.swp in any of {candidates:?}"))
+}
+
+// ---------------------------------------------------------------------------------------
+// arclen
+
+#[test]
+fn arclen_chord_table_matches_reference() {
+    let (_dir, path) = scene();
+    let json = on("arclen", &path, &["--json"]).json();
+    assert_eq!(json["curve"], "scene");
+    assert_eq!(json["method"], "chord");
+    assert_eq!(json["samples_per_segment"], 5);
+    let table = json["table"].as_array().unwrap();
+    assert_eq!(table.len(), 26);
+    for (i, row) in table.iter().enumerate() {
+        assert_close(num(&row["u"]), i as f64 / 5.0, 1e-15, &format!("u of row {i}"));
+        assert_close(num(&row["s"]), REFERENCE_CHORD_S[i], DEC5, &format!("s of row {i}"));
+    }
+    assert_eq!(num(&json["length"]), num(&table[25]["s"]), "length is the last row's s");
+    assert_close(num(&json["length"]), 5.06923, DEC5, "chord length");
+}
+
+#[test]
+fn arclen_gauss3_length() {
+    let (_dir, path) = scene();
+    let json = on("arclen", &path, &["--method", "gauss3", "--json"]).json();
+    assert_eq!(json["method"], "gauss3");
+    let table = json["table"].as_array().unwrap();
+    assert_eq!(table.len(), 26);
+    assert_eq!(num(&json["length"]), num(&table[25]["s"]));
+    assert_close(num(&json["length"]), 5.14943, DEC5, "gauss3 length");
+}
+
+#[test]
+fn arclen_adaptive_length() {
+    let (_dir, path) = scene();
+    let json = on("arclen", &path, &["--method", "adaptive", "--json"]).json();
+    assert_eq!(json["method"], "adaptive");
+    assert_eq!(json["table"], Value::Array(vec![]));
+    assert_close(num(&json["length"]), 5.147598456, 1e-9, "adaptive length");
+    // a looser accuracy still holds its bound
+    let json = on("arclen", &path, &["--method", "adaptive", "--accuracy", "1e-4", "--json"]).json();
+    assert_close(num(&json["length"]), 5.147598456, 1e-4, "adaptive length to 1e-4");
+}
+
+#[test]
+fn arclen_at_s() {
+    let (_dir, path) = scene();
+    let json = on("arclen", &path, &["--at-s", "0.417", "--json"]).json();
+    let at = json["at_s"].as_array().unwrap();
+    assert_eq!(at.len(), 1);
+    assert_eq!(num(&at[0]["s"]), 0.417);
+    assert_close(num(&at[0]["u"]), 0.4496, 5e-5, "u(0.417) from the chord table");
+
+    // repeatable, in the given order; clamped to [0, length]
+    let json = on("arclen", &path, &["--at-s", "0", "--at-s", "100", "--at-s=-1", "--at-s", "0.417", "--json"]).json();
+    let u: Vec<f64> = json["at_s"].as_array().unwrap().iter().map(|r| num(&r["u"])).collect();
+    assert_eq!(u.len(), 4);
+    assert_eq!((u[0], u[1], u[2]), (0.0, 5.0, 0.0));
+    assert_close(u[3], 0.4496, 5e-5, "u(0.417)");
+
+    // adaptive: the exact inverse differs from the table's, and is the curve's true u(s)
+    let json = on("arclen", &path, &["--method", "adaptive", "--at-s", "0.417", "--json"]).json();
+    let u = num(&json["at_s"][0]["u"]);
+    assert!(u > 0.4 && u < 0.5 && (u - 0.4496).abs() > 1e-3, "exact u(0.417) = {u}");
+}
+
+#[test]
+fn arclen_spacing_point_count() {
+    let (_dir, path) = scene();
+    for method in ["chord", "gauss3", "adaptive"] {
+        let json = on("arclen", &path, &["--method", method, "--spacing", "0.5", "--json"]).json();
+        let length = num(&json["length"]);
+        let points = json["points"].as_array().unwrap();
+        assert_eq!(points.len(), (length / 0.5).floor() as usize + 1, "{method}: length {length}");
+        // the first point is the curve's start: P1 of the Catmull-Rom control points
+        let first: Vec<f64> = points[0].as_array().unwrap().iter().map(num).collect();
+        let p1 = scene_points()[1];
+        for c in 0..3 {
+            assert_close(first[c], p1[c], 1e-12, &format!("{method}: start coordinate {c}"));
+        }
+        assert!(points.iter().all(|p| p.as_array().unwrap().len() == 3));
+    }
+}
+
+#[test]
+fn arclen_json_keys_in_order() {
+    let (_dir, path) = scene();
+    let cases: [(&[&str], &[&str]); 4] = [
+        (&["--json"], &["curve", "method", "samples_per_segment", "table", "length"]),
+        (&["--json", "--at-s", "1"], &["curve", "method", "samples_per_segment", "table", "length", "at_s"]),
+        (&["--json", "--spacing", "1"], &["curve", "method", "samples_per_segment", "table", "length", "points"]),
+        (
+            &["--json", "--spacing", "1", "--at-s", "1", "--method", "adaptive"],
+            &["curve", "method", "samples_per_segment", "table", "length", "at_s", "points"],
+        ),
+    ];
+    for (args, keys) in cases {
+        let run = on("arclen", &path, args);
+        let json = run.json();
+        let object = json.as_object().unwrap();
+        let mut present: Vec<&str> = object.keys().map(String::as_str).collect();
+        let mut expected = keys.to_vec();
+        present.sort_unstable();
+        expected.sort_unstable();
+        assert_eq!(present, expected, "keys for {args:?}");
+        // key order in the text
+        let positions: Vec<usize> =
+            keys.iter().map(|k| run.stdout.find(&format!("\"{k}\":")).unwrap_or_else(|| panic!("{k}"))).collect();
+        assert!(positions.windows(2).all(|w| w[0] < w[1]), "key order for {args:?}:\n{}", run.stdout);
+        // exactly one JSON object
+        assert!(run.stdout.trim_start().starts_with('{') && run.stdout.trim_end().ends_with('}'));
+    }
+}
+
+#[test]
+fn arclen_human_output() {
+    let (_dir, path) = scene();
+    let text = on("arclen", &path, &[]).ok().to_string();
+    let json = on("arclen", &path, &["--json"]).json();
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].contains("scene"), "header names the curve:\n{text}");
+    assert!(text.contains("chord") && text.contains("5 samples"), "header names method and samples:\n{text}");
+    let header = lines.iter().position(|l| l.split_whitespace().collect::<Vec<_>>() == ["u", "s"]).unwrap();
+    let rows: Vec<(f64, f64)> = lines[header + 1..header + 27]
+        .iter()
+        .map(|l| {
+            let v: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            (v[0], v[1])
+        })
+        .collect();
+    for (i, (u, s)) in rows.iter().enumerate() {
+        assert_close(*u, i as f64 / 5.0, 1e-6, "u column");
+        assert_close(*s, REFERENCE_CHORD_S[i], DEC5 + 5e-7, "s column");
+    }
+    let length_line = lines.iter().find(|l| l.starts_with("length:")).expect("a length line");
+    let length: f64 = length_line["length:".len()..].trim().parse().unwrap();
+    assert_eq!(length, num(&json["length"]));
+
+    let text = on("arclen", &path, &["--at-s", "0.417", "--spacing", "0.5"]).ok().to_string();
+    assert!(text.contains("length: "), "{text}");
+    assert!(text.contains("0.4495"), "the at-s answer:\n{text}");
+    assert!(text.contains("(11)"), "11 resampled points:\n{text}");
+
+    let text = on("arclen", &path, &["--method", "adaptive"]).ok().to_string();
+    assert!(text.contains("adaptive") && text.contains("length: 5.1475984"), "{text}");
+}
+
+#[test]
+fn arclen_curve_selection() {
+    let (_dir, path) = scene();
+    let default = on("arclen", &path, &["--json"]).ok().to_string();
+    assert_eq!(on("arclen", &path, &["--json", "--curve", "scene"]).ok(), default);
+    assert_eq!(on("arclen", &path, &["--json", "--curve", "0"]).ok(), default);
+
+    for token in ["1", "#1"] {
+        let json = on("arclen", &path, &["--json", "--curve", token, "--method", "adaptive"]).json();
+        assert_eq!(json["curve"], "#1");
+        assert_close(num(&json["length"]), std::f64::consts::TAU, 1e-9, "circle of radius 1");
+    }
+    let json = on("arclen", &path, &["--json", "--curve", "1"]).json();
+    assert_eq!(json["table"].as_array().unwrap().len(), 6, "a circle is one segment");
+
+    // a name wins over an index
+    let dir = Dir::new();
+    let path = dir.file("names.swp", "circ . 10 1\ncirc 0 10 2\n");
+    let json = on("arclen", &path, &["--json", "--curve", "0", "--method", "adaptive"]).json();
+    assert_eq!(json["curve"], "0");
+    assert_close(num(&json["length"]), 2.0 * std::f64::consts::TAU, 1e-9, "the circle named 0");
+    let json = on("arclen", &path, &["--json", "--curve", "#0", "--method", "adaptive"]).json();
+    assert_eq!(json["curve"], "#0");
+}
+
+// ---------------------------------------------------------------------------------------
+// curve
+
+/// Parses `u,x,y,z` CSV into rows.
+fn csv_rows(text: &str) -> Vec<[f64; 4]> {
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("u,x,y,z"));
+    lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            assert_eq!(v.len(), 4, "{l}");
+            [v[0], v[1], v[2], v[3]]
+        })
+        .collect()
+}
+
+#[test]
+fn curve_point_counts_on_bundled_files() {
+    let data = data_dir();
+    let core = data.join("core.swp");
+    for index in 0..4 {
+        let rows = csv_rows(on("curve", &core, &["--curve", &index.to_string()]).ok());
+        assert_eq!(rows.len(), 21, "core.swp curve {index}");
+        for (j, row) in rows.iter().enumerate() {
+            assert_eq!(row[0], j as f64 / 20.0);
+        }
+    }
+    // bez2 #0 interpolates its end points [3 0] and [1 0]
+    let rows = csv_rows(on("curve", &core, &[]).ok());
+    assert_eq!(rows[0][1..], [3.0, 0.0, 0.0]);
+    assert_eq!(rows[20][1..], [1.0, 0.0, 0.0]);
+    assert!(on("curve", &core, &["--curve", "4"]).fails().contains("no curve"));
+
+    let circles = data.join("circles.swp");
+    for (index, count, radius) in [(0, 31, 1.0), (1, 51, 2.0)] {
+        let rows = csv_rows(on("curve", &circles, &["--curve", &index.to_string()]).ok());
+        assert_eq!(rows.len(), count, "circles.swp curve {index}");
+        assert_eq!(rows[0][1..], [radius, 0.0, 0.0], "starts at angle 0");
+        assert_eq!(rows[0][1..], rows[count - 1][1..], "the last point repeats the first");
+        assert!(rows[1][2] > 0.0, "counter-clockwise");
+        for row in &rows {
+            assert_close(row[1].hypot(row[2]), radius, 1e-12, "on the circle");
+        }
+    }
+}
+
+#[test]
+fn curve_steps_and_json() {
+    let (_dir, path) = scene();
+    // own steps: 5 segments · 20 + 1
+    assert_eq!(csv_rows(on("curve", &path, &[]).ok()).len(), 101);
+    let rows = csv_rows(on("curve", &path, &["--steps", "7"]).ok());
+    assert_eq!(rows.len(), 36);
+    for (j, row) in rows.iter().enumerate() {
+        assert_eq!(row[0], j as f64 / 7.0, "u = (k·steps + i)/steps");
+    }
+    // a Catmull-Rom curve passes through P1..P6 at u = 0..5
+    let p = scene_points();
+    for k in 0..=5 {
+        for c in 0..3 {
+            assert_close(rows[7 * k][c + 1], p[k + 1][c], 1e-12, &format!("knot {k}"));
+        }
+    }
+
+    let json = on("curve", &path, &["--steps", "7", "--format", "json"]).json();
+    assert_eq!(json["curve"], "scene");
+    assert_eq!(json["steps"], 7);
+    let points = json["points"].as_array().unwrap();
+    assert_eq!(points.len(), 36);
+    for (row, point) in rows.iter().zip(points) {
+        let keys: Vec<&str> = point.as_object().unwrap().keys().map(String::as_str).collect();
+        assert_eq!(keys.len(), 4);
+        for (i, key) in ["u", "x", "y", "z"].iter().enumerate() {
+            assert_eq!(num(&point[key]), row[i], "CSV and JSON agree exactly");
+        }
+    }
+    let json = on("curve", &path, &["--curve", "1", "--format", "json"]).json();
+    assert_eq!(json["curve"], "#1");
+    assert_eq!(json["points"].as_array().unwrap().len(), 31);
+}
+
+// ---------------------------------------------------------------------------------------
+// Errors
+
+#[test]
+fn error_missing_file() {
+    let dir = Dir::new();
+    let missing = dir.0.path().join("missing.swp");
+    for command in ["arclen", "curve"] {
+        let stderr = on(command, &missing, &[]).fails().to_string();
+        assert!(stderr.contains("missing.swp"), "{stderr}");
+        assert!(stderr.starts_with("error: "), "{stderr}");
+    }
+}
+
+#[test]
+fn error_malformed_swp_names_line_and_column() {
+    let dir = Dir::new();
+    let path = dir.file("bad.swp", "bsp2 . 20 4\n[0 0] [1 x]\n[2 0] [3 0]\n");
+    for command in ["arclen", "curve"] {
+        let run = on(command, &path, &[]);
+        let stderr = run.fails();
+        assert!(stderr.contains("bad.swp:2:10:"), "{stderr}");
+        assert_eq!(run.code, Some(1));
+    }
+}
+
+#[test]
+fn error_unknown_curve_lists_the_curves() {
+    let (_dir, path) = scene();
+    for token in ["nope", "2", "#5", "-1"] {
+        for command in ["arclen", "curve"] {
+            let stderr = on(command, &path, &["--curve", token]).fails().to_string();
+            assert!(stderr.contains(&format!("{token:?}")), "{stderr}");
+            assert!(stderr.contains("0: scene (cr3)") && stderr.contains("1: #1 (circ)"), "{stderr}");
+        }
+    }
+    let dir = Dir::new();
+    let empty = dir.file("empty.swp", "# nothing here\n");
+    assert!(on("arclen", &empty, &[]).fails().contains("no curves"));
+}
+
+#[test]
+fn error_bad_flag_values() {
+    let (_dir, path) = scene();
+    let cases: [(&str, &[&str], &str); 13] = [
+        ("arclen", &["--samples", "0"], "--samples"),
+        ("arclen", &["--samples", "-3"], "--samples"),
+        ("arclen", &["--samples", "x"], "--samples"),
+        ("arclen", &["--accuracy", "0"], "--accuracy"),
+        ("arclen", &["--accuracy", "-1e-9"], "--accuracy"),
+        ("arclen", &["--accuracy", "nan"], "--accuracy"),
+        ("arclen", &["--accuracy", "inf"], "--accuracy"),
+        ("arclen", &["--spacing", "0"], "--spacing"),
+        ("arclen", &["--spacing", "-0.5"], "--spacing"),
+        ("arclen", &["--at-s", "nan"], "--at-s"),
+        ("arclen", &["--method", "simpson"], "--method"),
+        ("curve", &["--steps", "0"], "--steps"),
+        ("curve", &["--format", "xml"], "--format"),
+    ];
+    for (command, args, flag) in cases {
+        let stderr = on(command, &path, args).fails().to_string();
+        assert!(stderr.contains(flag), "{command} {args:?}: {stderr}");
+    }
+    // absurd point counts are refused, before any output
+    let stderr = on("arclen", &path, &["--spacing", "1e-9"]).fails().to_string();
+    assert!(stderr.contains("10000000"), "{stderr}");
+    let stderr = on("arclen", &path, &["--samples", "4000000"]).fails().to_string();
+    assert!(stderr.contains("10000000"), "{stderr}");
+}
+
+// ---------------------------------------------------------------------------------------
+// Help, determinism, pipes
+
+#[test]
+fn help_describes_commands_and_flags() {
+    let top = splinekit(&["--help"]).ok().to_string();
+    for word in ["arclen", "curve", "SWP", "Examples"] {
+        assert!(top.contains(word), "top-level help lacks {word}:\n{top}");
+    }
+    let arclen = splinekit(&["arclen", "--help"]).ok().to_string();
+    for flag in ["--curve", "--samples", "--method", "--accuracy", "--at-s", "--spacing", "--json", "chord", "gauss3"] {
+        assert!(arclen.contains(flag), "arclen help lacks {flag}:\n{arclen}");
+    }
+    assert!(arclen.contains("Examples") && arclen.contains("splinekit arclen "), "{arclen}");
+    let curve = splinekit(&["curve", "--help"]).ok().to_string();
+    for flag in ["--curve", "--steps", "--format", "csv", "json"] {
+        assert!(curve.contains(flag), "curve help lacks {flag}:\n{curve}");
+    }
+    assert!(curve.contains("Examples") && curve.contains("splinekit curve "), "{curve}");
+    assert!(splinekit(&["help", "arclen"]).ok().contains("--spacing"));
+}
+
+#[test]
+fn output_is_deterministic() {
+    let (_dir, path) = scene();
+    let runs: [(&str, &[&str]); 5] = [
+        ("arclen", &["--json", "--at-s", "0.417", "--spacing", "0.25"]),
+        ("arclen", &["--method", "adaptive", "--json", "--at-s", "0.417", "--spacing", "0.25"]),
+        ("arclen", &["--method", "gauss3", "--at-s", "1", "--spacing", "0.3"]),
+        ("curve", &["--steps", "13"]),
+        ("curve", &["--format", "json", "--curve", "1"]),
+    ];
+    for (command, args) in runs {
+        let first = on(command, &path, args).ok().to_string();
+        let second = on(command, &path, args).ok().to_string();
+        assert!(first == second, "{command} {args:?} differs between runs");
+    }
+}
+
+#[test]
+fn closed_output_pipe_is_success() {
+    let (_dir, path) = scene();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_splinekit"))
+        .arg("curve")
+        .arg(&path)
+        .args(["--steps", "1000000"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    let mut head = [0u8; 64];
+    child.stdout.as_mut().unwrap().read_exact(&mut head).unwrap();
+    assert!(head.starts_with(b"u,x,y,z\n"));
+    drop(child.stdout.take());
+    let mut stderr = String::new();
+    child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
+    let status = child.wait().unwrap();
+    assert!(status.success(), "exit {status:?}, stderr: {stderr}");
+    assert!(stderr.is_empty(), "{stderr}");
+}

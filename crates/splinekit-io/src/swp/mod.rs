@@ -1,0 +1,362 @@
+//! The SWP format: curve and sweep descriptions (reader and writer).
+//!
+//! SWP is the plain-text format of the MIT 6.837 / Aalto ME-C3100 "curves and surfaces"
+//! assignments: a stream of whitespace-separated tokens that describes spline curves and the
+//! surfaces swept from them. [`SwpDocument::parse`] reads it into an [`SwpDocument`], and
+//! [`SwpDocument::to_swp_string`] writes one back.
+//!
+//! # Grammar
+//!
+//! ```text
+//! document := object*
+//! object   := curve | hermite | circle | srev | gcyl
+//! curve    := ("bez2"|"bsp2"|"cr2"|"bez3"|"bsp3"|"cr3") NAME STEPS NPOINTS option* point{NPOINTS}
+//! hermite  := ("her2"|"her3") NAME STEPS NPAIRS option* (point point){NPAIRS}   point, then tangent
+//! point    := "[" x y "]"        2D kinds (bez2 bsp2 cr2 her2); z is 0 in the model
+//!           | "[" x y z "]"      3D kinds (bez3 bsp3 cr3 her3)
+//! circle   := "circ" NAME STEPS RADIUS          xy-plane, centred at the origin
+//! srev     := "srev" NAME STEPS PROFILE         surface of revolution
+//! gcyl     := "gcyl" NAME PROFILE SWEEP         generalized cylinder
+//! option   := "closed" | "open" | "alpha" A | "uniform" | "centripetal" | "chordal"
+//! NAME     := "."                               anonymous, may repeat
+//!           | any other token                   unique among all curves and surfaces
+//! ```
+//!
+//! - **Tokens** are separated by whitespace: space, tab, CR, LF, vertical tab and form feed,
+//!   so LF and CRLF files read the same. `[` and `]` are tokens of their own even when glued to
+//!   other text: `[3 0]`, `[ 3 0 ]` and `[-2 2] [-4 0]` on one line all work. A UTF-8 byte
+//!   order mark at the very start is skipped (it does not count as a column).
+//! - **Keywords** are lowercase. `bez2 bsp2 bez3 bsp3 circ srev gcyl` are the original SWP
+//!   keywords; `cr2 cr3 her2 her3` are ours (see *Extensions*).
+//! - **Names**: `.` is anonymous and may repeat; every other token is a name that must be unique
+//!   across all curves *and* surfaces. `[` and `]` cannot be names, and neither can anything
+//!   starting with `#` (that is a comment). A curve is referenced by name, and only after its
+//!   definition; anonymous curves cannot be referenced. Names that look like keywords or numbers
+//!   are allowed, because every position in the grammar is fixed.
+//! - **STEPS** is an integer from 1 to [`MAX_STEPS`] (1 000 000).
+//! - **NPOINTS** is a non-negative integer that must satisfy the kind's point-count rule:
+//!
+//!   | kind | open | closed |
+//!   |---|---|---|
+//!   | Bézier (`bez2`, `bez3`) | 3m+1 points, m ≥ 1 (4, 7, 10, …) | 3m points, m ≥ 1 (3, 6, 9, …); the last segment returns to the first point |
+//!   | B-spline (`bsp2`, `bsp3`) | ≥ 4 | ≥ 3 |
+//!   | Catmull-Rom (`cr2`, `cr3`) | ≥ 4 | ≥ 3 |
+//!   | Hermite (`her2`, `her3`) | ≥ 2 pairs | ≥ 2 pairs |
+//!
+//! - **Numbers** are decimal floating-point numbers such as `-0.765483`, `2`, `1e-3` or `.5`.
+//!   `nan`, `inf` and numbers too large for an `f64` are errors. RADIUS must be ≥ 0 (a radius of
+//!   0 is valid: real files use it as a degenerate sweep).
+//! - **Profiles** of `srev` and `gcyl` must be 2D curves (`bez2`, `bsp2`, `cr2`, `her2`, `circ`);
+//!   a `gcyl` sweep may be 2D or 3D.
+//! - **Quirks of real files** that are accepted: CRLF line endings, brackets with or without
+//!   inner spaces, several points on one line, repeated end points, trailing spaces, no final
+//!   newline, whitespace-only trailing lines.
+//!
+//! # Extensions
+//!
+//! A plain SWP file never uses these, so it parses exactly as it always did.
+//!
+//! - **Comments**: `#` starts a comment that runs to the end of the line, wherever it appears
+//!   (also glued to a token: `[1 2]# note`).
+//! - **Catmull-Rom** curves `cr2` / `cr3` have exactly the shape of `bsp2` / `bsp3`:
+//!   `cr3 NAME STEPS N [x y z] …`.
+//! - **Hermite** curves `her2` / `her3`: `her2 NAME STEPS N` followed by N pairs
+//!   `[point] [tangent]`.
+//! - **Curve options** stand between NPOINTS and the first `[`:
+//!   - `closed` makes the curve closed (see the point-count table), `open` is the default;
+//!   - Catmull-Rom only: `alpha A` with 0 ≤ A ≤ 1 picks the knot parametrization (0 uniform,
+//!     0.5 centripetal, 1 chordal; the default is 0), and the words `uniform`, `centripetal`
+//!     and `chordal` are short for `alpha 0`, `alpha 0.5` and `alpha 1`.
+//!
+//!   Each group (open/closed, parametrization) may be given at most once, and an option on a
+//!   kind it does not apply to (such as `alpha` on `bsp2`) is an error. Circles are always
+//!   closed and take no options.
+//!
+//! ```text
+//! # a closed centripetal Catmull-Rom loop and a Hermite arc
+//! cr2 loop 30 4 closed centripetal
+//! [0 0] [1 0] [1 1] [0 1]
+//!
+//! her3 arc 20 2
+//! [0 0 0] [1 0 0]
+//! [1 1 0] [0 1 0]
+//! ```
+//!
+//! # Errors
+//!
+//! Parsing stops at the first error and produces nothing. [`SwpError`] displays as
+//! `FILE:LINE:COL: found <what was found>, expected <what>`, for example
+//! `core.swp:3:7: found "1.2.3", expected a number (x coordinate of point 2 of bsp2 curve "profile")`.
+//! Lines and columns are 1-based, and columns count characters. An unexpected end of file
+//! points just after the last token.
+//!
+//! # Example
+//!
+//! ```
+//! use splinekit_io::swp::{SwpCurveKind, SwpDocument, SwpGeometry, SwpSurfaceKind};
+//!
+//! let text = "bez2 profile 50 4\r\n[-2 2] [-4 0] [0 0] [-2 -2]\r\n\r\nsrev . 90 profile\r\n";
+//! let doc = SwpDocument::parse(text, "norm.swp")?;
+//! assert_eq!(doc.curves[0].kind, SwpCurveKind::Bezier);
+//! let SwpGeometry::Points(points) = &doc.curves[0].geometry else { unreachable!() };
+//! assert_eq!(points[1], glam::DVec3::new(-4.0, 0.0, 0.0));
+//! assert_eq!(doc.surfaces[0].kind, SwpSurfaceKind::Revolution { steps: 90, profile: 0 });
+//!
+//! let err = SwpDocument::parse("bez2 . 20 5", "bad.swp").unwrap_err();
+//! assert_eq!((err.line(), err.column()), (1, 11));
+//! # Ok::<(), splinekit_io::swp::SwpError>(())
+//! ```
+
+mod error;
+mod lexer;
+mod parser;
+mod writer;
+
+use std::path::Path;
+
+use glam::DVec3;
+
+pub use error::{SwpError, SwpErrorKind};
+
+/// The largest STEPS value accepted for curves and surfaces of revolution.
+///
+/// STEPS says how finely a curve or surface is tessellated; one million is far more than any
+/// display needs and keeps a typo from asking for gigabytes of vertices.
+pub const MAX_STEPS: u32 = 1_000_000;
+
+/// A 1-based position in a source text: line, and column counted in characters.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct SourcePos {
+    /// Line number, starting at 1. Lines end at LF (a CRLF counts as one line end).
+    pub line: usize,
+    /// Column number, starting at 1, counted in Unicode scalar values (`char`s).
+    pub column: usize,
+}
+
+impl SourcePos {
+    /// Creates a position from a 1-based line and column.
+    #[must_use]
+    pub const fn new(line: usize, column: usize) -> Self {
+        Self { line, column }
+    }
+}
+
+impl Default for SourcePos {
+    /// Line 1, column 1: the start of a text.
+    fn default() -> Self {
+        Self::new(1, 1)
+    }
+}
+
+impl std::fmt::Display for SourcePos {
+    /// Formats as `LINE:COL`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}:{}", self.line, self.column)
+    }
+}
+
+/// The contents of an SWP file: curves and the surfaces swept from them.
+///
+/// Curves and surfaces are kept in two lists in file order. Surfaces refer to curves by index
+/// into [`curves`](Self::curves).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SwpDocument {
+    /// The curves, in file order.
+    pub curves: Vec<SwpCurve>,
+    /// The surfaces, in file order.
+    pub surfaces: Vec<SwpSurface>,
+}
+
+/// One curve of an SWP file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SwpCurve {
+    /// The curve's name, or `None` for the anonymous name `.`.
+    pub name: Option<String>,
+    /// The kind of curve (Bézier, B-spline, …).
+    pub kind: SwpCurveKind,
+    /// 2 or 3: the dimension of the keyword (`bez2` is 2, `bez3` is 3, `circ` is 2).
+    pub dim: u8,
+    /// Tessellation steps per segment (for circles: for the whole circle), 1..=[`MAX_STEPS`].
+    pub steps: u32,
+    /// Whether the curve is closed (the `closed` option). Always `true` for circles.
+    pub closed: bool,
+    /// Control points, Hermite data or circle radius, depending on [`kind`](Self::kind).
+    pub geometry: SwpGeometry,
+    /// Where the curve's keyword stood.
+    pub pos: SourcePos,
+}
+
+impl SwpCurve {
+    /// The curve's name, or `#<index>` for an anonymous curve (`index` being its position in
+    /// [`SwpDocument::curves`]), for use in messages.
+    #[must_use]
+    pub fn display_name(&self, index: usize) -> String {
+        match &self.name {
+            Some(name) => name.clone(),
+            None => format!("#{index}"),
+        }
+    }
+
+    /// The SWP keyword of this curve, such as `"bez2"` or `"circ"` (from [`kind`](Self::kind)
+    /// and [`dim`](Self::dim); any `dim` other than 3 counts as 2).
+    #[must_use]
+    pub fn keyword(&self) -> &'static str {
+        let three = self.dim == 3;
+        match (self.kind, three) {
+            (SwpCurveKind::Bezier, false) => "bez2",
+            (SwpCurveKind::Bezier, true) => "bez3",
+            (SwpCurveKind::BSpline, false) => "bsp2",
+            (SwpCurveKind::BSpline, true) => "bsp3",
+            (SwpCurveKind::CatmullRom { .. }, false) => "cr2",
+            (SwpCurveKind::CatmullRom { .. }, true) => "cr3",
+            (SwpCurveKind::Hermite, false) => "her2",
+            (SwpCurveKind::Hermite, true) => "her3",
+            (SwpCurveKind::Circle, _) => "circ",
+        }
+    }
+}
+
+/// The kind of an SWP curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SwpCurveKind {
+    /// Piecewise cubic Bézier (`bez2`, `bez3`).
+    Bezier,
+    /// Uniform cubic B-spline (`bsp2`, `bsp3`).
+    BSpline,
+    /// Cubic Catmull-Rom spline (`cr2`, `cr3`, an extension).
+    CatmullRom {
+        /// Knot parametrization exponent in `[0, 1]`: 0 uniform, 0.5 centripetal, 1 chordal.
+        alpha: f64,
+    },
+    /// Cubic Hermite spline from points and tangents (`her2`, `her3`, an extension).
+    Hermite,
+    /// Circle in the xy-plane, centred at the origin (`circ`).
+    Circle,
+}
+
+/// The geometric data of an SWP curve.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SwpGeometry {
+    /// Control points of a Bézier, B-spline or Catmull-Rom curve; z = 0 for 2D kinds.
+    Points(Vec<DVec3>),
+    /// Points and tangents of a Hermite curve (same length); z = 0 for `her2`.
+    Hermite {
+        /// The interpolated points.
+        points: Vec<DVec3>,
+        /// The tangent at each point.
+        tangents: Vec<DVec3>,
+    },
+    /// A circle of the given radius (≥ 0).
+    Circle {
+        /// The radius.
+        radius: f64,
+    },
+}
+
+/// One surface of an SWP file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SwpSurface {
+    /// The surface's name, or `None` for the anonymous name `.`.
+    pub name: Option<String>,
+    /// The kind of surface, with its curve references.
+    pub kind: SwpSurfaceKind,
+    /// Where the surface's keyword stood.
+    pub pos: SourcePos,
+}
+
+impl SwpSurface {
+    /// The surface's name, or `#<index>` for an anonymous surface (`index` being its position in
+    /// [`SwpDocument::surfaces`]), for use in messages.
+    #[must_use]
+    pub fn display_name(&self, index: usize) -> String {
+        match &self.name {
+            Some(name) => name.clone(),
+            None => format!("#{index}"),
+        }
+    }
+}
+
+/// The kind of an SWP surface. Curve references are indices into [`SwpDocument::curves`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SwpSurfaceKind {
+    /// Surface of revolution (`srev`): a 2D profile turned around the y axis.
+    Revolution {
+        /// Tessellation steps around the axis, 1..=[`MAX_STEPS`].
+        steps: u32,
+        /// The 2D profile curve.
+        profile: usize,
+    },
+    /// Generalized cylinder (`gcyl`): a 2D profile swept along a 2D or 3D curve.
+    GeneralizedCylinder {
+        /// The 2D profile curve.
+        profile: usize,
+        /// The sweep curve.
+        sweep: usize,
+    },
+}
+
+impl SwpDocument {
+    /// Parses SWP text. `origin` names the text in error messages (usually the file name).
+    ///
+    /// # Errors
+    ///
+    /// Returns the first error found, with its line and column; see the [module docs](self).
+    pub fn parse(text: &str, origin: &str) -> Result<Self, SwpError> {
+        parser::parse(text, origin)
+    }
+
+    /// Reads and parses an SWP file. Error messages name the file by `path`.
+    ///
+    /// # Errors
+    ///
+    /// Returns an error if the file cannot be read (with the operating system's message), is
+    /// not UTF-8 (pointing at the first bad byte), or does not parse.
+    pub fn read(path: &Path) -> Result<Self, SwpError> {
+        let origin = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|e| SwpError::io(path, e))?;
+        match std::str::from_utf8(&bytes) {
+            Ok(text) => Self::parse(text, &origin),
+            Err(e) => Err(SwpError::invalid_utf8(&origin, &bytes, e.valid_up_to())),
+        }
+    }
+
+    /// The index of the curve called `name`, if there is one.
+    #[must_use]
+    pub fn curve_index(&self, name: &str) -> Option<usize> {
+        self.curves.iter().position(|c| c.name.as_deref() == Some(name))
+    }
+
+    /// The index of the surface called `name`, if there is one.
+    #[must_use]
+    pub fn surface_index(&self, name: &str) -> Option<usize> {
+        self.surfaces.iter().position(|s| s.name.as_deref() == Some(name))
+    }
+
+    /// Writes the document as SWP text.
+    ///
+    /// The output uses plain SWP keywords and no options wherever the options are the
+    /// defaults, LF line endings, one point (or Hermite point-tangent pair) per line, a blank
+    /// line between objects, all curves before all surfaces, and Rust's shortest round-trip
+    /// formatting of `f64` (so every coordinate reads back exactly).
+    ///
+    /// **Round trip.** For every document that [`parse`](Self::parse) can return,
+    /// `parse(to_swp_string())` returns an equal document except for [`SourcePos`] fields and
+    /// these names:
+    ///
+    /// - an anonymous curve that a surface references cannot be written as `.`, so it gets a
+    ///   generated name `_c<index>` (or `_c<index>_<k>` if that is taken) that clashes with no
+    ///   other name;
+    /// - a name that cannot be written as a token (empty, `.`, containing whitespace, `[`, `]`
+    ///   or `#`) or that repeats an earlier name is replaced the same way (`_c<index>` for
+    ///   curves, `_s<index>` for surfaces). Parsed documents never contain such names.
+    ///
+    /// The writer does not validate. A document that breaks the rules (a wrong point count, a
+    /// 3D profile, a reference out of range — written as `.` —, a non-finite number, `steps`
+    /// out of range, …) is written anyway, and the output then fails to parse. The z
+    /// coordinates of 2D curves are not written; a Hermite curve writes as many pairs as its
+    /// shorter list has entries.
+    #[must_use]
+    pub fn to_swp_string(&self) -> String {
+        writer::write(self)
+    }
+}

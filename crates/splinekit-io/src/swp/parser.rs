@@ -1,0 +1,555 @@
+//! The SWP parser: tokens to [`SwpDocument`].
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use super::error::{SwpError, SwpErrorKind};
+use super::lexer::{Token, TokenKind, tokenize};
+use super::{MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind};
+
+/// Every keyword that starts an object.
+const KEYWORDS: [&str; 11] = ["bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "circ", "srev", "gcyl"];
+
+/// Whether `word` is an SWP keyword.
+pub(crate) fn is_keyword(word: &str) -> bool {
+    KEYWORDS.contains(&word)
+}
+
+/// The spline families that have control points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Family {
+    Bezier,
+    BSpline,
+    CatmullRom,
+    Hermite,
+}
+
+/// What a keyword starts.
+#[derive(Debug, Clone, Copy)]
+enum Keyword {
+    Curve { keyword: &'static str, family: Family, dim: u8 },
+    Circle,
+    Revolution,
+    Cylinder,
+}
+
+fn keyword(word: &str) -> Option<Keyword> {
+    let curve = |keyword, family, dim| Some(Keyword::Curve { keyword, family, dim });
+    match word {
+        "bez2" => curve("bez2", Family::Bezier, 2),
+        "bez3" => curve("bez3", Family::Bezier, 3),
+        "bsp2" => curve("bsp2", Family::BSpline, 2),
+        "bsp3" => curve("bsp3", Family::BSpline, 3),
+        "cr2" => curve("cr2", Family::CatmullRom, 2),
+        "cr3" => curve("cr3", Family::CatmullRom, 3),
+        "her2" => curve("her2", Family::Hermite, 2),
+        "her3" => curve("her3", Family::Hermite, 3),
+        "circ" => Some(Keyword::Circle),
+        "srev" => Some(Keyword::Revolution),
+        "gcyl" => Some(Keyword::Cylinder),
+        _ => None,
+    }
+}
+
+/// Whether `count` points (pairs for Hermite) are allowed. See the table in the module docs.
+fn count_ok(family: Family, closed: bool, count: u64) -> bool {
+    match (family, closed) {
+        (Family::Bezier, false) => count >= 4 && (count - 1).is_multiple_of(3),
+        (Family::Bezier, true) => count >= 3 && count.is_multiple_of(3),
+        (Family::BSpline | Family::CatmullRom, false) => count >= 4,
+        (Family::BSpline | Family::CatmullRom, true) => count >= 3,
+        (Family::Hermite, _) => count >= 2,
+    }
+}
+
+/// Parses an integer: an optional sign and ASCII digits. Huge magnitudes saturate at
+/// `u64::MAX`, so the caller can still report "out of range" rather than "not an integer".
+fn int_value(text: &str) -> Option<i128> {
+    let (negative, digits) = match text.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, text.strip_prefix('+').unwrap_or(text)),
+    };
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    let magnitude = digits.bytes().fold(0u64, |acc, b| acc.saturating_mul(10).saturating_add(u64::from(b - b'0')));
+    let value = i128::from(magnitude);
+    Some(if negative { -value } else { value })
+}
+
+/// Parses a finite decimal number (`nan`, `inf` and overflowing numbers are rejected).
+fn number(text: &str) -> Option<f64> {
+    text.parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
+/// `bez2 curve "profile"` or `bez2 curve #0`.
+fn label(keyword: &str, noun: &str, name: Option<&str>, index: usize) -> String {
+    match name {
+        Some(name) => format!("{keyword} {noun} {name:?}"),
+        None => format!("{keyword} {noun} #{index}"),
+    }
+}
+
+/// What a name refers to.
+#[derive(Debug, Clone, Copy)]
+enum Named {
+    Curve(usize),
+    Surface(usize),
+}
+
+/// Parses SWP text; see [`SwpDocument::parse`].
+pub(crate) fn parse(text: &str, origin: &str) -> Result<SwpDocument, SwpError> {
+    let mut parser =
+        Parser { tokens: tokenize(text), next: 0, origin, doc: SwpDocument::default(), names: HashMap::new() };
+    while let Some(token) = parser.bump() {
+        parser.object(token)?;
+    }
+    Ok(parser.doc)
+}
+
+struct Parser<'a> {
+    tokens: Vec<Token<'a>>,
+    next: usize,
+    origin: &'a str,
+    doc: SwpDocument,
+    /// Every name defined so far, with what it names and where the name token stood.
+    names: HashMap<&'a str, (Named, SourcePos)>,
+}
+
+impl<'a> Parser<'a> {
+    fn peek(&self) -> Option<Token<'a>> {
+        self.tokens.get(self.next).copied()
+    }
+
+    fn bump(&mut self) -> Option<Token<'a>> {
+        let token = self.peek();
+        if token.is_some() {
+            self.next += 1;
+        }
+        token
+    }
+
+    /// How many tokens are left.
+    fn remaining(&self) -> usize {
+        self.tokens.len().saturating_sub(self.next)
+    }
+
+    /// Where "end of file" errors point: just after the last token.
+    fn end_pos(&self) -> SourcePos {
+        self.tokens.last().map_or_else(SourcePos::default, |t| t.end)
+    }
+
+    fn error(&self, pos: SourcePos, kind: SwpErrorKind) -> SwpError {
+        SwpError::at(self.origin, pos, kind)
+    }
+
+    fn unexpected(&self, token: Token<'_>, expected: String) -> SwpError {
+        self.error(token.pos, SwpErrorKind::UnexpectedToken { found: token.text.to_owned(), expected })
+    }
+
+    fn invalid_number(&self, token: Token<'_>, expected: String) -> SwpError {
+        self.error(token.pos, SwpErrorKind::InvalidNumber { found: token.text.to_owned(), expected })
+    }
+
+    fn bad_option(&self, token: Token<'_>, expected: String) -> SwpError {
+        self.error(token.pos, SwpErrorKind::BadOption { found: token.text.to_owned(), expected })
+    }
+
+    /// The next token, or an "unexpected end of file" error expecting `expected()`.
+    fn expect(&mut self, expected: impl FnOnce() -> String) -> Result<Token<'a>, SwpError> {
+        match self.bump() {
+            Some(token) => Ok(token),
+            None => Err(self.error(self.end_pos(), SwpErrorKind::UnexpectedEnd { expected: expected() })),
+        }
+    }
+
+    fn object(&mut self, token: Token<'a>) -> Result<(), SwpError> {
+        let keyword = match token.kind {
+            TokenKind::Word => keyword(token.text),
+            TokenKind::Open | TokenKind::Close => None,
+        };
+        match keyword {
+            None => Err(self.error(token.pos, SwpErrorKind::UnknownKeyword { found: token.text.to_owned() })),
+            Some(Keyword::Curve { keyword, family, dim }) => self.curve(token.pos, keyword, family, dim),
+            Some(Keyword::Circle) => self.circle(token.pos),
+            Some(Keyword::Revolution) => self.revolution(token.pos),
+            Some(Keyword::Cylinder) => self.cylinder(token.pos),
+        }
+    }
+
+    /// Reads NAME: `None` for `.`. `what` is like `bez2 curve`.
+    fn name(&mut self, what: &str) -> Result<(Option<&'a str>, SourcePos), SwpError> {
+        let expected = || format!("a name or `.` for the {what}");
+        let token = self.expect(expected)?;
+        if token.kind != TokenKind::Word {
+            return Err(self.unexpected(token, expected()));
+        }
+        if token.text == "." {
+            return Ok((None, token.pos));
+        }
+        if let Some(&(named, first)) = self.names.get(token.text) {
+            let what = match named {
+                Named::Curve(i) => self.doc.curves.get(i).map_or("curve", |c| c.keyword()),
+                Named::Surface(i) => match self.doc.surfaces.get(i).map(|s| s.kind) {
+                    Some(SwpSurfaceKind::Revolution { .. }) => "srev",
+                    _ => "gcyl",
+                },
+            };
+            let noun = match named {
+                Named::Curve(_) => "curve",
+                Named::Surface(_) => "surface",
+            };
+            return Err(self.error(
+                token.pos,
+                SwpErrorKind::DuplicateName { name: token.text.to_owned(), what: format!("{what} {noun}"), first },
+            ));
+        }
+        Ok((Some(token.text), token.pos))
+    }
+
+    fn register(&mut self, name: Option<&'a str>, pos: SourcePos, named: Named) {
+        if let Some(name) = name {
+            self.names.insert(name, (named, pos));
+        }
+    }
+
+    /// Reads STEPS for the object `label`.
+    fn steps(&mut self, label: &str) -> Result<u32, SwpError> {
+        let expected = || format!("a step count (an integer from 1 to {MAX_STEPS}) for {label}");
+        let token = self.expect(expected)?;
+        match int_value(token.text) {
+            None => Err(self.invalid_number(token, expected())),
+            Some(value) => u32::try_from(value).ok().filter(|steps| (1..=MAX_STEPS).contains(steps)).ok_or_else(|| {
+                self.error(
+                    token.pos,
+                    SwpErrorKind::StepsOutOfRange { found: token.text.to_owned(), object: label.to_owned() },
+                )
+            }),
+        }
+    }
+
+    /// `bez2 … bsp3 cr2 cr3 her2 her3`, after the keyword.
+    fn curve(&mut self, pos: SourcePos, keyword: &'static str, family: Family, dim: u8) -> Result<(), SwpError> {
+        let index = self.doc.curves.len();
+        let (name, name_pos) = self.name(&format!("{keyword} curve"))?;
+        let label = label(keyword, "curve", name, index);
+        let steps = self.steps(&label)?;
+
+        let pairs = family == Family::Hermite;
+        let items = if pairs { "point pairs" } else { "points" };
+        let expected = || format!("the number of {items} (an integer ≥ 0) of {label}");
+        let count_token = self.expect(expected)?;
+        let count = match int_value(count_token.text) {
+            Some(value) if value >= 0 => u64::try_from(value).unwrap_or(u64::MAX),
+            _ => return Err(self.invalid_number(count_token, expected())),
+        };
+
+        let options = self.options(family, &label)?;
+        if !count_ok(family, options.closed, count) {
+            return Err(self.error(
+                count_token.pos,
+                SwpErrorKind::PointCount { curve: label, keyword, closed: options.closed, found: count },
+            ));
+        }
+
+        // Each point takes at least `dim + 2` tokens, so the remaining tokens bound how many
+        // points can follow: never reserve memory for a count the input cannot back.
+        let tokens_per_item = usize::from(dim + 2) * if pairs { 2 } else { 1 };
+        let capacity = usize::try_from(count).unwrap_or(usize::MAX).min(self.remaining() / tokens_per_item);
+        let mut points = Vec::with_capacity(capacity);
+        let mut tangents = Vec::with_capacity(if pairs { capacity } else { 0 });
+        for i in 0..count {
+            let n = i + 1;
+            match self.peek() {
+                None => {
+                    return Err(self.error(
+                        self.end_pos(),
+                        SwpErrorKind::MissingPoints { curve: label, expected: count, found: i, pairs },
+                    ));
+                }
+                Some(token) if i == 0 && token.kind == TokenKind::Word => {
+                    return Err(self.bad_option(
+                        token,
+                        format!("`[` starting point 1 of {label}, or a curve option ({})", option_list(family)),
+                    ));
+                }
+                Some(_) => {}
+            }
+            points.push(self.point(dim, "point", n, count, &label)?);
+            if pairs {
+                tangents.push(self.point(dim, "tangent", n, count, &label)?);
+            }
+        }
+
+        let (kind, geometry) = match family {
+            Family::Bezier => (SwpCurveKind::Bezier, SwpGeometry::Points(points)),
+            Family::BSpline => (SwpCurveKind::BSpline, SwpGeometry::Points(points)),
+            Family::CatmullRom => (SwpCurveKind::CatmullRom { alpha: options.alpha }, SwpGeometry::Points(points)),
+            Family::Hermite => (SwpCurveKind::Hermite, SwpGeometry::Hermite { points, tangents }),
+        };
+        self.register(name, name_pos, Named::Curve(index));
+        self.doc.curves.push(SwpCurve {
+            name: name.map(str::to_owned),
+            kind,
+            dim,
+            steps,
+            closed: options.closed,
+            geometry,
+            pos,
+        });
+        Ok(())
+    }
+
+    /// Reads the option words between NPOINTS and the first `[`. Stops at the first token that
+    /// is not an option word and leaves it.
+    fn options(&mut self, family: Family, label: &str) -> Result<CurveOptions, SwpError> {
+        let mut closed: Option<Token<'a>> = None;
+        let mut alpha: Option<(Token<'a>, f64)> = None;
+        while let Some(token) = self.peek() {
+            let word = match token.text {
+                "closed" | "open" => OptionWord::Openness,
+                "uniform" => OptionWord::Alpha(Some(0.0)),
+                "centripetal" => OptionWord::Alpha(Some(0.5)),
+                "chordal" => OptionWord::Alpha(Some(1.0)),
+                "alpha" => OptionWord::Alpha(None),
+                _ => break,
+            };
+            self.next += 1;
+            let OptionWord::Alpha(named_value) = word else {
+                if let Some(first) = closed {
+                    return Err(self.bad_option(token, already(label, first, "closed or open")));
+                }
+                closed = Some(token);
+                continue;
+            };
+            if family != Family::CatmullRom {
+                return Err(self.bad_option(
+                    token,
+                    format!(
+                        "a curve option of {label} ({}); `{}` applies to cr2 and cr3 only",
+                        option_list(family),
+                        token.text
+                    ),
+                ));
+            }
+            if let Some((first, _)) = alpha {
+                return Err(self.bad_option(token, already(label, first, "a parametrization")));
+            }
+            let value = match named_value {
+                Some(value) => value,
+                None => {
+                    let expected = || format!("the alpha value (a number from 0 to 1) of {label}");
+                    let value_token = self.expect(expected)?;
+                    let value = number(value_token.text).ok_or_else(|| self.invalid_number(value_token, expected()))?;
+                    if !(0.0..=1.0).contains(&value) {
+                        return Err(self.bad_option(value_token, format!("an alpha value from 0 to 1 for {label}")));
+                    }
+                    value
+                }
+            };
+            alpha = Some((token, value));
+        }
+        Ok(CurveOptions {
+            closed: closed.is_some_and(|t| t.text == "closed"),
+            alpha: alpha.map_or(0.0, |(_, value)| value),
+        })
+    }
+
+    /// Reads `[x y]` or `[x y z]`: the `role` (point or tangent) number `n` of `label`.
+    fn point(&mut self, dim: u8, role: &str, n: u64, count: u64, label: &str) -> Result<DVec3, SwpError> {
+        let expected_open = || format!("`[` starting {role} {n} of {count} of {label}");
+        let open = self.expect(expected_open)?;
+        if open.kind != TokenKind::Open {
+            return Err(self.unexpected(open, expected_open()));
+        }
+        let mut xyz = [0.0; 3];
+        for (axis, slot) in ["x", "y", "z"].into_iter().zip(xyz.iter_mut()).take(usize::from(dim)) {
+            let expected = || format!("a number ({axis} coordinate of {role} {n} of {label})");
+            let token = self.expect(expected)?;
+            *slot = number(token.text).ok_or_else(|| self.invalid_number(token, expected()))?;
+        }
+        let expected_close = || format!("`]` closing {role} {n} of {label}");
+        let close = self.expect(expected_close)?;
+        if close.kind != TokenKind::Close {
+            return Err(self.unexpected(close, format!("{} (its points have {dim} coordinates)", expected_close())));
+        }
+        Ok(DVec3::from_array(xyz))
+    }
+
+    /// `circ NAME STEPS RADIUS`, after the keyword.
+    fn circle(&mut self, pos: SourcePos) -> Result<(), SwpError> {
+        let index = self.doc.curves.len();
+        let (name, name_pos) = self.name("circ curve")?;
+        let label = label("circ", "curve", name, index);
+        let steps = self.steps(&label)?;
+        let expected = || format!("a radius (a number ≥ 0) for {label}");
+        let token = self.expect(expected)?;
+        let radius = number(token.text).filter(|r| *r >= 0.0).ok_or_else(|| self.invalid_number(token, expected()))?;
+        self.register(name, name_pos, Named::Curve(index));
+        self.doc.curves.push(SwpCurve {
+            name: name.map(str::to_owned),
+            kind: SwpCurveKind::Circle,
+            dim: 2,
+            steps,
+            closed: true,
+            geometry: SwpGeometry::Circle { radius },
+            pos,
+        });
+        Ok(())
+    }
+
+    /// `srev NAME STEPS PROFILE`, after the keyword.
+    fn revolution(&mut self, pos: SourcePos) -> Result<(), SwpError> {
+        let index = self.doc.surfaces.len();
+        let (name, name_pos) = self.name("srev surface")?;
+        let label = label("srev", "surface", name, index);
+        let steps = self.steps(&label)?;
+        let profile = self.reference(&label, true)?;
+        self.register(name, name_pos, Named::Surface(index));
+        self.doc.surfaces.push(SwpSurface {
+            name: name.map(str::to_owned),
+            kind: SwpSurfaceKind::Revolution { steps, profile },
+            pos,
+        });
+        Ok(())
+    }
+
+    /// `gcyl NAME PROFILE SWEEP`, after the keyword.
+    fn cylinder(&mut self, pos: SourcePos) -> Result<(), SwpError> {
+        let index = self.doc.surfaces.len();
+        let (name, name_pos) = self.name("gcyl surface")?;
+        let label = label("gcyl", "surface", name, index);
+        let profile = self.reference(&label, true)?;
+        let sweep = self.reference(&label, false)?;
+        self.register(name, name_pos, Named::Surface(index));
+        self.doc.surfaces.push(SwpSurface {
+            name: name.map(str::to_owned),
+            kind: SwpSurfaceKind::GeneralizedCylinder { profile, sweep },
+            pos,
+        });
+        Ok(())
+    }
+
+    /// Reads a reference to a curve defined earlier: the profile (which must be 2D) or the
+    /// sweep of the surface `label`.
+    fn reference(&mut self, label: &str, profile: bool) -> Result<usize, SwpError> {
+        let role = if profile { "profile" } else { "sweep" };
+        let expected = || format!("the name of the {role} curve of {label}");
+        let token = self.expect(expected)?;
+        if token.kind != TokenKind::Word {
+            return Err(self.unexpected(token, expected()));
+        }
+        let undefined = |why: &str| {
+            self.error(
+                token.pos,
+                SwpErrorKind::UndefinedName {
+                    name: token.text.to_owned(),
+                    expected: format!("{} ({why})", expected()),
+                },
+            )
+        };
+        let index = match self.names.get(token.text) {
+            Some(&(Named::Curve(index), _)) => index,
+            Some(&(Named::Surface(_), _)) => return Err(undefined("this name is a surface")),
+            None if token.text == "." => {
+                return Err(undefined("anonymous curves cannot be referenced"));
+            }
+            None => return Err(undefined("no curve of this name is defined before it")),
+        };
+        if profile && let Some(curve) = self.doc.curves.get(index).filter(|c| c.dim != 2) {
+            return Err(self.error(
+                token.pos,
+                SwpErrorKind::ProfileNot2D {
+                    name: token.text.to_owned(),
+                    keyword: curve.keyword(),
+                    surface: label.to_owned(),
+                },
+            ));
+        }
+        Ok(index)
+    }
+}
+
+/// An option word: `closed`/`open`, or a parametrization (`alpha` reads its value: `None`).
+#[derive(Debug, Clone, Copy)]
+enum OptionWord {
+    Openness,
+    Alpha(Option<f64>),
+}
+
+/// The options read for one curve.
+#[derive(Debug, Clone, Copy)]
+struct CurveOptions {
+    closed: bool,
+    alpha: f64,
+}
+
+/// The options a family accepts, for messages.
+fn option_list(family: Family) -> &'static str {
+    match family {
+        Family::CatmullRom => "closed, open, alpha A, uniform, centripetal or chordal",
+        _ => "closed or open",
+    }
+}
+
+/// "… at most one of `group` …" message for an option given twice.
+fn already(label: &str, first: Token<'_>, group: &str) -> String {
+    format!(
+        "at most one of {group} for {label} (already given as {:?} at line {}, column {})",
+        first.text, first.pos.line, first.pos.column
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integers() {
+        assert_eq!(int_value("20"), Some(20));
+        assert_eq!(int_value("+7"), Some(7));
+        assert_eq!(int_value("-3"), Some(-3));
+        assert_eq!(int_value("007"), Some(7));
+        assert_eq!(int_value("99999999999999999999999"), Some(i128::from(u64::MAX)));
+        for bad in ["", "-", "+", "2.0", "1e3", "x", "--1", "+-1", "٣"] {
+            assert_eq!(int_value(bad), None, "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn numbers() {
+        assert_eq!(number("-0.765483"), Some(-0.765483));
+        assert_eq!(number("2"), Some(2.0));
+        assert_eq!(number("1e-3"), Some(1e-3));
+        assert_eq!(number(".5"), Some(0.5));
+        assert_eq!(number("5."), Some(5.0));
+        for bad in ["nan", "NaN", "inf", "-inf", "infinity", "1e999", "1.2.3", "", "[", "0x10", "1,5"] {
+            assert_eq!(number(bad), None, "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn count_rules() {
+        let open_bez: Vec<u64> = (0..12).filter(|&n| count_ok(Family::Bezier, false, n)).collect();
+        assert_eq!(open_bez, [4, 7, 10]);
+        let closed_bez: Vec<u64> = (0..12).filter(|&n| count_ok(Family::Bezier, true, n)).collect();
+        assert_eq!(closed_bez, [3, 6, 9]);
+        for family in [Family::BSpline, Family::CatmullRom] {
+            assert!(!count_ok(family, false, 3) && count_ok(family, false, 4));
+            assert!(!count_ok(family, true, 2) && count_ok(family, true, 3));
+        }
+        assert!(!count_ok(Family::Hermite, false, 1) && count_ok(Family::Hermite, false, 2));
+        assert!(!count_ok(Family::Hermite, true, 1) && count_ok(Family::Hermite, true, 2));
+        assert!(count_ok(Family::BSpline, false, u64::MAX));
+    }
+
+    #[test]
+    fn keywords_are_known() {
+        for word in KEYWORDS {
+            assert!(keyword(word).is_some(), "{word}");
+        }
+        assert!(keyword("BEZ2").is_none());
+        assert!(keyword("bez4").is_none());
+    }
+}

@@ -1,0 +1,222 @@
+//! The SWP writer; see [`SwpDocument::to_swp_string`].
+
+use std::collections::HashSet;
+use std::fmt::Write as _;
+
+use glam::DVec3;
+
+use super::lexer::is_space;
+use super::{SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurfaceKind};
+
+/// Whether `name` can be written as a NAME token that reads back as itself.
+fn is_writable_name(name: &str) -> bool {
+    !name.is_empty() && name != "." && !name.chars().any(|c| is_space(c) || c == '[' || c == ']' || c == '#')
+}
+
+/// Picks the name written for every curve and surface (`None` writes `.`).
+fn output_names(doc: &SwpDocument) -> (Vec<Option<String>>, Vec<Option<String>>) {
+    let referenced: HashSet<usize> = doc
+        .surfaces
+        .iter()
+        .flat_map(|s| match s.kind {
+            SwpSurfaceKind::Revolution { profile, .. } => [Some(profile), None],
+            SwpSurfaceKind::GeneralizedCylinder { profile, sweep } => [Some(profile), Some(sweep)],
+        })
+        .flatten()
+        .collect();
+
+    // First pass: keep every writable name at its first use.
+    fn keep<'a>(taken: &mut HashSet<&'a str>, name: Option<&'a str>) -> Option<String> {
+        name.filter(|n| is_writable_name(n) && taken.insert(n)).map(str::to_owned)
+    }
+    let mut taken = HashSet::new();
+    let mut curves: Vec<Option<String>> = (doc.curves.iter()).map(|c| keep(&mut taken, c.name.as_deref())).collect();
+    let mut surfaces: Vec<Option<String>> =
+        (doc.surfaces.iter()).map(|s| keep(&mut taken, s.name.as_deref())).collect();
+
+    // Second pass: generate names that clash with nothing kept or generated.
+    let mut taken: HashSet<String> = curves.iter().chain(&surfaces).flatten().cloned().collect();
+    let mut generate = |prefix: &str, index: usize| {
+        let base = format!("_{prefix}{index}");
+        let name = std::iter::once(base.clone())
+            .chain((1..).map(|k| format!("{base}_{k}")))
+            .find(|n| !taken.contains(n))
+            .unwrap_or(base);
+        taken.insert(name.clone());
+        name
+    };
+    for (index, (out, curve)) in curves.iter_mut().zip(&doc.curves).enumerate() {
+        if out.is_none() && (curve.name.is_some() || referenced.contains(&index)) {
+            *out = Some(generate("c", index));
+        }
+    }
+    for (index, (out, surface)) in surfaces.iter_mut().zip(&doc.surfaces).enumerate() {
+        if out.is_none() && surface.name.is_some() {
+            *out = Some(generate("s", index));
+        }
+    }
+    (curves, surfaces)
+}
+
+/// Writes `doc` as SWP text; see [`SwpDocument::to_swp_string`].
+pub(crate) fn write(doc: &SwpDocument) -> String {
+    let (curve_names, surface_names) = output_names(doc);
+    let mut out = String::new();
+    for (curve, name) in doc.curves.iter().zip(&curve_names) {
+        if !out.is_empty() {
+            out.push('\n');
+        }
+        write_curve(&mut out, curve, name.as_deref().unwrap_or("."));
+    }
+    // A reference out of range is written as `.`, which never parses as a reference.
+    let reference = |index: usize| curve_names.get(index).and_then(Option::as_deref).unwrap_or(".");
+    for (surface, name) in doc.surfaces.iter().zip(&surface_names) {
+        if !out.is_empty() {
+            out.push('\n');
+        }
+        let name = name.as_deref().unwrap_or(".");
+        // `fmt::Write` for `String` never fails.
+        let _ = match surface.kind {
+            SwpSurfaceKind::Revolution { steps, profile } => {
+                writeln!(out, "srev {name} {steps} {}", reference(profile))
+            }
+            SwpSurfaceKind::GeneralizedCylinder { profile, sweep } => {
+                writeln!(out, "gcyl {name} {} {}", reference(profile), reference(sweep))
+            }
+        };
+    }
+    out
+}
+
+fn write_curve(out: &mut String, curve: &SwpCurve, name: &str) {
+    let keyword = curve.keyword();
+    let dim = if curve.dim == 3 { 3 } else { 2 };
+    let empty: &[DVec3] = &[];
+    let (points, tangents) = match &curve.geometry {
+        SwpGeometry::Points(points) => (points.as_slice(), None),
+        SwpGeometry::Hermite { points, tangents } => (points.as_slice(), Some(tangents.as_slice())),
+        SwpGeometry::Circle { .. } => (empty, None),
+    };
+    // `fmt::Write` for `String` never fails, so the results below are ignored.
+    match (curve.kind, &curve.geometry) {
+        (SwpCurveKind::Circle, geometry) => {
+            let radius = match geometry {
+                SwpGeometry::Circle { radius } => *radius,
+                _ => 0.0,
+            };
+            let _ = writeln!(out, "circ {name} {} {radius}", curve.steps);
+        }
+        (SwpCurveKind::Hermite, _) => {
+            let tangents = tangents.unwrap_or(empty);
+            let count = points.len().min(tangents.len());
+            let _ = writeln!(out, "{keyword} {name} {} {count}{}", curve.steps, options(curve));
+            for (p, t) in points.iter().zip(tangents) {
+                write_point(out, *p, dim);
+                out.push(' ');
+                write_point(out, *t, dim);
+                out.push('\n');
+            }
+        }
+        _ => {
+            let _ = writeln!(out, "{keyword} {name} {} {}{}", curve.steps, points.len(), options(curve));
+            for p in points {
+                write_point(out, *p, dim);
+                out.push('\n');
+            }
+        }
+    }
+}
+
+/// The option tokens of a curve, each preceded by a space; empty for the defaults.
+fn options(curve: &SwpCurve) -> String {
+    let mut options = String::new();
+    if curve.closed {
+        options.push_str(" closed");
+    }
+    if let SwpCurveKind::CatmullRom { alpha } = curve.kind {
+        if alpha == 0.5 {
+            options.push_str(" centripetal");
+        } else if alpha == 1.0 {
+            options.push_str(" chordal");
+        } else if alpha != 0.0 {
+            let _ = write!(options, " alpha {alpha}");
+        }
+    }
+    options
+}
+
+fn write_point(out: &mut String, p: DVec3, dim: usize) {
+    let _ = if dim == 3 { write!(out, "[{} {} {}]", p.x, p.y, p.z) } else { write!(out, "[{} {}]", p.x, p.y) };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::swp::{SourcePos, SwpSurface};
+
+    fn curve(name: Option<&str>, kind: SwpCurveKind, dim: u8, geometry: SwpGeometry) -> SwpCurve {
+        SwpCurve {
+            name: name.map(str::to_owned),
+            kind,
+            dim,
+            steps: 10,
+            closed: false,
+            geometry,
+            pos: SourcePos::default(),
+        }
+    }
+
+    #[test]
+    fn layout() {
+        let doc = SwpDocument {
+            curves: vec![
+                curve(
+                    Some("p"),
+                    SwpCurveKind::Bezier,
+                    2,
+                    SwpGeometry::Points(vec![
+                        DVec3::new(0.0, 0.5, 0.0),
+                        DVec3::new(1.0, -2.0, 0.0),
+                        DVec3::new(2.0, 1e-3, 0.0),
+                        DVec3::new(3.0, 0.1 + 0.2, 0.0),
+                    ]),
+                ),
+                curve(None, SwpCurveKind::Circle, 2, SwpGeometry::Circle { radius: 0.4 }),
+            ],
+            surfaces: vec![SwpSurface {
+                name: None,
+                kind: SwpSurfaceKind::GeneralizedCylinder { profile: 0, sweep: 1 },
+                pos: SourcePos::default(),
+            }],
+        };
+        assert_eq!(
+            write(&doc),
+            "bez2 p 10 4\n[0 0.5]\n[1 -2]\n[2 0.001]\n[3 0.30000000000000004]\n\n\
+             circ _c1 10 0.4\n\n\
+             gcyl . p _c1\n"
+        );
+    }
+
+    #[test]
+    fn generated_names_avoid_existing_ones() {
+        let circle = |name: Option<&str>| curve(name, SwpCurveKind::Circle, 2, SwpGeometry::Circle { radius: 1.0 });
+        let doc = SwpDocument {
+            curves: vec![circle(Some("_c1")), circle(None), circle(Some("a b")), circle(Some("_c1"))],
+            surfaces: vec![SwpSurface {
+                name: Some("_c1_1".into()),
+                kind: SwpSurfaceKind::GeneralizedCylinder { profile: 1, sweep: 7 },
+                pos: SourcePos::default(),
+            }],
+        };
+        assert_eq!(
+            write(&doc),
+            "circ _c1 10 1\n\ncirc _c1_2 10 1\n\ncirc _c2 10 1\n\ncirc _c3 10 1\n\n\
+             gcyl _c1_1 _c1_2 .\n"
+        );
+    }
+
+    #[test]
+    fn empty_document() {
+        assert_eq!(write(&SwpDocument::default()), "");
+    }
+}

@@ -1,0 +1,67 @@
+//! [`AnyCurve`]: one type for every curve a file can hold.
+
+use crate::arclen::ArclenEstimate;
+use crate::curve::{Aabb, Circle, ParamCurve, PiecewiseCubic};
+use crate::vector::Vector;
+
+/// Any curve splinekit can evaluate: a chain of cubics (every spline kind) or an exact circle.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AnyCurve<P> {
+    /// A compiled spline.
+    Piecewise(PiecewiseCubic<P>),
+    /// An exact circle.
+    Circle(Circle),
+}
+
+impl<P: Vector> AnyCurve<P> {
+    /// Whether the curve is a closed loop.
+    #[must_use]
+    pub fn is_closed(&self) -> bool {
+        match self {
+            Self::Piecewise(c) => c.is_closed(),
+            Self::Circle(_) => true,
+        }
+    }
+}
+
+macro_rules! dispatch {
+    ($self:ident, $c:ident => $e:expr) => {
+        match $self {
+            AnyCurve::Piecewise($c) => $e,
+            AnyCurve::Circle($c) => $e,
+        }
+    };
+}
+
+impl<P: Vector> ParamCurve<P> for AnyCurve<P> {
+    fn num_segments(&self) -> usize {
+        dispatch!(self, c => ParamCurve::<P>::num_segments(c))
+    }
+    fn eval(&self, u: f64) -> P {
+        dispatch!(self, c => c.eval(u))
+    }
+    fn deriv(&self, u: f64) -> P {
+        dispatch!(self, c => c.deriv(u))
+    }
+    fn deriv2(&self, u: f64) -> P {
+        dispatch!(self, c => c.deriv2(u))
+    }
+    fn deriv3(&self, u: f64) -> P {
+        dispatch!(self, c => c.deriv3(u))
+    }
+    fn arclen_range(&self, u0: f64, u1: f64, accuracy: f64) -> ArclenEstimate {
+        dispatch!(self, c => ParamCurve::<P>::arclen_range(c, u0, u1, accuracy))
+    }
+    fn bounding_box(&self) -> Aabb<P> {
+        dispatch!(self, c => c.bounding_box())
+    }
+    fn unit_tangent(&self, u: f64) -> P {
+        dispatch!(self, c => c.unit_tangent(u))
+    }
+    fn curvature(&self, u: f64) -> f64 {
+        dispatch!(self, c => ParamCurve::<P>::curvature(c, u))
+    }
+    fn torsion(&self, u: f64) -> f64 {
+        dispatch!(self, c => ParamCurve::<P>::torsion(c, u))
+    }
+}
