@@ -299,19 +299,35 @@ fn speed_minima<P: Vector>(a: P, b: P, c: P, t0: f64, t1: f64) -> ([f64; 2], usi
         if !(flo < 0.0 && fhi > 0.0) || count == 2 {
             continue;
         }
-        // f is monotone on [lo, hi]: bisection to full precision (≤ 60 steps)
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
+        // f is monotone on [lo, hi]: Newton steps kept inside the bracket (bisection when a
+        // step leaves it); stops when the bracket or the step is at rounding level.
+        let df = |t: f64| d[1] + t * (2.0 * d[2] + t * 3.0 * d[3]);
+        let mut x = if fhi - flo > 0.0 { lo - flo * (hi - lo) / (fhi - flo) } else { 0.5 * (lo + hi) };
+        for _ in 0..64 {
+            let fx = f(x);
+            if fx == 0.0 {
+                break; // an exact root: keep it (the bracket would collapse onto it)
+            }
+            if fx < 0.0 {
+                lo = x;
+            } else {
+                hi = x;
+            }
+            let step = fx / df(x);
+            let nx = x - step;
+            if nx > lo && nx < hi {
+                x = nx;
+                if !(step.abs() > 1e-15 * (1.0 + x.abs())) {
+                    break;
+                }
+            } else {
+                x = 0.5 * (lo + hi);
+            }
+            if !(hi - lo > 1e-15) {
                 break;
             }
-            if f(mid) < 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
         }
-        let root = 0.5 * (lo + hi);
+        let root = x;
         if root > t0 && root < t1 {
             out[count] = root;
             count += 1;
@@ -433,5 +449,28 @@ mod tests {
         assert!(t.is_finite() && (t.length() - 1.0).abs() < 1e-12);
         assert_eq!(c.curvature(0.5), 0.0);
         assert_eq!(c.torsion(0.5), 0.0);
+    }
+}
+#[cfg(test)]
+mod minima_tests {
+    use super::*;
+    use glam::DVec2;
+
+    /// Regression: an exact cusp where f(t) = P′·P″ evaluates to exactly 0 during the
+    /// search; the minimum was once returned as the bracket midpoint (t = 0.25).
+    #[test]
+    fn exact_root_is_kept() {
+        let c = CubicBezier::new(
+            DVec2::new(79.97580968484739, 68.14396312829524),
+            DVec2::new(73.41002926711649, 69.73534318007778),
+            DVec2::new(75.89722945009068, 65.65676294532105),
+            DVec2::new(77.48860950187321, 72.22254336305195),
+        );
+        let (a, b, cc) = c.deriv_coefficients();
+        for t1 in [1.0, 0.859508612951838, 0.7, 0.5000001] {
+            let (m, n) = speed_minima(a, b, cc, 0.0, t1);
+            assert_eq!(n, 1, "[0, {t1}]");
+            assert!((m[0] - 0.5).abs() < 1e-12, "[0, {t1}]: {}", m[0]);
+        }
     }
 }
