@@ -83,3 +83,30 @@ fn exact_inverse_on_scene_meets_accuracy_in_length_units() {
         }
     }
 }
+
+#[test]
+fn resampling_by_arc_length_on_scene() {
+    use splinekit::{ResampleError, resample_equal, resample_every};
+    let c = scene();
+    let acc = 1e-9;
+    let truth = |u: f64| c.arclen_range(0.0, u, 1e-13).length;
+    // k equal pieces: k + 1 points, first at the start, last at the end, s(uᵢ) = i·L/k
+    let pts = resample_equal(&c, 7, acc);
+    assert_eq!(pts.len(), 8);
+    assert_eq!(pts[0].u, 0.0);
+    assert_eq!(pts[7].u, 5.0);
+    for (i, p) in pts.iter().enumerate() {
+        assert!((truth(p.u) - 5.147598456 * i as f64 / 7.0).abs() <= 1e-8, "piece {i}");
+        assert!((p.point - c.eval(p.u)).length() == 0.0);
+    }
+    // every ds: floor(L/ds) + 1 points at s = i·ds
+    let every = resample_every(&c, 0.5, acc, 1000).unwrap();
+    assert_eq!(every.len(), (5.147598456f64 / 0.5).floor() as usize + 1);
+    for (i, p) in every.iter().enumerate() {
+        assert_eq!(p.s, 0.5 * i as f64);
+        assert!((truth(p.u) - p.s).abs() <= acc);
+    }
+    assert!(matches!(resample_every(&c, 0.0, acc, 10), Err(ResampleError::BadSpacing(_))));
+    assert!(matches!(resample_every(&c, f64::NAN, acc, 10), Err(ResampleError::BadSpacing(_))));
+    assert!(matches!(resample_every(&c, 1e-6, acc, 1000), Err(ResampleError::TooManyPoints { .. })));
+}
