@@ -279,8 +279,9 @@ fn index_inverse_over_many_segments() {
     }
 }
 
-/// Regression: a cubic with a tight turn on which QUADPACK's scaled error estimate claimed
-/// 1e-16 for an interval off by 1.1e-9, so the inverse missed 1e-9 by 11 %.
+/// Regression: an exact cusp at t = ½ on which the speed-minimum search once returned the
+/// wrong parameter (0.25) for the sub-range [0, 0.8595], so that integral was off by 1.1e-9
+/// and the inverse missed 1e-9 by 11 %.
 #[test]
 fn regression_tight_turn_inverse() {
     let c = CubicBezier::new(

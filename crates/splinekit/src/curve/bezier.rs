@@ -450,11 +450,6 @@ mod tests {
         assert_eq!(c.curvature(0.5), 0.0);
         assert_eq!(c.torsion(0.5), 0.0);
     }
-}
-#[cfg(test)]
-mod minima_tests {
-    use super::*;
-    use glam::DVec2;
 
     /// Regression: an exact cusp where f(t) = P′·P″ evaluates to exactly 0 during the
     /// search; the minimum was once returned as the bracket midpoint (t = 0.25).
