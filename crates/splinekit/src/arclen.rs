@@ -8,6 +8,12 @@
 //! length) cannot be met; they are clamped to that level.
 //!
 //! # Method
+//! Planar cubic segments (every 2D curve, and 3D segments whose velocity lies in a plane)
+//! choose their Gauss–Legendre rule from a rigorous error bound: the speed is analytic up
+//! to the complex roots of the velocity, and the Bernstein ellipse through the nearest one
+//! bounds the quadrature error before any node is evaluated (`curve/planar.rs`). Other
+//! segments use the adaptive integrator below.
+//!
 //! [`integrate_speed`] integrates the speed `|P′(t)|` with the 15-point Gauss–Kronrod
 //! rule (the 7-point Gauss rule embedded), bisecting any interval where the two rules
 //! differ by more than its share of the budget. The share halves with each bisection, so

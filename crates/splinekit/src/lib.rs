@@ -34,6 +34,7 @@
 
 pub mod arclen;
 pub mod curve;
+mod gauss;
 pub mod vector;
 
 pub use arclen::{

@@ -13,6 +13,7 @@ mod catmull_rom;
 mod circle;
 mod hermite;
 mod piecewise;
+mod planar;
 
 pub use any::AnyCurve;
 pub use bezier::{BEZIER_BASIS, CubicBezier};
