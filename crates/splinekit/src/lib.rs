@@ -34,7 +34,11 @@
 
 pub mod arclen;
 pub mod curve;
+pub mod flatten;
+pub mod frame;
 mod gauss;
+pub mod mesh;
+pub mod sweep;
 pub mod vector;
 
 pub use arclen::{
@@ -45,4 +49,5 @@ pub use curve::{
     Aabb, AnyCurve, BEZIER_BASIS, BSPLINE_BASIS, BSpline, BezierSpline, CATMULL_ROM_BASIS, CatmullRom, Circle,
     CubicBezier, Hermite, ParamCurve, PiecewiseCubic, SplineError,
 };
+pub use mesh::{MeshError, TriMesh};
 pub use vector::Vector;

@@ -1,0 +1,1 @@
+//! Frames along curves (SPEC §1.5). Work in progress.

@@ -1,0 +1,1 @@
+//! Swept surfaces (SPEC §2). Work in progress.
