@@ -132,14 +132,13 @@ impl TriMesh {
         (0..self.triangles.len()).map(|i| 0.5 * self.face_normal(i).length()).sum()
     }
 
-    /// Undirected edges used by exactly one triangle.
+    /// Edges used by exactly one triangle, directed as in that triangle, sorted.
     #[must_use]
     pub fn boundary_edges(&self) -> Vec<[u32; 2]> {
         let counts = self.directed_edge_counts();
         let mut out: Vec<[u32; 2]> = counts
             .iter()
-            .filter(|&(&(a, b), _)| a < b || !counts.contains_key(&(b, a)))
-            .filter(|&(&(a, b), &n)| n + counts.get(&(b, a)).copied().unwrap_or(0) == 1)
+            .filter(|&(&(a, b), &n)| n == 1 && !counts.contains_key(&(b, a)))
             .map(|(&(a, b), _)| [a, b])
             .collect();
         out.sort_unstable();
@@ -188,7 +187,7 @@ mod tests {
         let mut open = m.clone();
         open.triangles.pop();
         assert!(!open.is_closed_oriented());
-        assert_eq!(open.boundary_edges(), vec![[1, 2], [1, 3], [2, 3]]);
+        assert_eq!(open.boundary_edges(), vec![[1, 3], [2, 1], [3, 2]]);
         let mut flipped = m;
         flipped.triangles[3] = [1, 3, 2];
         assert!(!flipped.is_closed_oriented());
