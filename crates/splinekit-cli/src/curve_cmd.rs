@@ -1,28 +1,35 @@
-//! `splinekit curve`: a curve's points at uniform parameter steps (SPEC §1.3, mode 1).
+//! `splinekit curve`: a curve's tessellated points with frames (SPEC §1.3, §1.5), as CSV, JSON or SVG.
 
 use std::io::Write;
 use std::path::PathBuf;
 
+use anyhow::bail;
 use clap::ValueEnum;
-use splinekit::ParamCurve;
+use splinekit::flatten::{self, Tessellation};
+use splinekit::frame::{self, FrameMethod, FrameOptions, Side, StartNormal};
 use splinekit_io::MAX_STEPS;
 
 use crate::output::{JsonNum, json_array, json_str};
 use crate::select;
 
-/// Print a curve's points at uniform parameter steps, with their parameter u.
+/// Print a curve's tessellated points with their parameter u and frame (T, N, B).
 ///
-/// Each segment gives steps+1 points at t = i/steps; joined segments share their join point,
-/// so a curve of m segments gives m·steps + 1 points, u = k + i/steps running over [0, m]. A
-/// circle is one segment: steps+1 points counter-clockwise from angle 0. On a closed curve
-/// the last point repeats the first exactly.
+/// Uniform steps by default: each segment gives steps+1 points at t = i/steps; joined
+/// segments share their join point, so a curve of m segments gives m·steps + 1 points, u = k +
+/// i/steps running over [0, m]. A circle is one segment: steps+1 points counter-clockwise
+/// from angle 0. On a closed curve the last point repeats the first exactly. With
+/// --tolerance the polyline stays within that distance of the curve (both ways); with
+/// --angle-tolerance segments are split until their control polygons turn less than that.
 #[derive(Debug, clap::Args)]
 #[command(after_help = "Examples:\n  \
     splinekit curve scene.swp\n  \
     splinekit curve scene.swp --curve profile --steps 100\n  \
-    splinekit curve scene.swp --curve 3 --format json\n\n\
-    CSV has the header `u,x,y,z`; JSON is {\"curve\": NAME, \"steps\": N, \"points\": [{\"u\", \"x\", \"y\", \"z\"}, …]}. \
-    2D curves have z = 0.")]
+    splinekit curve scene.swp --curve 3 --format json --frames rmf\n  \
+    splinekit curve scene.swp --tolerance 0.001 --format svg > curve.svg\n\n\
+    CSV has the header `u,x,y,z,tx,ty,tz,nx,ny,nz,bx,by,bz`; JSON is {\"curve\": NAME, \"steps\": N, \"points\": \
+    [{\"u\", \"x\", \"y\", \"z\", \"t\": [..], \"n\": [..], \"b\": [..]}, …]} (\"steps\" is null for adaptive \
+    modes). 2D curves have z = 0; with the default sequential frames their N is left of travel and B = +z. \
+    SVG (2D curves only) draws the polyline, y up.")]
 pub struct CurveArgs {
     /// SWP file to read
     #[arg(value_name = "FILE")]
@@ -35,7 +42,20 @@ pub struct CurveArgs {
     /// Steps per segment, 1 to 1000000 [default: the curve's STEPS in the file]
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     #[arg(value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_STEPS)))]
+    #[arg(conflicts_with_all = ["tolerance", "angle_tolerance"])]
     pub steps: Option<u32>,
+
+    /// Adaptive: the polyline stays within T (length units) of the curve, both ways
+    #[arg(long, value_name = "T", conflicts_with = "angle_tolerance")]
+    pub tolerance: Option<f64>,
+
+    /// Adaptive by control-polygon angle, in degrees
+    #[arg(long, value_name = "DEGREES")]
+    pub angle_tolerance: Option<f64>,
+
+    /// Frames: the course's sequential method (with the closed-curve fix), rotation-minimizing, or Frenet
+    #[arg(long, value_enum, value_name = "METHOD", default_value_t = FrameChoice::Sequential)]
+    pub frames: FrameChoice,
 
     /// Output format
     #[arg(long, value_enum, value_name = "FORMAT", default_value_t = Format::Csv)]
@@ -45,10 +65,23 @@ pub struct CurveArgs {
 /// Output format of `curve`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Format {
-    /// Comma-separated values with the header `u,x,y,z`
+    /// Comma-separated values with the header `u,x,y,z,tx,ty,tz,nx,ny,nz,bx,by,bz`
     Csv,
     /// One JSON object: curve, steps, points
     Json,
+    /// An SVG drawing of the polyline (2D curves only)
+    Svg,
+}
+
+/// Frame methods of `curve`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FrameChoice {
+    /// Sequential (B₀ = +z), the course program's; N left of travel for 2D curves
+    Sequential,
+    /// Rotation-minimizing (double reflection)
+    Rmf,
+    /// Frenet, with fallbacks on straight runs
+    Frenet,
 }
 
 /// Runs the command, writing to `out`.
@@ -56,38 +89,106 @@ pub fn run(args: &CurveArgs, out: &mut impl Write) -> anyhow::Result<()> {
     let doc = select::load(&args.file)?;
     let sel = select::select(&doc, &args.file, args.curve.as_deref())?;
     let curve = &sel.curve;
-    let steps = u64::from(args.steps.unwrap_or(sel.swp.steps).max(1));
-    let segments = curve.num_segments() as u64;
-    let last = segments * steps;
+    let (mode, steps) = match (args.tolerance, args.angle_tolerance) {
+        (Some(t), _) if t > 0.0 && t.is_finite() => (Tessellation::Distance { tolerance: t }, None),
+        (Some(t), _) => bail!("--tolerance must be a positive number, got {t}"),
+        (None, Some(a)) if a > 0.0 && a.is_finite() => (Tessellation::Angle { tolerance: a.to_radians() }, None),
+        (None, Some(a)) => bail!("--angle-tolerance must be a positive number of degrees, got {a}"),
+        (None, None) => {
+            let steps = args.steps.unwrap_or(sel.swp.steps).max(1);
+            (Tessellation::Uniform { steps: steps as usize }, Some(steps))
+        }
+    };
+    let params = flatten::flatten_any(curve, mode);
+    let method = match args.frames {
+        FrameChoice::Sequential => FrameMethod::Sequential(Side::Left),
+        FrameChoice::Rmf => FrameMethod::RotationMinimizing(StartNormal::Auto(Side::Left)),
+        FrameChoice::Frenet => FrameMethod::Frenet,
+    };
+    let samples = frame::sample(curve, &params);
+    let frames = frame::frames_for_samples(&samples, &FrameOptions::DEFAULT.with_method(method));
     let closed = curve.is_closed();
-    // u = j / steps for j = k·steps + i: integer arithmetic, then one division.
-    let points = (0..=last).map(|j| {
-        let u = j as f64 / steps as f64;
-        let p = if closed && j == last { curve.eval(0.0) } else { curve.eval(u) };
-        (u, p)
-    });
+    let last = samples.len().saturating_sub(1);
+    // the last point of a closed curve repeats the first exactly
+    let position = |i: usize| if closed && i == last { samples[0].position } else { samples[i].position };
+    let rows = (0..samples.len()).map(|i| (samples[i].u, position(i), frames[i]));
 
     match args.format {
         Format::Csv => {
-            out.write_all(b"u,x,y,z\n")?;
-            for (u, p) in points {
-                writeln!(out, "{u},{},{},{}", p.x, p.y, p.z)?;
+            out.write_all(b"u,x,y,z,tx,ty,tz,nx,ny,nz,bx,by,bz\n")?;
+            for (u, p, f) in rows {
+                // `+ 0.0` writes a negative zero as 0
+                write!(out, "{u},{},{},{}", p.x + 0.0, p.y + 0.0, p.z + 0.0)?;
+                for v in [f.t, f.n, f.b] {
+                    write!(out, ",{},{},{}", v.x + 0.0, v.y + 0.0, v.z + 0.0)?;
+                }
+                out.write_all(b"\n")?;
             }
         }
         Format::Json => {
+            let steps = steps.map_or_else(|| String::from("null"), |s| s.to_string());
             write!(out, "{{\n  \"curve\": {},\n  \"steps\": {steps},\n  \"points\": ", json_str(&sel.name))?;
-            json_array(out, "  ", points, |o, (u, p)| {
+            let vec = |v: glam::DVec3| format!("[{}, {}, {}]", JsonNum(v.x), JsonNum(v.y), JsonNum(v.z));
+            json_array(out, "  ", rows, |o, (u, p, f)| {
                 write!(
                     o,
-                    "{{\"u\": {}, \"x\": {}, \"y\": {}, \"z\": {}}}",
+                    "{{\"u\": {}, \"x\": {}, \"y\": {}, \"z\": {}, \"t\": {}, \"n\": {}, \"b\": {}}}",
                     JsonNum(u),
                     JsonNum(p.x),
                     JsonNum(p.y),
-                    JsonNum(p.z)
+                    JsonNum(p.z),
+                    vec(f.t),
+                    vec(f.n),
+                    vec(f.b)
                 )
             })?;
             out.write_all(b"\n}\n")?;
         }
+        Format::Svg => {
+            if sel.swp.dim == 3 {
+                bail!("--format svg draws 2D curves; curve {} is 3D", sel.name);
+            }
+            let pts: Vec<glam::DVec2> = (0..samples.len()).map(|i| position(i).truncate()).collect();
+            write_svg(out, &sel.name, &pts)?;
+        }
     }
     Ok(())
+}
+
+/// A self-contained SVG of a 2D polyline, y up, fitted with a 5 % margin.
+fn write_svg(out: &mut impl Write, name: &str, pts: &[glam::DVec2]) -> std::io::Result<()> {
+    let (mut lo, mut hi) = (glam::DVec2::splat(f64::INFINITY), glam::DVec2::splat(f64::NEG_INFINITY));
+    for p in pts {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    let size = (hi - lo).max_element().max(1e-9);
+    let margin = 0.05 * size;
+    let (x0, y0) = (lo.x - margin, -(hi.y + margin));
+    let (w, h) = (hi.x - lo.x + 2.0 * margin, hi.y - lo.y + 2.0 * margin);
+    let stroke = size / 400.0;
+    writeln!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"{x0} {y0} {w} {h}\" width=\"800\" height=\"{}\">",
+        (800.0 * h / w).round()
+    )?;
+    let title: String = name
+        .chars()
+        .map(|c| match c {
+            '<' => '‹',
+            '>' => '›',
+            '&' => '+',
+            c => c,
+        })
+        .collect();
+    writeln!(out, "<title>{title}</title>")?;
+    write!(
+        out,
+        "<polyline fill=\"none\" stroke=\"#1f4e9e\" stroke-width=\"{stroke}\" stroke-linejoin=\"round\" points=\""
+    )?;
+    for (i, p) in pts.iter().enumerate() {
+        write!(out, "{}{},{}", if i == 0 { "" } else { " " }, p.x, -p.y)?;
+    }
+    writeln!(out, "\"/>")?;
+    writeln!(out, "</svg>")
 }

@@ -6,16 +6,19 @@
 
 mod arclen_cmd;
 mod curve_cmd;
+mod info_cmd;
 mod output;
 mod select;
+mod sweep_cmd;
 
 use std::io::{self, Write};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-/// Spline curves from SWP files: arc length, u–s tables, arc-length resampling and
-/// tessellated points.
+/// Spline curves and swept surfaces from SWP files: arc length, u–s tables, arc-length
+/// resampling, tessellated points, and meshes of surfaces of revolution and generalized
+/// cylinders.
 ///
 /// Reads SWP curve descriptions (bez2/bez3 Bézier, bsp2/bsp3 uniform B-spline, cr2/cr3
 /// Catmull-Rom, her2/her3 Hermite, circ) and prints results as text, CSV or JSON on
@@ -26,7 +29,9 @@ use clap::{Parser, Subcommand};
 #[command(after_help = "Examples:\n  \
     splinekit arclen scene.swp --curve path --method gauss3\n  \
     splinekit arclen scene.swp --method adaptive --at-s 0.417 --spacing 0.5 --json\n  \
-    splinekit curve scene.swp --curve 1 --steps 50 --format json\n\n\
+    splinekit curve scene.swp --curve 1 --steps 50 --format json\n  \
+    splinekit sweep wineglass.swp -o out --format glb\n  \
+    splinekit info wineglass.swp\n\n\
     Run `splinekit <COMMAND> --help` for the flags of each command.")]
 struct Cli {
     #[command(subcommand)]
@@ -37,6 +42,8 @@ struct Cli {
 enum Command {
     Arclen(arclen_cmd::ArclenArgs),
     Curve(curve_cmd::CurveArgs),
+    Sweep(sweep_cmd::SweepArgs),
+    Info(info_cmd::InfoArgs),
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
@@ -45,6 +52,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Arclen(args) => arclen_cmd::run(&args, &mut out)?,
         Command::Curve(args) => curve_cmd::run(&args, &mut out)?,
+        Command::Sweep(args) => sweep_cmd::run(&args, &mut out)?,
+        Command::Info(args) => info_cmd::run(&args, &mut out)?,
     }
     out.flush()?;
     Ok(())

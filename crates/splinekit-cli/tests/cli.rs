@@ -316,14 +316,20 @@ fn arclen_curve_selection() {
 // ---------------------------------------------------------------------------------------
 // curve
 
-/// Parses `u,x,y,z` CSV into rows.
+/// Parses `u,x,y,z,tx,…,bz` CSV into `u,x,y,z` rows, checking each frame is orthonormal.
 fn csv_rows(text: &str) -> Vec<[f64; 4]> {
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("u,x,y,z"));
+    assert_eq!(lines.next(), Some("u,x,y,z,tx,ty,tz,nx,ny,nz,bx,by,bz"));
     lines
         .map(|l| {
             let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
-            assert_eq!(v.len(), 4, "{l}");
+            assert_eq!(v.len(), 13, "{l}");
+            let (t, n, b) = (
+                glam::DVec3::new(v[4], v[5], v[6]),
+                glam::DVec3::new(v[7], v[8], v[9]),
+                glam::DVec3::new(v[10], v[11], v[12]),
+            );
+            assert!((t.cross(n) - b).length() < 1e-9 && (t.length() - 1.0).abs() < 1e-9, "{l}");
             [v[0], v[1], v[2], v[3]]
         })
         .collect()
@@ -383,8 +389,9 @@ fn curve_steps_and_json() {
     let points = json["points"].as_array().unwrap();
     assert_eq!(points.len(), 36);
     for (row, point) in rows.iter().zip(points) {
-        let keys: Vec<&str> = point.as_object().unwrap().keys().map(String::as_str).collect();
-        assert_eq!(keys.len(), 4);
+        let mut keys: Vec<&str> = point.as_object().unwrap().keys().map(String::as_str).collect();
+        keys.sort_unstable();
+        assert_eq!(keys, ["b", "n", "t", "u", "x", "y", "z"]);
         for (i, key) in ["u", "x", "y", "z"].iter().enumerate() {
             assert_eq!(num(&point[key]), row[i], "CSV and JSON agree exactly");
         }
@@ -516,7 +523,7 @@ fn closed_output_pipe_is_success() {
         .expect("spawn");
     let mut head = [0u8; 64];
     child.stdout.as_mut().unwrap().read_exact(&mut head).unwrap();
-    assert!(head.starts_with(b"u,x,y,z\n"));
+    assert!(head.starts_with(b"u,x,y,z,tx,ty,tz,nx,ny,nz,bx,by,bz\n"));
     drop(child.stdout.take());
     let mut stderr = String::new();
     child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();

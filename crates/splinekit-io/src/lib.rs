@@ -48,8 +48,12 @@
 //! None yet.
 
 pub mod convert;
+pub mod mesh;
+pub mod surface;
 pub mod swp;
 
+pub use mesh::atomic;
+pub use mesh::{MeshFormat, MeshIoError, MeshIoErrorKind};
 pub use swp::{
     MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpError, SwpErrorKind, SwpGeometry, SwpSurface,
     SwpSurfaceKind,

@@ -1,1 +1,511 @@
-//! Swept surfaces (SPEC §2). Work in progress.
+//! Swept surfaces (SPEC §2): surfaces of revolution about +y (`srev`) and generalized
+//! cylinders (`gcyl`), from tessellated curves with frames.
+//!
+//! # Layouts
+//! - [`MeshLayout::Compat`]: the course program's vertex layout, counts exactly as SPEC §2.3:
+//!   one vertex per (copy, profile point), seams of generalized cylinders duplicated, poles
+//!   of revolutions repeated in every copy.
+//! - [`MeshLayout::Welded`] (the default): seams and poles shared, zero-area triangles left
+//!   out, so a closed sweep is a closed 2-manifold. With UVs requested, seam vertices are
+//!   kept twice (same position, `u` = 0 and 1) so texture coordinates can jump.
+//!
+//! # Orientation
+//! Triangles are counter-clockwise seen from outside, and vertex normals point outside,
+//! whatever the side or direction of the profile: after building, the flux of the face
+//! normals through the surface's "outward" direction (away from the axis of revolution, or
+//! from the sweep curve) is checked, and the whole mesh is flipped if it is negative. The
+//! course files come out exactly as SPEC §2.1 describes; a profile on the x > 0 side, or
+//! traversed the other way, still gives an outward surface.
+
+pub mod surface;
+
+use glam::{DVec2, DVec3};
+
+use crate::frame::Frame;
+use crate::mesh::TriMesh;
+
+/// How seams and poles are laid out; see the module docs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MeshLayout {
+    /// The course program's layout (SPEC §2.3 counts).
+    Compat,
+    /// Seams and poles shared; a closed sweep is a closed 2-manifold.
+    #[default]
+    Welded,
+}
+
+/// Options shared by the sweeps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SweepOptions {
+    /// Vertex layout.
+    pub layout: MeshLayout,
+    /// Emit arc-length UVs: `u` along the sweep (or around the axis), `v` along the profile,
+    /// both normalized to `[0, 1]`.
+    pub uvs: bool,
+    /// Close an open generalized cylinder whose profile is a closed loop with flat end caps
+    /// (their own vertices, so the rim is a sharp edge). Ignored by revolutions.
+    pub caps: bool,
+}
+
+impl Default for SweepOptions {
+    fn default() -> Self {
+        Self { layout: MeshLayout::Welded, uvs: false, caps: false }
+    }
+}
+
+/// Why a sweep could not be built.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SweepError {
+    /// Too few points to make a surface.
+    #[error("{what} has {found} points; at least {needed} are needed")]
+    TooFewPoints {
+        /// `profile` or `sweep`.
+        what: &'static str,
+        /// Number of points given.
+        found: usize,
+        /// Minimum.
+        needed: usize,
+    },
+    /// Point and normal (or frame) arrays differ in length.
+    #[error("{what}: {points} points but {attributes} normals or frames")]
+    LengthMismatch {
+        /// `profile` or `sweep`.
+        what: &'static str,
+        /// Number of points.
+        points: usize,
+        /// Number of normals or frames.
+        attributes: usize,
+    },
+    /// `steps` of a revolution is zero.
+    #[error("a surface of revolution needs at least 1 step, got 0")]
+    ZeroSteps,
+    /// A point, normal or frame is NaN or infinite.
+    #[error("{what} point {index} is not finite")]
+    NonFinite {
+        /// `profile` or `sweep`.
+        what: &'static str,
+        /// Index of the point.
+        index: usize,
+    },
+}
+
+/// A tessellated planar profile: points `(x, y)` and unit normals, in order along the curve.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Profile {
+    /// Points along the profile.
+    pub points: Vec<DVec2>,
+    /// Unit normal at each point (the curve's frame normal `N`, as the course program uses it).
+    pub normals: Vec<DVec2>,
+}
+
+impl Profile {
+    fn check(&self) -> Result<(), SweepError> {
+        if self.points.len() < 2 {
+            return Err(SweepError::TooFewPoints { what: "profile", found: self.points.len(), needed: 2 });
+        }
+        if self.normals.len() != self.points.len() {
+            return Err(SweepError::LengthMismatch {
+                what: "profile",
+                points: self.points.len(),
+                attributes: self.normals.len(),
+            });
+        }
+        if let Some(index) =
+            (0..self.points.len()).find(|&i| !self.points[i].is_finite() || !self.normals[i].is_finite())
+        {
+            return Err(SweepError::NonFinite { what: "profile", index });
+        }
+        Ok(())
+    }
+
+    /// Cumulative chord length, normalized to `[0, 1]` (all zero for a degenerate profile).
+    fn normalized_lengths(&self) -> Vec<f64> {
+        normalized_lengths(self.points.iter().zip(self.points.iter().skip(1)).map(|(a, b)| a.distance(*b)))
+    }
+
+    /// True when the first and last points coincide (within `1e-9` of the profile's size).
+    fn is_closed(&self) -> bool {
+        let size = extent(self.points.iter().map(|p| p.extend(0.0)));
+        self.points.len() > 2 && self.points[0].distance(self.points[self.points.len() - 1]) <= 1e-9 * size.max(1e-300)
+    }
+}
+
+/// A tessellated sweep curve: positions with their frames, and optionally a scale per point.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SweepPath {
+    /// Points along the sweep curve.
+    pub positions: Vec<DVec3>,
+    /// Frame at each point (a twist is applied by rotating these about `T`).
+    pub frames: Vec<Frame>,
+    /// Empty, or one `(sx, sy)` per point: the profile's `x` is scaled by `sx` and its `y`
+    /// by `sy` at that point. With scales, vertex normals are the area-weighted normals of
+    /// the faces around each vertex (the profile's normals no longer describe a tapering tube).
+    pub scales: Vec<DVec2>,
+}
+
+impl SweepPath {
+    fn check(&self) -> Result<(), SweepError> {
+        if self.positions.len() < 2 {
+            return Err(SweepError::TooFewPoints { what: "sweep", found: self.positions.len(), needed: 2 });
+        }
+        if self.frames.len() != self.positions.len() {
+            return Err(SweepError::LengthMismatch {
+                what: "sweep",
+                points: self.positions.len(),
+                attributes: self.frames.len(),
+            });
+        }
+        if !self.scales.is_empty() && self.scales.len() != self.positions.len() {
+            return Err(SweepError::LengthMismatch {
+                what: "sweep scale",
+                points: self.positions.len(),
+                attributes: self.scales.len(),
+            });
+        }
+        let bad = |f: &Frame| !(f.t.is_finite() && f.n.is_finite() && f.b.is_finite());
+        if let Some(index) = (0..self.positions.len()).find(|&i| !self.positions[i].is_finite() || bad(&self.frames[i]))
+        {
+            return Err(SweepError::NonFinite { what: "sweep", index });
+        }
+        if let Some(index) = self.scales.iter().position(|s| !s.is_finite()) {
+            return Err(SweepError::NonFinite { what: "sweep scale", index });
+        }
+        Ok(())
+    }
+
+    /// True when the first and last points coincide (within `1e-9` of the path's size).
+    fn is_closed(&self) -> bool {
+        let size = extent(self.positions.iter().copied());
+        let n = self.positions.len();
+        n > 2 && self.positions[0].distance(self.positions[n - 1]) <= 1e-9 * size.max(1e-300)
+    }
+}
+
+fn extent(points: impl Iterator<Item = DVec3>) -> f64 {
+    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    for p in points {
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    if lo.x <= hi.x { (hi - lo).max_element() } else { 0.0 }
+}
+
+fn normalized_lengths(steps: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut acc = vec![0.0];
+    for d in steps {
+        let last = *acc.last().unwrap_or(&0.0);
+        acc.push(last + d);
+    }
+    let total = *acc.last().unwrap_or(&0.0);
+    if total > 0.0 {
+        for v in &mut acc {
+            *v /= total;
+        }
+    }
+    acc
+}
+
+/// The surface of revolution of SPEC §2.1 (`srev`): `steps` copies of the profile, copy `j`
+/// rotated by the right-handed angle `2πj/steps` about +y, no duplicate copy at 2π.
+///
+/// Compat layout: vertex `j·P + i` for profile point `i` of copy `j`; triangles
+/// `(a, a+1, a+P)` and `(a+1, a+P+1, a+P)` with `a = j·P + i` (indices mod the vertex count);
+/// normals are the profile normals rotated and flipped. Welded layout: profile points on the
+/// axis become single pole vertices, and the triangles that would collapse there are left out.
+///
+/// # Errors
+/// Fewer than two profile points, mismatched normals, non-finite input, `steps == 0`.
+pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result<TriMesh, SweepError> {
+    profile.check()?;
+    if steps == 0 {
+        return Err(SweepError::ZeroSteps);
+    }
+    let p = profile.points.len();
+    let size = extent(profile.points.iter().map(|q| q.extend(0.0)));
+    let welded = options.layout == MeshLayout::Welded;
+    let on_axis: Vec<bool> = profile.points.iter().map(|q| welded && q.x.abs() <= 1e-12 * size).collect();
+    // UV seam: with UVs, the copy at 2π is emitted again (u = 1)
+    let copies = if options.uvs { steps + 1 } else { steps };
+    let vs = profile.normalized_lengths();
+
+    let mut mesh = TriMesh::default();
+    // index[j][i]: vertex of profile point i in copy j
+    let mut index = vec![0u32; copies * p];
+    let mut pole = vec![u32::MAX; p];
+    for j in 0..copies {
+        let phi = std::f64::consts::TAU * j as f64 / steps as f64;
+        let (s, c) = phi.sin_cos();
+        let rot = |v: DVec2| DVec3::new(v.x * c, v.y, -v.x * s);
+        for i in 0..p {
+            if on_axis[i] && pole[i] != u32::MAX {
+                index[j * p + i] = pole[i];
+                continue;
+            }
+            let id = mesh.positions.len() as u32;
+            let q = profile.points[i];
+            mesh.positions.push(if on_axis[i] { DVec3::new(0.0, q.y, 0.0) } else { rot(q) });
+            mesh.normals.push(-rot(profile.normals[i]));
+            if options.uvs {
+                mesh.uvs.push(DVec2::new(if on_axis[i] { 0.5 } else { j as f64 / steps as f64 }, vs[i]));
+            }
+            if on_axis[i] {
+                pole[i] = id;
+            }
+            index[j * p + i] = id;
+        }
+    }
+    let twin = twins(&profile.points, welded);
+    for j in 0..steps {
+        let next = if options.uvs { j + 1 } else { (j + 1) % steps };
+        for i in (0..p - 1).filter(|&i| !twin[i]) {
+            let (a, b) = (index[j * p + i], index[j * p + i + 1]);
+            let (c, d) = (index[next * p + i], index[next * p + i + 1]);
+            push_quad(&mut mesh, [a, b, c, d], welded);
+        }
+    }
+    // outward: away from the y axis
+    orient(&mut mesh, |q| DVec3::new(q.x, 0.0, q.z));
+    if welded {
+        fix_pole_normals(&mut mesh, &pole);
+    }
+    Ok(mesh)
+}
+
+/// The generalized cylinder of SPEC §2.2 (`gcyl`): a copy of the profile at every sweep
+/// point, `vertex = N·p.x + B·p.y + V`, `normal = −(N·n.x + B·n.y)` with the sweep frame
+/// `(T, N, B)` at `V` and the profile normal `n`.
+///
+/// Compat layout: vertex `k·P + i` for profile point `i` of copy `k`, triangles
+/// `(a, a+1, a+P)` and `(a+1, a+P+1, a+P)`, seams duplicated. Welded layout: a closed profile
+/// (first point = last) and a closed sweep share their seam vertices.
+///
+/// # Errors
+/// Fewer than two points in either curve, mismatched arrays, non-finite input.
+pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepOptions) -> Result<TriMesh, SweepError> {
+    profile.check()?;
+    path.check()?;
+    let welded = options.layout == MeshLayout::Welded;
+    let p_all = profile.points.len();
+    let s_all = path.positions.len();
+    // welded: drop the repeated seam point / copy and wrap instead (unless UVs need it)
+    let wrap_p = welded && !options.uvs && profile.is_closed();
+    let wrap_s = welded && !options.uvs && path.is_closed();
+    let p = if wrap_p { p_all - 1 } else { p_all };
+    let s = if wrap_s { s_all - 1 } else { s_all };
+    let vs = profile.normalized_lengths();
+    let us = normalized_lengths(path.positions.iter().zip(path.positions.iter().skip(1)).map(|(a, b)| a.distance(*b)));
+
+    let mut mesh = TriMesh::default();
+    mesh.positions.reserve(p * s);
+    let scaled = !path.scales.is_empty();
+    for (k, ((f, v), u)) in path.frames.iter().zip(&path.positions).zip(&us).take(s).enumerate() {
+        let sc = if scaled { path.scales[k] } else { DVec2::ONE };
+        for ((q, n), w) in profile.points.iter().zip(&profile.normals).zip(&vs).take(p) {
+            mesh.positions.push(f.n * (q.x * sc.x) + f.b * (q.y * sc.y) + *v);
+            mesh.normals.push(-(f.n * n.x + f.b * n.y));
+            if options.uvs {
+                mesh.uvs.push(DVec2::new(*u, *w));
+            }
+        }
+    }
+    let id = |k: usize, i: usize| ((k % s) * p + (i % p)) as u32;
+    let quads_s = if wrap_s { s } else { s - 1 };
+    let quads_p = if wrap_p { p } else { p - 1 };
+    let twin = twins(&profile.points, welded);
+    for k in 0..quads_s {
+        for i in (0..quads_p).filter(|&i| !twin[i]) {
+            push_quad(&mut mesh, [id(k, i), id(k, i + 1), id(k + 1, i), id(k + 1, i + 1)], welded);
+        }
+    }
+    // outward: away from the sweep curve, per copy
+    let centres: Vec<DVec3> = path.positions[..s].to_vec();
+    orient_by(&mut mesh, |v| v / p, &centres);
+    if scaled {
+        face_average_normals(&mut mesh);
+    }
+    if options.caps && !path.is_closed() && profile.is_closed() {
+        let ring = &profile.points[..p_all - 1];
+        let sc = |k: usize| if scaled { path.scales[k] } else { DVec2::ONE };
+        add_cap(&mut mesh, ring, path.frames[0], path.positions[0], sc(0), -path.frames[0].t);
+        let last = s_all - 1;
+        add_cap(&mut mesh, ring, path.frames[last], path.positions[last], sc(last), path.frames[last].t);
+    }
+    Ok(mesh)
+}
+
+/// A flat cap: the profile ring placed with `frame` at `centre`, triangulated, facing `outward`.
+fn add_cap(mesh: &mut TriMesh, ring: &[DVec2], frame: Frame, centre: DVec3, scale: DVec2, outward: DVec3) {
+    let base = mesh.positions.len() as u32;
+    let uv = !mesh.uvs.is_empty();
+    for q in ring {
+        mesh.positions.push(frame.n * (q.x * scale.x) + frame.b * (q.y * scale.y) + centre);
+        mesh.normals.push(outward.normalize_or_zero());
+        if uv {
+            mesh.uvs.push(*q);
+        }
+    }
+    let tris = triangulate_polygon(ring);
+    let first = mesh.triangles.len();
+    mesh.triangles.extend(tris.iter().map(|t| t.map(|i| base + i as u32)));
+    let facing: f64 = (first..mesh.triangles.len()).map(|i| mesh.face_normal(i).dot(outward)).sum();
+    if facing < 0.0 {
+        for t in &mut mesh.triangles[first..] {
+            t.swap(1, 2);
+        }
+    }
+}
+
+/// Ear-clipping triangulation of a simple polygon (either orientation); indices into
+/// `points`. A polygon that is not simple falls back to a fan from its first vertex.
+#[must_use]
+pub fn triangulate_polygon(points: &[DVec2]) -> Vec<[usize; 3]> {
+    let n = points.len();
+    if n < 3 {
+        return Vec::new();
+    }
+    let area: f64 = (0..n).map(|i| points[i].perp_dot(points[(i + 1) % n])).sum();
+    let sign = if area < 0.0 { -1.0 } else { 1.0 };
+    let mut idx: Vec<usize> = (0..n).collect();
+    let mut out = Vec::with_capacity(n - 2);
+    let cross = |a: DVec2, b: DVec2, c: DVec2| sign * (b - a).perp_dot(c - a);
+    let mut guard = 0;
+    while idx.len() > 3 && guard < idx.len() {
+        let m = idx.len();
+        let mut clipped = false;
+        for k in 0..m {
+            let (ia, ib, ic) = (idx[(k + m - 1) % m], idx[k], idx[(k + 1) % m]);
+            let (a, b, c) = (points[ia], points[ib], points[ic]);
+            if cross(a, b, c) <= 0.0 {
+                continue; // reflex or flat corner
+            }
+            let inside = idx.iter().any(|&j| {
+                j != ia && j != ib && j != ic && {
+                    let q = points[j];
+                    cross(a, b, q) >= 0.0 && cross(b, c, q) >= 0.0 && cross(c, a, q) >= 0.0
+                }
+            });
+            if !inside {
+                out.push([ia, ib, ic]);
+                idx.remove(k);
+                clipped = true;
+                break;
+            }
+        }
+        guard = if clipped { 0 } else { guard + 1 };
+        if !clipped {
+            break;
+        }
+    }
+    if idx.len() == 3 {
+        out.push([idx[0], idx[1], idx[2]]);
+    } else {
+        // not simple: a fan over what is left
+        for w in 1..idx.len() - 1 {
+            out.push([idx[0], idx[w], idx[w + 1]]);
+        }
+    }
+    out
+}
+
+/// Vertex normals from the area-weighted normals of the faces around each vertex.
+fn face_average_normals(mesh: &mut TriMesh) {
+    let mut sum = vec![DVec3::ZERO; mesh.positions.len()];
+    for i in 0..mesh.triangles.len() {
+        let f = mesh.face_normal(i);
+        for &v in &mesh.triangles[i] {
+            sum[v as usize] += f;
+        }
+    }
+    for (n, s) in mesh.normals.iter_mut().zip(sum) {
+        if let Some(u) = s.try_normalize() {
+            *n = u;
+        }
+    }
+}
+
+/// `twin[i]`: profile points `i` and `i + 1` coincide (a crease sampled twice) and, in the
+/// welded layout, the zero-width strip between them is left out.
+fn twins(points: &[DVec2], welded: bool) -> Vec<bool> {
+    let size = extent(points.iter().map(|q| q.extend(0.0)));
+    let mut twin: Vec<bool> = points.windows(2).map(|w| welded && w[0].distance(w[1]) <= 1e-12 * size).collect();
+    // the closing pair (last, first) of a wrapped profile
+    twin.push(false);
+    twin
+}
+
+/// Two triangles `(a, b, c)` and `(b, d, c)` of the quad `a b / c d`; in welded layout,
+/// triangles with a repeated vertex are left out.
+fn push_quad(mesh: &mut TriMesh, [a, b, c, d]: [u32; 4], welded: bool) {
+    for t in [[a, b, c], [b, d, c]] {
+        if !(welded && (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])) {
+            mesh.triangles.push(t);
+        }
+    }
+}
+
+/// Flips the mesh if its face normals point, on balance, against `outward(centroid)`.
+fn orient(mesh: &mut TriMesh, outward: impl Fn(DVec3) -> DVec3) {
+    let flux: f64 = (0..mesh.triangles.len())
+        .map(|i| {
+            let [a, b, c] = mesh.corners(i);
+            mesh.face_normal(i).dot(outward((a + b + c) / 3.0))
+        })
+        .sum();
+    if flux < 0.0 {
+        for t in &mut mesh.triangles {
+            t.swap(1, 2);
+        }
+    }
+    align_normals(mesh);
+}
+
+/// [`orient`] with the outward direction taken from the centre of each vertex's copy.
+fn orient_by(mesh: &mut TriMesh, copy_of: impl Fn(usize) -> usize, centres: &[DVec3]) {
+    let flux: f64 = (0..mesh.triangles.len())
+        .map(|i| {
+            let t = mesh.triangles[i];
+            let out: DVec3 = t
+                .iter()
+                .map(|&v| mesh.positions[v as usize] - centres[copy_of(v as usize).min(centres.len() - 1)])
+                .sum();
+            mesh.face_normal(i).dot(out)
+        })
+        .sum();
+    if flux < 0.0 {
+        for t in &mut mesh.triangles {
+            t.swap(1, 2);
+        }
+    }
+    align_normals(mesh);
+}
+
+/// Negates the vertex normals if they disagree, on balance, with the faces around them.
+fn align_normals(mesh: &mut TriMesh) {
+    let mut agreement = 0.0;
+    for i in 0..mesh.triangles.len() {
+        let fnorm = mesh.face_normal(i);
+        for &v in &mesh.triangles[i] {
+            agreement += fnorm.dot(mesh.normals[v as usize]);
+        }
+    }
+    if agreement < 0.0 {
+        for n in &mut mesh.normals {
+            *n = -*n;
+        }
+    }
+}
+
+/// Pole vertices get the area-weighted normal of their faces (along the axis).
+fn fix_pole_normals(mesh: &mut TriMesh, pole: &[u32]) {
+    for &v in pole.iter().filter(|&&v| v != u32::MAX) {
+        let mut sum = DVec3::ZERO;
+        for i in 0..mesh.triangles.len() {
+            if mesh.triangles[i].contains(&v) {
+                sum += mesh.face_normal(i);
+            }
+        }
+        if let Some(n) = sum.try_normalize() {
+            mesh.normals[v as usize] = n;
+        }
+    }
+}

@@ -1,0 +1,175 @@
+//! `splinekit info`: what an SWP file holds.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use splinekit::ParamCurve;
+use splinekit_io::{SwpDocument, SwpGeometry, SwpSurfaceKind};
+
+use crate::output::{json_array, json_str};
+use crate::select;
+use crate::sweep_cmd;
+
+/// List the curves (kind, points, segments, closed) and surfaces of an SWP file, with the
+/// vertex and triangle counts each surface sweeps to.
+#[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:\n  \
+    splinekit info wineglass.swp\n  \
+    splinekit info scene.swp --json\n\n\
+    Surface counts are given for both layouts: compat (the course program's, SPEC §2.3) and welded \
+    (seams and poles shared; the default of `splinekit sweep`).")]
+pub struct InfoArgs {
+    /// SWP file to read
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+
+    /// Print one JSON object instead of text
+    #[arg(long)]
+    pub json: bool,
+}
+
+struct CurveRow {
+    name: String,
+    keyword: &'static str,
+    points: usize,
+    segments: usize,
+    steps: u32,
+    closed: bool,
+}
+
+struct SurfaceRow {
+    name: String,
+    kind: &'static str,
+    curves: Vec<(&'static str, String)>,
+    steps: Option<u32>,
+    counts: Result<[(usize, usize); 2], String>,
+}
+
+/// Runs the command, writing to `out`.
+pub fn run(args: &InfoArgs, out: &mut impl Write) -> anyhow::Result<()> {
+    let doc = select::load(&args.file)?;
+    let curves = curve_rows(&doc)?;
+    let surfaces = surface_rows(&doc);
+    if args.json {
+        write_json(out, &args.file.display().to_string(), &curves, &surfaces)?;
+    } else {
+        write_text(out, &args.file.display().to_string(), &curves, &surfaces)?;
+    }
+    Ok(())
+}
+
+fn curve_rows(doc: &SwpDocument) -> anyhow::Result<Vec<CurveRow>> {
+    doc.curves
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let points = match &c.geometry {
+                SwpGeometry::Points(p) => p.len(),
+                SwpGeometry::Hermite { points, .. } => points.len(),
+                SwpGeometry::Circle { .. } => 0,
+            };
+            let segments = c.to_curve().map(|k| k.num_segments()).unwrap_or(0);
+            Ok(CurveRow {
+                name: c.display_name(i),
+                keyword: c.keyword(),
+                points,
+                segments,
+                steps: c.steps,
+                closed: c.closed,
+            })
+        })
+        .collect()
+}
+
+fn surface_rows(doc: &SwpDocument) -> Vec<SurfaceRow> {
+    doc.surfaces
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            let name = |i: usize| doc.curves[i].display_name(i);
+            let (kind, curves, steps) = match s.kind {
+                SwpSurfaceKind::Revolution { steps, profile } => {
+                    ("srev", vec![("profile", name(profile))], Some(steps))
+                }
+                SwpSurfaceKind::GeneralizedCylinder { profile, sweep } => {
+                    ("gcyl", vec![("profile", name(profile)), ("sweep", name(sweep))], None)
+                }
+            };
+            let counts = sweep_cmd::counts(doc, k).map_err(|e| format!("{e:#}"));
+            SurfaceRow { name: s.display_name(k), kind, curves, steps, counts }
+        })
+        .collect()
+}
+
+fn write_text(out: &mut impl Write, file: &str, curves: &[CurveRow], surfaces: &[SurfaceRow]) -> std::io::Result<()> {
+    let plural = |n: usize, word: &str| format!("{n} {word}{}", if n == 1 { "" } else { "s" });
+    writeln!(out, "{file}: {}, {}", plural(curves.len(), "curve"), plural(surfaces.len(), "surface"))?;
+    if !curves.is_empty() {
+        writeln!(out, "curves:")?;
+        let width = curves.iter().map(|c| c.name.len()).max().unwrap_or(0);
+        for (i, c) in curves.iter().enumerate() {
+            let shape = if c.keyword == "circ" {
+                String::from("circle")
+            } else {
+                format!("{} points, {}", c.points, plural(c.segments, "segment"))
+            };
+            writeln!(
+                out,
+                "  {i:>3}  {:<width$}  {:<4}  {shape}, steps {}, {}",
+                c.name,
+                c.keyword,
+                c.steps,
+                if c.closed { "closed" } else { "open" }
+            )?;
+        }
+    }
+    if !surfaces.is_empty() {
+        writeln!(out, "surfaces:")?;
+        for (i, s) in surfaces.iter().enumerate() {
+            let refs: Vec<String> = s.curves.iter().map(|(role, n)| format!("{role} {n}")).collect();
+            let steps = s.steps.map(|n| format!(", {n} steps")).unwrap_or_default();
+            write!(out, "  {i:>3}  {}  {}: {}{steps}", s.name, s.kind, refs.join(", "))?;
+            match &s.counts {
+                Ok([(cv, ct), (wv, wt)]) => {
+                    writeln!(out, "; compat {cv} vertices, {ct} triangles; welded {wv} vertices, {wt} triangles")?;
+                }
+                Err(e) => writeln!(out, "; cannot sweep: {e}")?,
+            }
+        }
+    }
+    Ok(())
+}
+
+fn write_json(out: &mut impl Write, file: &str, curves: &[CurveRow], surfaces: &[SurfaceRow]) -> std::io::Result<()> {
+    write!(out, "{{\n  \"file\": {},\n  \"curves\": ", json_str(file))?;
+    json_array(out, "  ", curves, |o, c| {
+        write!(
+            o,
+            "{{\"name\": {}, \"kind\": \"{}\", \"points\": {}, \"segments\": {}, \"steps\": {}, \"closed\": {}}}",
+            json_str(&c.name),
+            c.keyword,
+            c.points,
+            c.segments,
+            c.steps,
+            c.closed
+        )
+    })?;
+    out.write_all(b",\n  \"surfaces\": ")?;
+    json_array(out, "  ", surfaces, |o, s| {
+        write!(o, "{{\"name\": {}, \"kind\": \"{}\"", json_str(&s.name), s.kind)?;
+        for (role, n) in &s.curves {
+            write!(o, ", \"{role}\": {}", json_str(n))?;
+        }
+        if let Some(steps) = s.steps {
+            write!(o, ", \"steps\": {steps}")?;
+        }
+        match &s.counts {
+            Ok([(cv, ct), (wv, wt)]) => write!(
+                o,
+                ", \"compat\": {{\"vertices\": {cv}, \"triangles\": {ct}}}, \"welded\": {{\"vertices\": {wv}, \"triangles\": {wt}}}}}"
+            ),
+            Err(e) => write!(o, ", \"error\": {}}}", json_str(e)),
+        }
+    })?;
+    out.write_all(b"\n}\n")
+}

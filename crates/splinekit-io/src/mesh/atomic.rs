@@ -1,0 +1,238 @@
+//! Atomic file writes: all or nothing.
+//!
+//! [`write_file`] writes through a temporary file in the target's directory and renames it
+//! over the target only after everything was written and synced. If anything fails — the
+//! directory does not exist, the callback returns an error or panics, the disk is full, the
+//! rename is refused — the temporary file is removed and the target is left as it was: there
+//! is never a partial output file (SPEC §5).
+//!
+//! ```
+//! use std::io::Write;
+//!
+//! # let dir = std::env::temp_dir().join(format!("splinekit-atomic-doc-{}", std::process::id()));
+//! # std::fs::create_dir_all(&dir)?;
+//! let path = dir.join("hello.txt");
+//! splinekit_io::atomic::write_file(&path, |w| w.write_all(b"hello\n"))?;
+//! assert_eq!(std::fs::read_to_string(&path)?, "hello\n");
+//!
+//! // A failing callback leaves the old contents in place.
+//! let failed: std::io::Result<()> = splinekit_io::atomic::write_file(&path, |w| {
+//!     w.write_all(b"half a file")?;
+//!     Err(std::io::Error::other("the mesh generator gave up"))
+//! });
+//! assert!(failed.is_err());
+//! assert_eq!(std::fs::read_to_string(&path)?, "hello\n");
+//! # std::fs::remove_dir_all(&dir)?;
+//! # Ok::<(), std::io::Error>(())
+//! ```
+
+use std::fs::{self, File, OpenOptions};
+use std::io::{self, BufWriter};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// How many temporary names are tried before giving up when they already exist.
+const MAX_TEMP_ATTEMPTS: u32 = 64;
+
+/// Counter that makes temporary names unique within the process.
+static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// An I/O error of [`write_file`], naming the target path and what was being done.
+///
+/// Displays as `PATH: cannot ACTION: OS MESSAGE`, for example
+/// `out/vase.obj: cannot create temporary file: No such file or directory (os error 2)`.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: cannot {action}: {error}", path.display())]
+pub struct WriteFileError {
+    path: PathBuf,
+    action: &'static str,
+    error: io::Error,
+}
+
+impl WriteFileError {
+    fn new(path: &Path, action: &'static str, error: io::Error) -> Self {
+        Self { path: path.to_owned(), action, error }
+    }
+
+    /// The file that was to be written (the target, not the temporary file).
+    #[must_use]
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// What was being done: `create temporary file`, `write`, `sync` or `rename temporary
+    /// file` (or `write to a path without a file name`).
+    #[must_use]
+    pub fn action(&self) -> &'static str {
+        self.action
+    }
+
+    /// The operating system's error.
+    #[must_use]
+    pub fn io_error(&self) -> &io::Error {
+        &self.error
+    }
+
+    /// The action and the operating system's error.
+    #[must_use]
+    pub fn into_parts(self) -> (&'static str, io::Error) {
+        (self.action, self.error)
+    }
+}
+
+impl From<WriteFileError> for io::Error {
+    /// Keeps the [`io::ErrorKind`] and puts the path and action into the message.
+    fn from(e: WriteFileError) -> Self {
+        io::Error::new(e.error.kind(), e.to_string())
+    }
+}
+
+/// Removes the temporary file when dropped, unless disarmed after the rename.
+struct TempGuard {
+    path: PathBuf,
+    armed: bool,
+}
+
+impl Drop for TempGuard {
+    fn drop(&mut self) {
+        if self.armed {
+            // Best effort: there is nothing better to do with an error while cleaning up.
+            let _ = fs::remove_file(&self.path);
+        }
+    }
+}
+
+/// Writes the file at `path` atomically: `write` fills a buffered temporary file in the same
+/// directory, which then replaces `path` by a rename.
+///
+/// - On success the file holds exactly what `write` wrote (it was flushed and synced to disk
+///   before the rename). An existing file is replaced; its permissions are copied to the new
+///   file (best effort). A symbolic link at `path` is replaced by a regular file, not followed.
+/// - On failure — of the callback (an error or a panic) or of any I/O step — the temporary
+///   file is removed and `path` is untouched: a new file is not created, an existing one keeps
+///   its old contents.
+///
+/// The temporary file is named `.NAME.PID-N.tmp` after the target's file name `NAME`; it is
+/// hidden on Unix and never left behind except when the process is killed while writing.
+///
+/// The callback's error type `E` only has to be convertible from [`WriteFileError`], which
+/// [`io::Error`], [`MeshIoError`](super::MeshIoError) and `anyhow::Error` all are; the
+/// callback's value is returned.
+///
+/// # Errors
+///
+/// The callback's error, or a [`WriteFileError`] (converted into `E`) naming `path` when the
+/// temporary file cannot be created (for example, the directory does not exist), written,
+/// synced or renamed, or when `path` has no file name.
+pub fn write_file<T, E, F>(path: impl AsRef<Path>, write: F) -> Result<T, E>
+where
+    F: FnOnce(&mut BufWriter<File>) -> Result<T, E>,
+    E: From<WriteFileError>,
+{
+    let path = path.as_ref();
+    let fail = |action, error| E::from(WriteFileError::new(path, action, error));
+    let Some(name) = path.file_name() else {
+        let error = io::Error::new(io::ErrorKind::InvalidInput, "the path does not end in a file name");
+        return Err(fail("write to a path without a file name", error));
+    };
+    let dir = match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir,
+        _ => Path::new("."),
+    };
+
+    let (file, mut guard) = create_temp(dir, &name.to_string_lossy()).map_err(|e| fail("create temporary file", e))?;
+    if let Ok(meta) = fs::metadata(path) {
+        // Best effort: keep the permissions of the file being replaced.
+        let _ = file.set_permissions(meta.permissions());
+    }
+    let mut writer = BufWriter::with_capacity(1 << 16, file);
+    let value = write(&mut writer)?;
+    let file = writer.into_inner().map_err(|e| fail("write", e.into_error()))?;
+    file.sync_all().map_err(|e| fail("sync", e))?;
+    drop(file);
+    fs::rename(&guard.path, path).map_err(|e| fail("rename temporary file", e))?;
+    guard.armed = false;
+    sync_dir(dir);
+    Ok(value)
+}
+
+/// Creates a new, uniquely named temporary file in `dir`.
+fn create_temp(dir: &Path, name: &str) -> io::Result<(File, TempGuard)> {
+    let pid = std::process::id();
+    let mut last_error = None;
+    for _ in 0..MAX_TEMP_ATTEMPTS {
+        let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+        let temp = dir.join(format!(".{name}.{pid}-{n}.tmp"));
+        match OpenOptions::new().write(true).create_new(true).open(&temp) {
+            Ok(file) => return Ok((file, TempGuard { path: temp, armed: true })),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => last_error = Some(e),
+            Err(e) => return Err(e),
+        }
+    }
+    Err(last_error.unwrap_or_else(|| io::Error::other("no free temporary file name")))
+}
+
+/// Makes the rename durable (Unix; best effort, errors are ignored).
+fn sync_dir(dir: &Path) {
+    #[cfg(unix)]
+    if let Ok(d) = File::open(dir) {
+        let _ = d.sync_all();
+    }
+    #[cfg(not(unix))]
+    let _ = dir;
+}
+
+#[cfg(test)]
+mod tests {
+    use std::io::Write;
+
+    use super::*;
+
+    fn scratch(tag: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("splinekit-atomic-{tag}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> =
+            fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn replaces_and_leaves_no_temporary_file() {
+        let dir = scratch("replace");
+        let path = dir.join("a.txt");
+        write_file(&path, |w| w.write_all(b"one")).unwrap();
+        let n: io::Result<usize> = write_file(&path, |w| w.write_all(b"two").map(|()| 7));
+        assert_eq!(n.unwrap(), 7);
+        assert_eq!(fs::read(&path).unwrap(), b"two");
+        assert_eq!(entries(&dir), ["a.txt"]);
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn panicking_callback_leaves_nothing() {
+        let dir = scratch("panic");
+        let path = dir.join("p.txt");
+        let result = std::panic::catch_unwind(|| {
+            let _: io::Result<()> = write_file(&path, |w| {
+                w.write_all(b"partial").unwrap();
+                panic!("boom");
+            });
+        });
+        assert!(result.is_err());
+        assert!(entries(&dir).is_empty(), "{:?}", entries(&dir));
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn path_without_file_name_is_an_error() {
+        let e: io::Error = write_file("..", |w| w.write_all(b"x")).unwrap_err();
+        assert_eq!(e.kind(), io::ErrorKind::InvalidInput);
+        assert!(e.to_string().starts_with("..: cannot write to a path without a file name"), "{e}");
+    }
+}

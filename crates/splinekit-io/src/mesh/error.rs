@@ -1,0 +1,205 @@
+//! The error type of the mesh writers and of the spline-annotated OBJ header reader.
+
+use std::fmt;
+
+use splinekit::mesh::MeshError;
+
+use super::atomic::WriteFileError;
+use crate::swp::SourcePos;
+
+/// Longest token text (in characters) quoted in a message before it is shortened with `…`.
+const MAX_QUOTED_CHARS: usize = 40;
+
+/// An error from writing a mesh file or from reading a spline-annotated OBJ header.
+///
+/// It carries the origin (the path written or read, or the name given to a parser; empty when
+/// a writer was called on a plain [`Write`](std::io::Write) stream), the 1-based line and
+/// column for parse errors, and a structured [`MeshIoErrorKind`].
+///
+/// It displays as `ORIGIN:LINE:COL: <message>` for parse errors, `ORIGIN: <message>`
+/// otherwise, and just `<message>` without an origin, for example
+/// `lathe.obj:5:9: found "ture", expected true or false (closed, 1st value of the configs line)`
+/// or `out/vase.glb: cannot create temporary file: No such file or directory (os error 2)`.
+#[derive(Debug, thiserror::Error)]
+#[error("{}{kind}", Prefix(origin, *.pos))]
+pub struct MeshIoError {
+    origin: String,
+    pos: Option<SourcePos>,
+    kind: MeshIoErrorKind,
+}
+
+/// Formats the origin and optional position as `ORIGIN:LINE:COL: `, `ORIGIN: `, `LINE:COL: `
+/// or nothing.
+struct Prefix<'a>(&'a str, Option<SourcePos>);
+
+impl fmt::Display for Prefix<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match (self.0.is_empty(), self.1) {
+            (true, None) => Ok(()),
+            (false, None) => write!(f, "{}: ", self.0),
+            (true, Some(pos)) => write!(f, "{}:{}: ", pos.line, pos.column),
+            (false, Some(pos)) => write!(f, "{}:{}:{}: ", self.0, pos.line, pos.column),
+        }
+    }
+}
+
+impl MeshIoError {
+    /// An error without origin or position (the origin is filled in by path-level functions).
+    pub(crate) fn new(kind: MeshIoErrorKind) -> Self {
+        Self { origin: String::new(), pos: None, kind }
+    }
+
+    /// An error at a position in `origin`.
+    pub(crate) fn at(origin: &str, pos: SourcePos, kind: MeshIoErrorKind) -> Self {
+        Self { origin: origin.to_owned(), pos: Some(pos), kind }
+    }
+
+    /// An I/O error while writing to a stream.
+    pub(crate) fn write(error: std::io::Error) -> Self {
+        Self::new(MeshIoErrorKind::Io { action: "write", error })
+    }
+
+    /// Sets the origin if the error has none yet.
+    pub(crate) fn with_origin(mut self, origin: &std::path::Path) -> Self {
+        if self.origin.is_empty() {
+            self.origin = origin.display().to_string();
+        }
+        self
+    }
+
+    /// The path or name the error is about; empty for errors of a stream writer.
+    #[must_use]
+    pub fn origin(&self) -> &str {
+        &self.origin
+    }
+
+    /// The 1-based line of a parse error, or 0 if the error has no position.
+    #[must_use]
+    pub fn line(&self) -> usize {
+        self.pos.map_or(0, |p| p.line)
+    }
+
+    /// The 1-based column (in characters) of a parse error, or 0 if the error has no position.
+    #[must_use]
+    pub fn column(&self) -> usize {
+        self.pos.map_or(0, |p| p.column)
+    }
+
+    /// The position of a parse error, or `None`.
+    #[must_use]
+    pub fn pos(&self) -> Option<SourcePos> {
+        self.pos
+    }
+
+    /// What went wrong.
+    #[must_use]
+    pub fn kind(&self) -> &MeshIoErrorKind {
+        &self.kind
+    }
+}
+
+impl From<WriteFileError> for MeshIoError {
+    fn from(e: WriteFileError) -> Self {
+        let origin = e.path().display().to_string();
+        let (action, error) = e.into_parts();
+        Self { origin, pos: None, kind: MeshIoErrorKind::Io { action, error } }
+    }
+}
+
+impl From<std::io::Error> for MeshIoError {
+    /// An I/O error of a writer: [`Io`](MeshIoErrorKind::Io) with the action `write` and no
+    /// origin (path-level functions fill it in). Lets `?` work on `Write` calls inside an
+    /// [`atomic::write_file`](super::atomic::write_file) callback that returns `MeshIoError`.
+    fn from(error: std::io::Error) -> Self {
+        Self::write(error)
+    }
+}
+
+/// What went wrong while writing a mesh or reading a spline-annotated OBJ header.
+///
+/// Messages are lowercase and say what was found and what was expected. New variants may be
+/// added.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum MeshIoErrorKind {
+    /// A file or stream could not be read or written.
+    #[error("cannot {action}: {error}")]
+    Io {
+        /// What was being done, like `write` or `create temporary file`.
+        action: &'static str,
+        /// The operating system's error.
+        error: std::io::Error,
+    },
+    /// The mesh fails [`TriMesh::validate`](splinekit::mesh::TriMesh::validate); nothing is
+    /// written.
+    #[error("invalid mesh: {0}")]
+    InvalidMesh(MeshError),
+    /// A value or count does not fit the file format (a coordinate beyond the `f32` range, more
+    /// than 2³² bytes in a `.glb`, more vertices than a PLY `int` index can address).
+    #[error("{what} does not fit in {format}")]
+    Unrepresentable {
+        /// The format, like `binary STL`.
+        format: &'static str,
+        /// The value or count, like `x coordinate of vertex 7 (1e300)`.
+        what: String,
+    },
+    /// A header value to be written would not read back (a non-finite number, or a tolerance
+    /// or scale that is not positive).
+    #[error("cannot write {what} = {value}, expected {expected}")]
+    InvalidHeaderValue {
+        /// The value, like `x coordinate of control point 2` or `scale`.
+        what: String,
+        /// The value.
+        value: f64,
+        /// What is allowed, like `a positive finite number`.
+        expected: &'static str,
+    },
+    /// A token is not what the header grammar allows here (a malformed number or boolean, a
+    /// missing `>>+<<` separator, an extra value).
+    #[error("found {}, expected {expected}", quote(found))]
+    UnexpectedToken {
+        /// The token found.
+        found: String,
+        /// What was expected, with context (which value of which line).
+        expected: String,
+    },
+    /// A line or the header ended where more was expected. The position is just after the
+    /// last character of the line (or at the start of the line that ended the header).
+    #[error("found {found}, expected {expected}")]
+    UnexpectedEnd {
+        /// `end of line` or `end of the comment header`.
+        found: &'static str,
+        /// What was expected.
+        expected: String,
+    },
+    /// The header is not valid UTF-8. Points at the line.
+    #[error("found invalid UTF-8, expected UTF-8 text")]
+    InvalidUtf8,
+}
+
+/// Quotes token text for a message, shortening long tokens.
+fn quote(text: &str) -> String {
+    if text.chars().count() > MAX_QUOTED_CHARS {
+        let short: String = text.chars().take(MAX_QUOTED_CHARS).collect();
+        format!("{short:?}…")
+    } else {
+        format!("{text:?}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn display_with_and_without_origin_and_position() {
+        let kind = || MeshIoErrorKind::UnexpectedToken { found: "x".into(), expected: "a number".into() };
+        assert_eq!(MeshIoError::new(kind()).to_string(), r#"found "x", expected a number"#);
+        let e = MeshIoError::at("a.obj", SourcePos::new(3, 4), kind());
+        assert_eq!(e.to_string(), r#"a.obj:3:4: found "x", expected a number"#);
+        assert_eq!((e.line(), e.column(), e.origin()), (3, 4, "a.obj"));
+        let e = MeshIoError::new(kind()).with_origin(std::path::Path::new("b.obj"));
+        assert_eq!(e.to_string(), r#"b.obj: found "x", expected a number"#);
+        assert_eq!(e.pos(), None);
+    }
+}

@@ -1,0 +1,201 @@
+//! Mesh files: writers for OBJ, binary glTF, PLY and STL, atomic file writes, and the
+//! spline-annotated OBJ header of the CS 4620 revolution and sweep tools.
+//!
+//! Every writer takes a [`TriMesh`] and comes in two forms:
+//!
+//! - a stream writer, `write_obj` / `write_glb` / `write_ply` / `write_stl` (or
+//!   [`write_mesh`] with a [`MeshFormat`]), for any [`Write`];
+//! - a path-level [`save`], which writes through [`atomic::write_file`]: the file appears
+//!   complete or not at all (SPEC §5), and errors name the path.
+//!
+//! | format | contents | precision |
+//! |---|---|---|
+//! | [OBJ](write_obj) | `v`, `vn`, `vt`, `f a/b/c` (by which attributes exist) | `f64`, shortest round-trip text |
+//! | [binary glTF](write_glb) | one scene, node and mesh; positions (with min/max), normals, UVs, `u32` indices | `f32` |
+//! | [PLY](write_ply) | binary little endian; `x y z [nx ny nz] [u v]`, faces as `uchar int` lists | `f32` |
+//! | [STL](write_stl) | binary; face normals computed from the triangles | `f32` |
+//!
+//! All writers are deterministic: the same mesh gives the same bytes, on every machine and in
+//! every locale. They validate the mesh first ([`TriMesh::validate`]) and write nothing if it
+//! is invalid.
+//!
+//! ```
+//! use glam::DVec3;
+//! use splinekit::TriMesh;
+//! use splinekit_io::mesh::{MeshFormat, save};
+//!
+//! let mesh = TriMesh {
+//!     positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+//!     triangles: vec![[0, 1, 2]],
+//!     ..TriMesh::default()
+//! };
+//! # let dir = std::env::temp_dir().join(format!("splinekit-mesh-doc-{}", std::process::id()));
+//! # std::fs::create_dir_all(&dir)?;
+//! let path = dir.join("triangle.stl");
+//! let format = MeshFormat::from_path(&path).unwrap();
+//! save(&mesh, &path, format)?;
+//! assert_eq!(std::fs::metadata(&path)?.len(), 84 + 50);
+//!
+//! // Errors name the path, and leave no file behind.
+//! let err = save(&mesh, dir.join("missing/triangle.stl"), MeshFormat::Stl).unwrap_err();
+//! assert!(err.to_string().contains("missing/triangle.stl: cannot create temporary file"));
+//! # std::fs::remove_dir_all(&dir)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! The OBJ files of the CS 4620 spline tools keep the spline that made the mesh in their
+//! leading comments ([`revolution_obj`] describes the layout); [`SplineHeader`] reads both
+//! kinds, and [`write_revolution_obj`] writes the revolution kind.
+
+pub mod atomic;
+mod error;
+mod glb;
+mod obj;
+mod ply;
+pub mod revolution_obj;
+mod stl;
+
+use std::io::Write;
+use std::path::Path;
+
+use splinekit::TriMesh;
+
+pub use error::{MeshIoError, MeshIoErrorKind};
+pub use glb::write_glb;
+pub use obj::write_obj;
+pub use ply::write_ply;
+pub use revolution_obj::{
+    HeaderSpline, RevolutionHeader, SplineHeader, SweepHeader, save_revolution_obj, write_revolution_obj,
+};
+pub use stl::write_stl;
+
+/// Size of the internal output buffer of the writers.
+const BUFFER_SIZE: usize = 1 << 16;
+
+/// A mesh file format that can be written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MeshFormat {
+    /// Wavefront OBJ text ([`write_obj`]).
+    Obj,
+    /// Binary glTF 2.0 ([`write_glb`]).
+    Glb,
+    /// Binary little-endian PLY ([`write_ply`]).
+    Ply,
+    /// Binary STL ([`write_stl`]).
+    Stl,
+}
+
+impl MeshFormat {
+    /// Every format, in the order of the variants.
+    pub const ALL: [Self; 4] = [Self::Obj, Self::Glb, Self::Ply, Self::Stl];
+
+    /// The usual file extension, lowercase and without the dot: `obj`, `glb`, `ply` or `stl`.
+    #[must_use]
+    pub const fn extension(self) -> &'static str {
+        match self {
+            Self::Obj => "obj",
+            Self::Glb => "glb",
+            Self::Ply => "ply",
+            Self::Stl => "stl",
+        }
+    }
+
+    /// The format with this extension or name (`obj`, `glb`, `ply`, `stl`, in any case,
+    /// with or without a leading dot), or `None`.
+    #[must_use]
+    pub fn from_extension(extension: &str) -> Option<Self> {
+        let extension = extension.strip_prefix('.').unwrap_or(extension);
+        Self::ALL.into_iter().find(|f| f.extension().eq_ignore_ascii_case(extension))
+    }
+
+    /// The format named by the extension of `path` (`vase.GLB` gives [`Glb`](Self::Glb)), or
+    /// `None` if the path has no known extension.
+    #[must_use]
+    pub fn from_path(path: impl AsRef<Path>) -> Option<Self> {
+        path.as_ref().extension().and_then(|e| e.to_str()).and_then(Self::from_extension)
+    }
+}
+
+impl std::fmt::Display for MeshFormat {
+    /// The extension, like `glb`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.extension())
+    }
+}
+
+/// Writes `mesh` to `out` in `format`; see [`write_obj`], [`write_glb`], [`write_ply`] and
+/// [`write_stl`] for the layouts.
+///
+/// # Errors
+///
+/// As the format's writer: an invalid mesh, a value the format cannot hold, or an I/O error.
+pub fn write_mesh<W: Write + ?Sized>(mesh: &TriMesh, out: &mut W, format: MeshFormat) -> Result<(), MeshIoError> {
+    match format {
+        MeshFormat::Obj => write_obj(mesh, out),
+        MeshFormat::Glb => write_glb(mesh, out),
+        MeshFormat::Ply => write_ply(mesh, out),
+        MeshFormat::Stl => write_stl(mesh, out),
+    }
+}
+
+/// Writes `mesh` to the file at `path` in `format`, atomically.
+///
+/// The mesh is validated before any file is created. The bytes go to a temporary file in the
+/// same directory, which is renamed to `path` only when everything was written (see
+/// [`atomic::write_file`]); on any error no file is left behind, and an existing file at
+/// `path` keeps its old contents. The format is given explicitly; use
+/// [`MeshFormat::from_path`] to pick it from the extension.
+///
+/// # Errors
+///
+/// A [`MeshIoError`] whose origin is `path`: an invalid mesh, a value the format cannot hold,
+/// or an I/O error (such as a directory that does not exist).
+pub fn save(mesh: &TriMesh, path: impl AsRef<Path>, format: MeshFormat) -> Result<(), MeshIoError> {
+    let path = path.as_ref();
+    check(mesh).map_err(|e| e.with_origin(path))?;
+    atomic::write_file(path, |w| write_mesh(mesh, w, format).map_err(|e| e.with_origin(path)))
+}
+
+/// Validates the mesh for writing.
+fn check(mesh: &TriMesh) -> Result<(), MeshIoError> {
+    mesh.validate().map_err(|e| MeshIoError::new(MeshIoErrorKind::InvalidMesh(e)))
+}
+
+/// Rounds to the nearest `f32`.
+fn to_f32(x: f64) -> f32 {
+    x as f32
+}
+
+/// Checks that every position (and, with `attributes`, every normal and UV) is within the
+/// `f32` range.
+fn check_f32_range(mesh: &TriMesh, format: &'static str, attributes: bool) -> Result<(), MeshIoError> {
+    const AXES: [&str; 3] = ["x", "y", "z"];
+    let fail = |what: String, x: f64| {
+        Err(MeshIoError::new(MeshIoErrorKind::Unrepresentable { format, what: format!("{what} ({x:?})") }))
+    };
+    for (i, p) in mesh.positions.iter().enumerate() {
+        for (axis, x) in AXES.iter().zip(p.to_array()) {
+            if !to_f32(x).is_finite() {
+                return fail(format!("{axis} coordinate of vertex {i}"), x);
+            }
+        }
+    }
+    if !attributes {
+        return Ok(());
+    }
+    for (i, n) in mesh.normals.iter().enumerate() {
+        for (axis, x) in AXES.iter().zip(n.to_array()) {
+            if !to_f32(x).is_finite() {
+                return fail(format!("{axis} component of the normal of vertex {i}"), x);
+            }
+        }
+    }
+    for (i, t) in mesh.uvs.iter().enumerate() {
+        for (axis, x) in ["u", "v"].iter().zip(t.to_array()) {
+            if !to_f32(x).is_finite() || !to_f32(1.0 - x).is_finite() {
+                return fail(format!("{axis} of vertex {i}"), x);
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,247 @@
+//! Sweeping every bundled SWP file: compat counts (SPEC §2.3), welded watertightness and
+//! orientation, and geometry checked against closed forms.
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use splinekit::TriMesh;
+use splinekit::sweep::{MeshLayout, SweepOptions};
+use splinekit_io::SwpDocument;
+use splinekit_io::surface::{SurfaceFrames, SurfaceOptions, SurfaceTessellation};
+
+fn data_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/swp")
+}
+
+fn load(rel: &str) -> SwpDocument {
+    SwpDocument::read(&data_dir().join(rel)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn opts(layout: MeshLayout) -> SurfaceOptions {
+    SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps: false }, ..SurfaceOptions::default() }
+}
+
+fn compat(doc: &SwpDocument, k: usize) -> TriMesh {
+    doc.surface_mesh(k, &opts(MeshLayout::Compat)).unwrap()
+}
+
+fn welded(doc: &SwpDocument, k: usize) -> TriMesh {
+    doc.surface_mesh(k, &opts(MeshLayout::Welded)).unwrap()
+}
+
+/// SPEC §2.3.
+const COUNTS: [(&str, usize, usize); 8] = [
+    ("srev/norm.swp", 4590, 9000),
+    ("srev/wineglass.swp", 16650, 33120),
+    ("gcyl/tor.swp", 1891, 3600),
+    ("gcyl/gentorus.swp", 3321, 6400),
+    ("gcyl/florus.swp", 7686, 15000),
+    ("gcyl/flircle.swp", 25551, 50000),
+    ("gcyl/weird.swp", 8385, 16384),
+    ("gcyl/weirder.swp", 5537, 10752),
+];
+
+#[test]
+fn compat_counts_match_the_course_program() {
+    for (file, v, t) in COUNTS {
+        let doc = load(file);
+        assert_eq!(doc.surfaces.len(), 1, "{file}");
+        let m = compat(&doc, 0);
+        m.validate().unwrap();
+        assert_eq!((m.num_vertices(), m.num_triangles()), (v, t), "{file}");
+    }
+}
+
+/// Every vertex normal within 90° of each face around it.
+fn normals_agree(m: &TriMesh) -> bool {
+    (0..m.num_triangles()).all(|i| {
+        let f = m.face_normal(i);
+        f.length() == 0.0 || m.triangles[i].iter().all(|&v| m.normals[v as usize].dot(f) > 0.0)
+    })
+}
+
+fn min_area(m: &TriMesh) -> f64 {
+    (0..m.num_triangles()).map(|i| 0.5 * m.face_normal(i).length()).fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn welded_closed_surfaces_are_watertight_and_outward() {
+    // the closed ones: wineglass (poles at both ends) and every gcyl with closed profile and sweep
+    for file in [
+        "srev/wineglass.swp",
+        "gcyl/tor.swp",
+        "gcyl/gentorus.swp",
+        "gcyl/florus.swp",
+        "gcyl/flircle.swp",
+        "gcyl/weird.swp",
+        "gcyl/weirder.swp",
+    ] {
+        let doc = load(file);
+        let m = welded(&doc, 0);
+        m.validate().unwrap();
+        assert!(
+            m.is_closed_oriented(),
+            "{file}: not a closed oriented manifold ({} boundary edges)",
+            m.boundary_edges().len()
+        );
+        assert!(m.signed_volume() > 0.0, "{file}: volume {}", m.signed_volume());
+        assert!(min_area(&m) > 0.0, "{file}: zero-area triangle");
+        // flircle's sweep turns tighter (radius 0.089) than its tube is thick (0.4): the tube
+        // folds through itself there, and the folded faces face inwards whatever the normals
+        if file != "gcyl/flircle.swp" {
+            assert!(normals_agree(&m), "{file}: a vertex normal disagrees with a face");
+        }
+        let c = compat(&doc, 0);
+        assert_eq!(m.num_triangles(), c.num_triangles() - if file.starts_with("srev") { 2 * 90 } else { 0 }, "{file}");
+        // Euler characteristic: sphere 2, torus 0
+        let edges = 3 * m.num_triangles() / 2;
+        let chi = m.num_vertices() as i64 - edges as i64 + m.num_triangles() as i64;
+        assert_eq!(chi, if file.starts_with("srev") { 2 } else { 0 }, "{file}");
+    }
+}
+
+#[test]
+fn compat_surfaces_are_outward_too() {
+    // (compat normals are the course program's, including horizontal normals at the
+    // wineglass's poles, so only the faces are checked here)
+    for (file, _, _) in COUNTS {
+        let m = compat(&load(file), 0);
+        if file != "srev/norm.swp" {
+            assert!(m.signed_volume() > 0.0, "{file}: volume {}", m.signed_volume());
+        }
+    }
+}
+
+#[test]
+fn torus_vertices_lie_on_the_torus() {
+    // tor.swp: profile circle r = 0.5 swept along a circle R = 2 in the xy-plane
+    for m in [compat(&load("gcyl/tor.swp"), 0), welded(&load("gcyl/tor.swp"), 0)] {
+        for p in &m.positions {
+            let ring = DVec3::new(p.x, p.y, 0.0).normalize() * 2.0;
+            assert!((p.distance(ring) - 0.5).abs() < 1e-12, "{p}");
+        }
+        // normals point from the ring to the vertex
+        for (p, n) in m.positions.iter().zip(&m.normals) {
+            let ring = DVec3::new(p.x, p.y, 0.0).normalize() * 2.0;
+            assert!((*p - ring).normalize().dot(*n) > 1.0 - 1e-12);
+        }
+        let exact = 2.0 * std::f64::consts::PI.powi(2) * 2.0 * 0.25;
+        assert!((m.signed_volume() - exact).abs() < 0.01 * exact);
+    }
+}
+
+#[test]
+fn revolution_vertices_keep_their_profile_radius() {
+    use splinekit::ParamCurve;
+    for file in ["srev/norm.swp", "srev/wineglass.swp"] {
+        let doc = load(file);
+        let m = compat(&doc, 0);
+        let curve = doc.curves[0].to_curve().unwrap();
+        let steps = doc.curves[0].steps as usize;
+        let p = curve.num_segments() * steps + 1;
+        for (v, q) in m.positions.iter().enumerate() {
+            let i = v % p;
+            let u = i as f64 / steps as f64;
+            let prof = curve.eval(u);
+            assert!((q.x.hypot(q.z) - prof.x.abs()).abs() < 1e-12, "{file} vertex {v}");
+            assert!((q.y - prof.y).abs() < 1e-12, "{file} vertex {v}");
+        }
+    }
+}
+
+#[test]
+fn weirder_seam_has_no_twist() {
+    // the closed-sweep frame fix: the last copy of the profile equals the first
+    let doc = load("gcyl/weirder.swp");
+    let m = compat(&doc, 0);
+    let p = doc.curves[0].steps as usize * 6 + 1; // bsp2 with 9 points: 6 segments
+    let s = m.num_vertices() / p;
+    for i in 0..p {
+        let (first, last) = (m.positions[i], m.positions[(s - 1) * p + i]);
+        assert!(first.distance(last) < 1e-9, "profile point {i}: {first} vs {last}");
+    }
+}
+
+#[test]
+fn every_bundled_file_sweeps() {
+    for file in [
+        "circles.swp",
+        "core.swp",
+        "extra/dragonfly.swp",
+        "extra/tube-table.swp",
+        "gcyl/flircle.swp",
+        "gcyl/florus.swp",
+        "gcyl/gentorus.swp",
+        "gcyl/tor.swp",
+        "gcyl/weird.swp",
+        "gcyl/weirder.swp",
+        "srev/norm.swp",
+        "srev/wineglass.swp",
+    ] {
+        let doc = load(file);
+        for k in 0..doc.surfaces.len() {
+            for layout in [MeshLayout::Compat, MeshLayout::Welded] {
+                for frames in [SurfaceFrames::Sequential, SurfaceFrames::RotationMinimizing] {
+                    let o = SurfaceOptions { frames, ..opts(layout) };
+                    let m = doc.surface_mesh(k, &o).unwrap_or_else(|e| panic!("{file} surface {k}: {e}"));
+                    m.validate().unwrap_or_else(|e| panic!("{file} surface {k}: {e}"));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn adaptive_wineglass_needs_fewer_triangles() {
+    let doc = load("srev/wineglass.swp");
+    let uniform = welded(&doc, 0);
+    let o = SurfaceOptions { tessellation: SurfaceTessellation::Distance(1e-3), ..opts(MeshLayout::Welded) };
+    let adaptive = doc.surface_mesh(0, &o).unwrap();
+    assert!(
+        adaptive.num_triangles() < uniform.num_triangles(),
+        "{} vs {}",
+        adaptive.num_triangles(),
+        uniform.num_triangles()
+    );
+    assert!(adaptive.is_closed_oriented());
+    assert!(adaptive.signed_volume() > 0.0);
+}
+
+#[test]
+fn open_sweep_with_caps_encloses_a_prism() {
+    let doc =
+        SwpDocument::parse("circ p 30 0.5\nbez3 s 10 4 [0 0 0] [0 0 1] [0 0 2] [0 0 3]\ngcyl tube p s\n", "t.swp")
+            .unwrap();
+    let o = SurfaceOptions {
+        sweep: SweepOptions { layout: MeshLayout::Welded, uvs: false, caps: true },
+        ..SurfaceOptions::default()
+    };
+    let m = doc.surface_mesh(0, &o).unwrap();
+    m.validate().unwrap();
+    // 30-gon prism of circumradius 0.5 and height 3
+    let exact = 15.0 * 0.25 * (std::f64::consts::TAU / 30.0).sin() * 3.0;
+    assert!((m.signed_volume() - exact).abs() < 1e-12, "{} vs {exact}", m.signed_volume());
+    assert!(normals_agree(&m));
+    // side: 11 rings of 30; caps: 30 + 30 vertices, 28 + 28 triangles
+    assert_eq!((m.num_vertices(), m.num_triangles()), (11 * 30 + 60, 10 * 60 + 56));
+    // without caps the same sweep is open with two boundary loops of 30 edges
+    let o = SurfaceOptions { sweep: SweepOptions { caps: false, ..o.sweep }, ..o };
+    assert_eq!(doc.surface_mesh(0, &o).unwrap().boundary_edges().len(), 60);
+}
+
+#[test]
+fn open_revolution_faces_away_from_its_axis() {
+    // norm.swp's profile is open (a tube): its faces must point away from the y axis
+    for layout in [MeshLayout::Compat, MeshLayout::Welded] {
+        let m = load("srev/norm.swp").surface_mesh(0, &opts(layout)).unwrap();
+        let flux: f64 = (0..m.num_triangles())
+            .map(|i| {
+                let [a, b, c] = m.corners(i);
+                let centre = (a + b + c) / 3.0;
+                m.face_normal(i).dot(DVec3::new(centre.x, 0.0, centre.z))
+            })
+            .sum();
+        assert!(flux > 0.0);
+        assert!(normals_agree(&m));
+    }
+}
