@@ -288,8 +288,11 @@ pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepO
     let p_all = profile.points.len();
     let s_all = path.positions.len();
     // welded: drop the repeated seam point / copy and wrap instead (unless UVs need it)
-    let wrap_p = welded && !options.uvs && profile.is_closed();
-    let wrap_s = welded && !options.uvs && path.is_closed();
+    // (a closed curve whose ends meet at a corner keeps both end samples: a crease)
+    let n_last = profile.normals[p_all - 1];
+    let wrap_p = welded && !options.uvs && profile.is_closed() && profile.normals[0].dot(n_last) > 1.0 - 1e-9;
+    let t_last = path.frames[s_all - 1].t;
+    let wrap_s = welded && !options.uvs && path.is_closed() && path.frames[0].t.dot(t_last) > 1.0 - 1e-9;
     let p = if wrap_p { p_all - 1 } else { p_all };
     let s = if wrap_s { s_all - 1 } else { s_all };
     let vs = profile.normalized_lengths();
