@@ -475,18 +475,9 @@ fn errors_convert_for_anyhow_style_callers() {
 // ---------------------------------------------------------------------------------------
 // Spline-annotated OBJ (CS 4620 revolution and sweep tools)
 
-/// The bundled spline-annotated OBJ files (shared data directory).
+/// The bundled spline-annotated OBJ files (copies of the shared data, see their SOURCES.md).
 fn spline_obj_dir() -> PathBuf {
-    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let candidates = [
-        crate_dir.join("../../../shared/data/obj/cs4620-splines"),
-        crate_dir.join("../../shared/data/obj/cs4620-splines"),
-    ];
-    candidates
-        .iter()
-        .find(|d| d.join("doughnut.obj").is_file())
-        .cloned()
-        .unwrap_or_else(|| panic!("no doughnut.obj in any of {candidates:?}"))
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/obj/cs4620-splines")
 }
 
 #[test]
