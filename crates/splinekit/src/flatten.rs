@@ -17,38 +17,47 @@
 //!
 //! # The distance guarantee
 //!
-//! Each chord `[ta, tb]` of a cubic is accepted only when a *bound* on
-//! `max over t∈[ta,tb] of dist(C(t), chord segment)` is at most the tolerance. That one
-//! quantity controls both directions of the Hausdorff distance:
+//! Write a chord `[ta, tb]` of a cubic as `C(ta + s·h) = C(ta) + s·e + r(s)`, `s ∈ [0, 1]`,
+//! `h = tb − ta`, `e = C(tb) − C(ta)`. If every curve point is within the tolerance of its
+//! own chord *segment*, both directions of the Hausdorff distance follow:
 //!
-//! - curve → polyline: every curve point is within the tolerance of its own chord;
-//! - polyline → curve: write `C(t) = C(ta) + a(t)·ê + n(t)` with `ê` the unit chord
-//!   direction, `a` the coordinate along the chord and `n ⊥ ê`. Since `a(ta) = 0` and
-//!   `a(tb) = L`, the intermediate value theorem gives, for every chord point `a = x`,
-//!   some `t` with `a(t) = x`; that curve point is at distance `|n(t)|` from it, and
-//!   `|n(t)| ≤ dist(C(t), chord)`. Folding back along the chord does not matter.
+//! - curve → polyline directly;
+//! - polyline → curve: the coordinate `α(s)` of the curve along the chord runs from 0 to
+//!   `|e|`, so by the intermediate value theorem every chord point `x` has an `s` with
+//!   `α(s) = x`, and that curve point is at distance `|normal part of r(s)|` from it.
 //!
-//! The bound comes from the sub-segment's Bézier control points `q0…q3` (`q1 = C(ta) +
-//! C′(ta)·h/3`, `q2 = C(tb) − C′(tb)·h/3`, `h = tb − ta`): relative to the chord,
-//! `n(t) = 3s(1−s)·((1−s)·v1 + s·v2)` exactly (`s` the local parameter, `vᵢ` the parts
-//! of `qᵢ − q0` normal to the chord), so its maximum is found from the roots of a
-//! quadratic (exact for planar sub-segments; in 3D the part of `v2` off the plane of `v1`
-//! is bounded separately), and the overshoot of `a(t)` past either chord end is the
-//! extremum of a cubic with Bernstein coefficients `(0, a1, a2, L)`. A cheaper,
-//! division-free bound is tried first. Independently of that, a chord with
-//! `h² · max|C″| / 8 ≤ tolerance` is within the tolerance (the interpolation error bound
-//! of linear interpolation), which caps the refinement depth.
+//! The chord lemma bounds that distance in closed form. `r(0) = r(1) = 0` and
+//! `r″(s) = h²·C″(t)` is linear in `s` for a cubic, so with `tm` the chord's midpoint,
+//! `Q(t) = C′×C″` (a quadratic), `Λ(t) = C′×c` (linear; `c = p3 − 3p2 + 3p1 − p0`) and
+//! `V = e/h = C′(tm) + (h²/4)·c` (exact for cubics), the normal offset is at most
+//!
+//! ```text
+//! ( (h²/8)·|Q(tm) − k2·h²/12| + h³/(12√3)·|Λ(tm)| ) / |V|        (A)
+//! ```
+//!
+//! (`k2 = 6·b×c` is `Q`'s leading coefficient; the first term is exact for a parabola, the
+//! second is third order), and the coordinate along the chord stays within `[0, |e|]` when
+//! `2·|V| ≥ h·(|C″(tm)| + h·|c|)` (B), which fails only near cusps. Both conditions only
+//! involve the midpoint `tm` and the width `h`, so they can be *certified ahead of time*:
+//! `[0, 1]` is cut into 16 cells, and on each cell rigorous bounds of `|Q|`, `|Λ|`, `|C″|`
+//! and a lower bound of the speed `|C′|` (from `C′(t)·û` with `û` the unit tangent at the
+//! cell's middle, exact to second order) give the largest width `h_j` for which (A) ≤
+//! tolerance and (B) hold for *every* chord with its midpoint in the cell. Where that fails
+//! (at a cusp), Wang's bound `(h²/8)·max|C″| ≤ tolerance` — valid for any chord, cusps
+//! included — gives the width instead. The placement then only has to respect the widths:
+//! no chord is ever emitted unchecked, and no measurement is involved.
 //!
 //! # Near-optimal counts
 //!
 //! A short chord of a curve deviates from it by about `κ·ℓ²/8` (curvature κ, arc length
-//! ℓ), so the chords of an optimal polyline are spread with density
-//! `ρ(t) = sqrt(|C′×C″| / (8·tolerance·|C′|))` per unit of `t` (see R. Levien, "Flattening
-//! quadratic Béziers", 2019, for the same idea on parabolas). The density is sampled at 16
-//! cell midpoints, the count is `n = ⌈∫ρ⌉`, and the chords are placed at equal steps of
-//! `∫ρ`. Each chord is then verified by the bound above; one that fails is shortened by
-//! the factor the bound asks for (deviation grows as `h²`) and the remaining steps are
-//! re-planned. Cost: `O(n)` with `n ∝ tolerance^-1/2`, no allocation besides the output.
+//! ℓ), the first term of (A); chords spread with that local density are optimal (R. Levien,
+//! "Flattening quadratic Béziers", 2019, uses the same idea on parabolas). The widths `h_j`
+//! follow it up to the variation inside a cell. The polyline has `n = ⌈Σ w/h_j⌉` chords,
+//! placed at equal steps of the cumulative count `∫ dt/h(t)`, so that a chord inside one
+//! cell is never wider than `h_j`; a chord entering a narrower cell is checked against its
+//! midpoint's width, shortened if needed, and the rest re-planned. On random cubics this is
+//! within about 10% of the optimum; the cost is `O(n)` with `n ∝ tolerance^-1/2`, and
+//! nothing is allocated besides the output.
 //!
 //! # Invalid input
 //!
@@ -353,13 +362,39 @@ fn distance_params<P: Vector>(c: &CubicBezier<P>, tolerance: f64, emit: &mut imp
     }
 }
 
-/// Certified chord widths: a chord `[ta, tb]` whose midpoint lies in cell `j` is within the
-/// tolerance of the curve whenever `tb − ta ≤ width[j]` (see the module docs for the bound).
+/// Certified chord widths: a chord `[ta, tb]` whose midpoint lies in cell `j` (closed) is
+/// within the tolerance of the curve whenever `tb − ta ≤ width[j]` (see the module docs).
 struct WidthTable {
-    /// `cum[j]`: number of maximal chords needed to cover cells `0..j` (`cum[0] = 0`).
+    /// `cum[j]`: number of chords of maximal width needed to cover cells `0..j`.
     cum: [f64; CELLS + 1],
     /// Certified chord width per cell.
     width: [f64; CELLS],
+}
+
+/// Per-curve constants of the width computation.
+struct CellInputs {
+    e8: f64,
+    cn: f64,
+    k2n: f64,
+    rho_floor: f64,
+}
+
+impl CellInputs {
+    /// `1 / width` of a cell from bounds over it: `qmax ≥ |Q(tm)|`, `lmax ≥ |Λ(tm)|`, and the
+    /// speed lower bound `smin`; Wang's floor where the certificate does not apply.
+    #[inline(always)]
+    fn rho(&self, qmax: f64, lmax: f64, smin: f64, dd_max: f64) -> f64 {
+        // leading-order width h0, then the full condition (A) with its higher-order terms
+        // evaluated at h0 ≥ h (one safe step of a decreasing fixed-point map)
+        let h02 = (self.e8 * smin / qmax).min(1.0);
+        let num = self.e8 * (smin - 0.25 * h02 * self.cn);
+        let den = qmax + self.k2n * h02 / 12.0 + THIRD_ORDER * h02.sqrt() * lmax;
+        let rho2 = (den / num).max(1.0);
+        let rho = rho2.sqrt();
+        // (B) no overshoot, 2·smin − h²·|c|/2 ≥ h·(max|C″| + h·|c|), times ρ² = 1/h²
+        let no_overshoot = 2.0 * smin * rho2 >= rho * dd_max + 1.5 * self.cn;
+        if num > 0.0 && smin > 0.0 && no_overshoot { rho.min(self.rho_floor) } else { self.rho_floor }
+    }
 }
 
 impl WidthTable {
@@ -374,52 +409,64 @@ impl WidthTable {
         // Q(t) = C′×C″ = k0 + k1·t + k2·t², Λ(t) = C′×c = l0 + l1·t
         let (k0, k1, k2) = (a.cross3(b) * 2.0, a.cross3(cc) * 6.0, b.cross3(cc) * 6.0);
         let (l0, l1) = (a.cross3(cc), b.cross3(cc) * 2.0);
-        let norm = |v: glam::DVec3| if P::DIM == 2 { v.z.abs() } else { v.length() };
-        let k2n = norm(k2);
-        let cn = cc.length();
+        let planar = P::DIM == 2;
+        let norm = |v: glam::DVec3| if planar { v.z.abs() } else { v.length() };
         // Wang's bound (h²/8)·max|C″| ≤ limit holds for any chord: a floor on every width.
-        let max_dd = (b * 2.0).length().max((b * 2.0 + cc * 6.0).length());
-        let wang = if max_dd > 0.0 { (e8 / max_dd).sqrt().min(1.0) } else { 1.0 };
-        // The vertex of the (2D) quadratic Q, where |Q| may peak inside a cell.
-        let vertex = if P::DIM == 2 && k2.z != 0.0 { -k1.z / (2.0 * k2.z) } else { -1.0 };
+        let dd_max = (b * 2.0).length().max((b * 2.0 + cc * 6.0).length());
+        let rho_floor = (dd_max / e8).sqrt().max(1.0);
+        let cn = cc.length();
+        let inputs = CellInputs { e8, cn, k2n: norm(k2), rho_floor };
+        // speed terms as scalar polynomials in t (dot products of a, b, c)
+        let (aa, ab, ac, bb, bc, c2) = (a.dot(a), a.dot(b), a.dot(cc), b.dot(b), b.dot(cc), cc.dot(cc));
         let w = 1.0 / CELLS as f64;
-        let mut width = [wang; CELLS];
-        let mut cum = [0.0; CELLS + 1];
-        let q = |t: f64| k0 + (k1 + k2 * t) * t;
-        let lam = |t: f64| l0 + l1 * t;
-        let (mut q_lo, mut l_lo) = (norm(q(0.0)), norm(lam(0.0)));
+
+        // |Q| and |Λ| at the cell ends
+        let mut qe = [0.0f64; CELLS + 1];
+        let mut le = [0.0f64; CELLS + 1];
+        for (j, (q, l)) in qe.iter_mut().zip(le.iter_mut()).enumerate() {
+            let t = j as f64 * w;
+            *q = norm(k0 + (k1 + k2 * t) * t);
+            *l = norm(l0 + l1 * t);
+        }
+        let mut rho = [0.0f64; CELLS];
+        let mut smin = [0.0f64; CELLS];
+        let mut qmax = [0.0f64; CELLS];
+        let mut dd_cell = [0.0f64; CELLS];
         for j in 0..CELLS {
-            let (t0, t1, m) = (j as f64 * w, (j + 1) as f64 * w, (j as f64 + 0.5) * w);
-            let (q_hi, l_hi) = (norm(q(t1)), norm(lam(t1)));
-            let mut qmax = if P::DIM == 2 {
-                q_lo.max(q_hi)
+            let m = (j as f64 + 0.5) * w;
+            // |C′(m)|², C″(m)·C′(m), c·C′(m)
+            let s2 = aa + m * (4.0 * ab + m * (4.0 * bb + 6.0 * ac + m * (12.0 * bc + m * 9.0 * c2)));
+            let g = 2.0 * ab + m * (4.0 * bb + 6.0 * ac + m * (18.0 * bc + m * 18.0 * c2));
+            let cd = ac + m * (2.0 * bc + m * 3.0 * c2);
+            // |C′(t)| ≥ C′(t)·û, û = C′(m)/|C′(m)|, and C′(t) = C′(m) + (t−m)·C″(m) + 3(t−m)²·c
+            let x = s2 - 0.5 * w * g.abs() - 0.75 * w * w * (-cd).max(0.0);
+            smin[j] = x / s2.sqrt();
+            // max |C″| over the cell ≤ |C″(m)|₁ + 3w·|c|
+            let dd = b * 2.0 + cc * (6.0 * m);
+            dd_cell[j] = (0..P::DIM).map(|i| dd.component(i).abs()).sum::<f64>() + 3.0 * w * cn;
+            qmax[j] = if planar {
+                qe[j].max(qe[j + 1])
             } else {
                 // |Q(m)| + (w/2)·|Q′(m)| + (w/2)²·|k2|
-                norm(q(m)) + 0.5 * w * norm(k1 + k2 * (2.0 * m)) + 0.25 * w * w * k2n
+                norm(k0 + (k1 + k2 * m) * m) + 0.5 * w * norm(k1 + k2 * (2.0 * m)) + 0.25 * w * w * inputs.k2n
             };
-            if vertex > t0 && vertex < t1 {
-                qmax = qmax.max(norm(q(vertex)));
+        }
+        if planar && k2.z != 0.0 {
+            // |Q| of a scalar quadratic may peak at its vertex, inside one cell
+            let v = -k1.z / (2.0 * k2.z);
+            if v > 0.0 && v < 1.0 {
+                let j = ((v * CELLS as f64) as usize).min(CELLS - 1);
+                qmax[j] = qmax[j].max(norm(k0 + (k1 + k2 * v) * v));
             }
-            let lmax = l_lo.max(l_hi);
-            // speed lower bound on the cell: C′(t)·û with û = C′(m)/|C′(m)|
-            let dm = a + (b * 2.0 + cc * (3.0 * m)) * m;
-            let dd = b * 2.0 + cc * (6.0 * m);
-            let s2 = dm.dot(dm);
-            let x = s2 - 0.5 * w * dd.dot(dm).abs() - 0.75 * w * w * (-cc.dot(dm)).max(0.0);
-            let smin = x / s2.sqrt();
-            // leading-order width, then one safe step of the full condition (A)
-            let h02 = (e8 * smin / qmax).min(1.0);
-            let num = e8 * (smin - 0.25 * h02 * cn);
-            let den = qmax + k2n * h02 / 12.0 + THIRD_ORDER * h02.sqrt() * lmax;
-            let h = (num / den).sqrt().min(1.0);
-            // (B) no overshoot past the chord ends: 2·smin − h²·|c|/2 ≥ h·(max|C″| + h·|c|)
-            let dd_max = (0..P::DIM).map(|i| dd.component(i).abs()).sum::<f64>() + 3.0 * w * cn;
-            let no_overshoot = 2.0 * smin - 0.5 * h * h * cn >= h * (dd_max + h * cn);
-            if num > 0.0 && smin > 0.0 && no_overshoot && h > wang {
-                width[j] = h;
-            }
-            cum[j + 1] = cum[j] + w / width[j];
-            (q_lo, l_lo) = (q_hi, l_hi);
+        }
+        for j in 0..CELLS {
+            rho[j] = inputs.rho(qmax[j], le[j].max(le[j + 1]), smin[j], dd_cell[j]);
+        }
+        let mut cum = [0.0f64; CELLS + 1];
+        let mut width = [0.0f64; CELLS];
+        for j in 0..CELLS {
+            width[j] = 1.0 / rho[j];
+            cum[j + 1] = cum[j] + rho[j] * w;
         }
         Self { cum, width }
     }
@@ -427,59 +474,87 @@ impl WidthTable {
     /// Cell holding parameter `t ∈ [0, 1]`.
     #[inline]
     fn cell(t: f64) -> usize {
-        ((t * CELLS as f64) as usize).min(CELLS - 1)
+        ((t * CELLS as f64) as i32 as usize).min(CELLS - 1)
     }
 
     /// The cumulative chord count at `t`.
-    #[inline]
     fn cumulative(&self, t: f64) -> f64 {
         let j = Self::cell(t);
         self.cum[j] + (t - j as f64 / CELLS as f64) / self.width[j]
     }
 
     /// Emits the chord ends: `n = ⌈total⌉` chords at equal steps of the cumulative count, so
-    /// that a chord inside one cell is at most that cell's width. A chord that crosses into a
-    /// cell of smaller width and fails its own midpoint's width is shortened to it, and the
-    /// rest is planned again.
+    /// that a chord with both ends in one cell is at most that cell's width. The first chord
+    /// entering a cell may cross into a cell of smaller width: it is checked against its
+    /// midpoint's width and, if too long, shortened to it, and the rest is planned again.
+    #[inline]
     fn march(&self, emit: &mut impl FnMut(f64)) {
         let total = self.cum[CELLS];
         let plan = |from: f64| {
             let rem = total - from;
-            let n = rem.ceil();
-            if n > 1.0 && n < 1e12 { (n as usize, rem / n) } else { (1, rem) }
+            let n = ceil(rem);
+            if n > 1.0 { ((n.min(1e15)) as usize, rem / n) } else { (1, rem) }
         };
-        let (mut n, mut step) = plan(0.0);
-        let (mut base, mut k, mut j, mut ta) = (0.0, 0usize, 0usize, 0.0f64);
         let w = 1.0 / CELLS as f64;
+        let (mut n, mut step) = plan(0.0);
+        let (mut base, mut k, mut j, mut ta) = (0.0, 1usize, 0usize, 0.0f64);
         loop {
-            k += 1;
-            let mut tb = if k >= n {
-                1.0
-            } else {
-                let y = base + k as f64 * step;
+            // the next target, and the cell it falls in
+            let mut y = base + k as f64 * step;
+            let mut tb = if k < n {
                 while j + 1 < CELLS && self.cum[j + 1] < y {
                     j += 1;
                 }
                 (j as f64 * w + (y - self.cum[j]) * self.width[j]).min((j + 1) as f64 * w)
+            } else {
+                1.0
             };
-            let mut allowed = self.width[Self::cell(0.5 * (ta + tb))];
-            if tb - ta > allowed {
-                while tb - ta > allowed {
-                    tb = ta + allowed;
-                    allowed = self.width[Self::cell(0.5 * (ta + tb))];
+            let allowed = self.width[Self::cell(0.5 * (ta + tb))];
+            if !(tb - ta <= allowed && tb > ta) {
+                // h takes strictly decreasing values from the finite set of widths
+                let mut h = allowed.min(1.0 - ta);
+                loop {
+                    tb = ta + h;
+                    let allowed = self.width[Self::cell(ta + 0.5 * h)];
+                    if h <= allowed {
+                        break;
+                    }
+                    h = allowed;
                 }
                 base = self.cumulative(tb);
                 j = Self::cell(tb);
                 (n, step) = plan(base);
                 k = 0;
+                y = base;
             }
             emit(tb);
             if tb >= 1.0 {
                 return;
             }
             ta = tb;
+            // the following targets in the same cell need no check: both ends lie in cell j
+            let (end, width) = (self.cum[j + 1], self.width[j]);
+            let offset = j as f64 * w - self.cum[j] * width;
+            k += 1;
+            y += step;
+            while k < n && y <= end {
+                ta = offset + y * width;
+                emit(ta);
+                k += 1;
+                y = base + k as f64 * step;
+            }
         }
     }
+}
+
+/// `⌈x⌉` for `0 ≤ x < 2⁵²` without a libm call (baseline x86-64 has no rounding instruction).
+#[inline]
+fn ceil(x: f64) -> f64 {
+    if !(x < 4.5e15) {
+        return x;
+    }
+    let f = x as i64 as f64;
+    if f < x { f + 1.0 } else { f }
 }
 
 #[cfg(test)]
