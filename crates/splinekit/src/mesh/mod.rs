@@ -126,6 +126,12 @@ impl TriMesh {
             / 6.0
     }
 
+    /// Per vertex, the sum of the area-weighted normals of its triangles ([`normal_sums`]).
+    #[must_use]
+    pub fn vertex_normal_sums(&self) -> Vec<DVec3> {
+        normal_sums(&self.positions, &self.triangles)
+    }
+
     /// Total surface area.
     #[must_use]
     pub fn area(&self) -> f64 {
@@ -162,6 +168,21 @@ impl TriMesh {
         }
         counts
     }
+}
+
+/// Per vertex, the sum of `(b − a) × (c − a)` over the triangles `(a, b, c)` that use it:
+/// normalized, the area-weighted vertex normal (zero where no triangle has area).
+#[must_use]
+pub fn normal_sums(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec3> {
+    let mut sums = vec![DVec3::ZERO; positions.len()];
+    for t in triangles {
+        let [a, b, c] = t.map(|k| positions[k as usize]);
+        let n = (b - a).cross(c - a);
+        for &k in t {
+            sums[k as usize] += n;
+        }
+    }
+    sums
 }
 
 #[cfg(test)]

@@ -264,7 +264,7 @@ pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result
         }
     }
     // outward: away from the y axis
-    orient(&mut mesh, |q| DVec3::new(q.x, 0.0, q.z));
+    orient(&mut mesh, |q, _| DVec3::new(q.x, 0.0, q.z));
     if welded {
         fix_pole_normals(&mut mesh, &pole);
     }
@@ -320,9 +320,8 @@ pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepO
             push_quad(&mut mesh, [id(k, i), id(k, i + 1), id(k + 1, i), id(k + 1, i + 1)], welded);
         }
     }
-    // outward: away from the sweep curve, per copy
-    let centres: Vec<DVec3> = path.positions[..s].to_vec();
-    orient_by(&mut mesh, |v| v / p, &centres);
+    // outward: away from the sweep curve, per copy (vertex v belongs to copy v / p)
+    orient(&mut mesh, |q, v| q - path.positions[v / p]);
     if scaled {
         face_average_normals(&mut mesh);
     }
@@ -412,14 +411,8 @@ pub fn triangulate_polygon(points: &[DVec2]) -> Vec<[usize; 3]> {
 
 /// Vertex normals from the area-weighted normals of the faces around each vertex.
 fn face_average_normals(mesh: &mut TriMesh) {
-    let mut sum = vec![DVec3::ZERO; mesh.positions.len()];
-    for i in 0..mesh.triangles.len() {
-        let f = mesh.face_normal(i);
-        for &v in &mesh.triangles[i] {
-            sum[v as usize] += f;
-        }
-    }
-    for (n, s) in mesh.normals.iter_mut().zip(sum) {
+    let sums = mesh.vertex_normal_sums();
+    for (n, s) in mesh.normals.iter_mut().zip(sums) {
         if let Some(u) = s.try_normalize() {
             *n = u;
         }
@@ -446,31 +439,12 @@ fn push_quad(mesh: &mut TriMesh, [a, b, c, d]: [u32; 4], welded: bool) {
     }
 }
 
-/// Flips the mesh if its face normals point, on balance, against `outward(centroid)`.
-fn orient(mesh: &mut TriMesh, outward: impl Fn(DVec3) -> DVec3) {
+/// Flips the mesh if its face normals point, on balance, against `outward(position, index)`
+/// summed over each triangle's corners, then aligns the vertex normals with the faces.
+fn orient(mesh: &mut TriMesh, outward: impl Fn(DVec3, usize) -> DVec3) {
     let flux: f64 = (0..mesh.triangles.len())
         .map(|i| {
-            let [a, b, c] = mesh.corners(i);
-            mesh.face_normal(i).dot(outward((a + b + c) / 3.0))
-        })
-        .sum();
-    if flux < 0.0 {
-        for t in &mut mesh.triangles {
-            t.swap(1, 2);
-        }
-    }
-    align_normals(mesh);
-}
-
-/// [`orient`] with the outward direction taken from the centre of each vertex's copy.
-fn orient_by(mesh: &mut TriMesh, copy_of: impl Fn(usize) -> usize, centres: &[DVec3]) {
-    let flux: f64 = (0..mesh.triangles.len())
-        .map(|i| {
-            let t = mesh.triangles[i];
-            let out: DVec3 = t
-                .iter()
-                .map(|&v| mesh.positions[v as usize] - centres[copy_of(v as usize).min(centres.len() - 1)])
-                .sum();
+            let out: DVec3 = mesh.triangles[i].iter().map(|&v| outward(mesh.positions[v as usize], v as usize)).sum();
             mesh.face_normal(i).dot(out)
         })
         .sum();
@@ -500,14 +474,9 @@ fn align_normals(mesh: &mut TriMesh) {
 
 /// Pole vertices get the area-weighted normal of their faces (along the axis).
 fn fix_pole_normals(mesh: &mut TriMesh, pole: &[u32]) {
+    let sums = mesh.vertex_normal_sums();
     for &v in pole.iter().filter(|&&v| v != u32::MAX) {
-        let mut sum = DVec3::ZERO;
-        for i in 0..mesh.triangles.len() {
-            if mesh.triangles[i].contains(&v) {
-                sum += mesh.face_normal(i);
-            }
-        }
-        if let Some(n) = sum.try_normalize() {
+        if let Some(n) = sums[v as usize].try_normalize() {
             mesh.normals[v as usize] = n;
         }
     }

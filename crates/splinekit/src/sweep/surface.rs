@@ -947,14 +947,7 @@ fn grid_triangles(
 /// Unit vertex normals: the hint (negated with `flip`) when it is usable and within 90° of
 /// the area-weighted face mean; else that mean; else the direction from the centroid; else +z.
 fn vertex_normals(positions: &[DVec3], triangles: &[[u32; 3]], hints: &[DVec3], flip: bool) -> Vec<DVec3> {
-    let mut acc = vec![DVec3::ZERO; positions.len()];
-    for t in triangles {
-        let [a, b, c] = t.map(|k| positions[k as usize]);
-        let n = (b - a).cross(c - a);
-        for &k in t {
-            acc[k as usize] += n;
-        }
-    }
+    let acc = crate::mesh::normal_sums(positions, triangles);
     let centroid = positions.iter().sum::<DVec3>() / positions.len().max(1) as f64;
     let side = if flip { -1.0 } else { 1.0 };
     (0..positions.len())
