@@ -240,14 +240,7 @@ impl<P: Vector> CubicBezier<P> {
     pub fn inv_arclen(&self, s: f64, accuracy: f64) -> f64 {
         let (a, b, c) = self.deriv_coefficients();
         if let Some(planar) = PlanarSpeed::new(a, b, c) {
-            let integrate = |t0: f64, t1: f64, acc: f64| {
-                if t1 < t0 {
-                    let e = planar.arclen(t1, t0, acc);
-                    ArclenEstimate { length: -e.length, error: e.error }
-                } else {
-                    planar.arclen(t0, t1, acc)
-                }
-            };
+            let integrate = |t0: f64, t1: f64, acc: f64| planar.arclen(t0, t1, acc);
             return arclen::solve_arclen(integrate, |t| planar.speed(t), 0.0, 1.0, s, accuracy);
         }
         let speed = |t: f64| (a + (b + c * t) * t).length();

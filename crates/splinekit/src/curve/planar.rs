@@ -158,10 +158,14 @@ impl PlanarSpeed {
         (self.a + (self.b + self.c * t) * t).length()
     }
 
-    /// Arc length over `[t0, t1]` (`t0 ≤ t1`) with a rigorous bound on its error,
+    /// Arc length over `[t0, t1]` (negative for `t1 < t0`) with a rigorous bound on its error,
     /// at most `accuracy` unless `accuracy` is below the rounding level (about `1e-14` of
     /// the length) or the split depth runs out (then the adaptive integrator takes over).
     pub(crate) fn arclen(&self, t0: f64, t1: f64, accuracy: f64) -> ArclenEstimate {
+        if t1 < t0 {
+            let e = self.arclen(t1, t0, accuracy);
+            return ArclenEstimate { length: -e.length, error: e.error };
+        }
         let mut out = ArclenEstimate::default();
         if !(t1 > t0) {
             return out;
