@@ -15,25 +15,10 @@ use glam::DVec2;
 use kurbo::{CubicBez, ParamCurve as _, ParamCurveArclen as _, Point};
 use splinekit::CubicBezier;
 
-const N: usize = 1000;
+#[path = "../tests/common/mod.rs"]
+mod common;
 
-/// splitmix64: a fixed, dependency-free random stream so every run measures the same curves.
-fn random_cubics(seed: u64) -> Vec<CubicBezier<DVec2>> {
-    let mut state = seed;
-    let mut next = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * 100.0
-    };
-    (0..N)
-        .map(|_| {
-            let mut p = || DVec2::new(next(), next());
-            CubicBezier::new(p(), p(), p(), p())
-        })
-        .collect()
-}
+const N: usize = 1000;
 
 fn to_kurbo(c: &CubicBezier<DVec2>) -> CubicBez {
     let p = |v: DVec2| Point::new(v.x, v.y);
@@ -73,7 +58,7 @@ fn accuracy_report(ours: &[CubicBezier<DVec2>], theirs: &[CubicBez]) {
 }
 
 fn bench(c: &mut Criterion) {
-    let ours = random_cubics(0x5EED);
+    let ours = common::random_cubics(0x5EED, N);
     let theirs: Vec<CubicBez> = ours.iter().map(to_kurbo).collect();
     accuracy_report(&ours, &theirs);
 

@@ -15,33 +15,17 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use kurbo::{PathEl, Point};
 use lyon_geom::{CubicBezierSegment, LineSegment, point};
 use splinekit::CubicBezier;
 use splinekit::flatten::{flatten_cubic_distance, flatten_cubic_distance_with};
 
+#[path = "../tests/common/mod.rs"]
+mod common;
+
 const N: usize = 1000;
 const DENSE: usize = 4000;
-
-/// splitmix64: a fixed, dependency-free random stream so every run measures the same curves
-/// (the same generator and seed as the arclen bench).
-fn random_cubics(seed: u64) -> Vec<CubicBezier<DVec2>> {
-    let mut state = seed;
-    let mut next = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * 100.0
-    };
-    (0..N)
-        .map(|_| {
-            let mut p = || DVec2::new(next(), next());
-            CubicBezier::new(p(), p(), p(), p())
-        })
-        .collect()
-}
 
 fn splinekit_polyline(c: &CubicBezier<DVec2>, tol: f64) -> Vec<DVec2> {
     let mut out = vec![c.p0];
@@ -74,74 +58,18 @@ fn lyon_polyline(c: &CubicBezier<DVec2>, tol: f64) -> Vec<DVec2> {
     out
 }
 
-fn seg_dist_sq(x: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let e = b - a;
-    let l2 = e.length_squared();
-    let s = if l2 > 0.0 { ((x - a).dot(e) / l2).clamp(0.0, 1.0) } else { 0.0 };
-    (a + e * s).distance_squared(x)
-}
-
-/// A polyline cut into blocks of segments with bounding boxes, for exact nearest-distance
-/// queries that skip blocks farther away than the best distance found so far.
-struct Blocked<'a> {
-    points: &'a [DVec2],
-    boxes: Vec<(usize, DVec2, DVec2)>,
-}
-
-const BLOCK: usize = 32;
-
-impl<'a> Blocked<'a> {
-    fn new(points: &'a [DVec2]) -> Self {
-        let boxes = (0..points.len().saturating_sub(1))
-            .step_by(BLOCK)
-            .map(|start| {
-                let end = (start + BLOCK).min(points.len() - 1);
-                let pts = &points[start..=end];
-                let lo = pts.iter().fold(pts[0], |a, &b| a.min(b));
-                let hi = pts.iter().fold(pts[0], |a, &b| a.max(b));
-                (start, lo, hi)
-            })
-            .collect();
-        Self { points, boxes }
-    }
-
-    fn dist(&self, x: DVec2) -> f64 {
-        let mut order: Vec<(f64, usize)> =
-            self.boxes.iter().map(|&(start, lo, hi)| ((x - x.clamp(lo, hi)).length_squared(), start)).collect();
-        order.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let mut best = f64::INFINITY;
-        for (box_d2, start) in order {
-            if box_d2 >= best {
-                break;
-            }
-            let end = (start + BLOCK).min(self.points.len() - 1);
-            for i in start..end {
-                best = best.min(seg_dist_sq(x, self.points[i], self.points[i + 1]));
-            }
-        }
-        best.sqrt()
-    }
-}
-
-/// A lower bound of the two-sided Hausdorff distance between the curve and `poly`.
-fn hausdorff_lower_bound(c: &CubicBezier<DVec2>, dense: &[DVec2], poly: &[DVec2]) -> f64 {
-    let blocked_poly = Blocked::new(poly);
-    let mut h = dense.iter().map(|&p| blocked_poly.dist(p)).fold(0.0, f64::max);
-    let blocked_dense = Blocked::new(dense);
+/// A lower bound of the two-sided Hausdorff distance between the curve (sampled as `dense`)
+/// and `poly`. `|P″|` is linear in t, so its largest value is at an end.
+fn hausdorff_lower_bound(c: &CubicBezier<DVec2>, dense: &[DVec3], poly: &[DVec2]) -> f64 {
+    let poly: Vec<DVec3> = poly.iter().map(|p| p.extend(0.0)).collect();
     let max_d2 = c.deriv2(0.0).length().max(c.deriv2(1.0).length());
     let sagitta = max_d2 / (8.0 * (DENSE * DENSE) as f64);
-    for w in poly.windows(2) {
-        for j in 1..=9 {
-            let x = w[0].lerp(w[1], j as f64 / 10.0);
-            h = h.max(blocked_dense.dist(x) - sagitta);
-        }
-    }
-    h
+    common::hausdorff_lower_bound(dense, &poly, sagitta, 10)
 }
 
 fn accuracy_report(curves: &[CubicBezier<DVec2>]) {
-    let dense: Vec<Vec<DVec2>> =
-        curves.iter().map(|c| (0..=DENSE).map(|i| c.eval(i as f64 / DENSE as f64)).collect()).collect();
+    let dense: Vec<Vec<DVec3>> =
+        curves.iter().map(|c| (0..=DENSE).map(|i| c.eval(i as f64 / DENSE as f64).extend(0.0)).collect()).collect();
     type Flattener = fn(&CubicBezier<DVec2>, f64) -> Vec<DVec2>;
     let libs: [(&str, Flattener); 3] =
         [("splinekit", splinekit_polyline), ("kurbo 0.13", kurbo_polyline), ("lyon_geom 1", lyon_polyline)];
@@ -168,7 +96,7 @@ fn accuracy_report(curves: &[CubicBezier<DVec2>]) {
 }
 
 fn bench(c: &mut Criterion) {
-    let ours = random_cubics(0x5EED);
+    let ours = common::random_cubics(0x5EED, N);
     accuracy_report(&ours);
     let kurbo_paths: Vec<[PathEl; 2]> = ours.iter().map(kurbo_path).collect();
     let lyon_curves: Vec<CubicBezierSegment<f64>> = ours.iter().map(to_lyon).collect();

@@ -11,6 +11,8 @@
 //! Dense sampling finds the true maxima to second order, so passing `≤ tolerance` here is
 //! sharp, and a test checks that dropping one vertex is detected.
 
+mod common;
+
 use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 use splinekit::flatten::{
@@ -21,50 +23,6 @@ use splinekit::{AnyCurve, BezierSpline, CatmullRom, Circle, CubicBezier, ParamCu
 // ---------------------------------------------------------------------------------------
 // Measuring the Hausdorff distance
 
-fn seg_dist_sq(x: DVec3, a: DVec3, b: DVec3) -> f64 {
-    let e = b - a;
-    let l2 = e.length_squared();
-    let s = if l2 > 0.0 { ((x - a).dot(e) / l2).clamp(0.0, 1.0) } else { 0.0 };
-    (a + e * s).distance_squared(x)
-}
-
-/// A polyline cut into blocks with bounding boxes, for exact nearest distances that skip
-/// blocks farther than the best found so far.
-struct Blocked<'a> {
-    points: &'a [DVec3],
-    boxes: Vec<(usize, DVec3, DVec3)>,
-}
-
-const BLOCK: usize = 32;
-
-impl<'a> Blocked<'a> {
-    fn new(points: &'a [DVec3]) -> Self {
-        let boxes = (0..points.len().saturating_sub(1))
-            .step_by(BLOCK)
-            .map(|start| {
-                let pts = &points[start..=(start + BLOCK).min(points.len() - 1)];
-                let lo = pts.iter().fold(pts[0], |a, &b| a.min(b));
-                let hi = pts.iter().fold(pts[0], |a, &b| a.max(b));
-                (start, lo, hi)
-            })
-            .collect();
-        Self { points, boxes }
-    }
-
-    fn dist(&self, x: DVec3, hint: f64) -> f64 {
-        let mut best = hint * hint;
-        for &(start, lo, hi) in &self.boxes {
-            if (x - x.clamp(lo, hi)).length_squared() >= best {
-                continue;
-            }
-            for i in start..(start + BLOCK).min(self.points.len() - 1) {
-                best = best.min(seg_dist_sq(x, self.points[i], self.points[i + 1]));
-            }
-        }
-        best.sqrt()
-    }
-}
-
 /// Lower bound of the two-sided Hausdorff distance between `curve` (over its domain) and the
 /// polyline through `curve.eval(u)` for the given parameters.
 fn hausdorff_lower_bound<P: Vector, C: ParamCurve<P>>(curve: &C, params: &[f64], dense_per_unit: usize) -> f64 {
@@ -73,26 +31,12 @@ fn hausdorff_lower_bound<P: Vector, C: ParamCurve<P>>(curve: &C, params: &[f64],
     let du = (u1 - u0) / n as f64;
     let dense: Vec<DVec3> = (0..=n).map(|i| curve.eval(u0 + du * i as f64).to_dvec3()).collect();
     let poly: Vec<DVec3> = params.iter().map(|&u| curve.eval(u).to_dvec3()).collect();
-    // curve → polyline (exact distances at the samples)
-    let blocked_poly = Blocked::new(&poly);
-    let mut h = 0.0f64;
-    for &p in &dense {
-        h = h.max(blocked_poly.dist(p, f64::INFINITY));
-    }
-    // polyline → curve (distance to the dense polyline, less its sagitta)
+    // the dense polyline is within the sagitta of the curve (|P″| sampled, with a margin)
     let max_d2 = (0..=4 * (u1 - u0).ceil() as usize)
         .map(|i| curve.deriv2(u0 + (u1 - u0) * i as f64 / (4.0 * (u1 - u0).ceil())).length())
         .fold(0.0, f64::max)
         * 1.5;
-    let sagitta = max_d2 * du * du / 8.0;
-    let blocked_dense = Blocked::new(&dense);
-    for w in poly.windows(2) {
-        for j in 1..16 {
-            let x = w[0].lerp(w[1], j as f64 / 16.0);
-            h = h.max(blocked_dense.dist(x, f64::INFINITY) - sagitta);
-        }
-    }
-    h
+    common::hausdorff_lower_bound(&dense, &poly, max_d2 * du * du / 8.0, 16)
 }
 
 fn chain<P: Vector>(c: CubicBezier<P>) -> PiecewiseCubic<P> {
@@ -103,20 +47,6 @@ fn assert_ascending(u: &[f64], end: f64) {
     assert_eq!(u[0], 0.0);
     assert_eq!(*u.last().unwrap(), end);
     assert!(u.windows(2).all(|w| w[0] < w[1]), "not strictly ascending: {u:?}");
-}
-
-/// splitmix64 in [0, scale).
-fn rng(state: &mut u64, scale: f64) -> f64 {
-    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * scale
-}
-
-fn random_cubic(state: &mut u64, scale: f64) -> CubicBezier<DVec2> {
-    let mut p = || DVec2::new(rng(state, scale), rng(state, scale));
-    CubicBezier::new(p(), p(), p(), p())
 }
 
 const FOLD_BACK: [(f64, f64); 4] = [(0.0, 0.0), (100.0, 50.0), (100.0, 50.0), (0.0, 0.0)];
@@ -196,7 +126,7 @@ fn polygon_turns(c: &CubicBezier<DVec2>) -> f64 {
 fn angle_mode_leaves_meet_the_rule_or_the_depth_limit() {
     let mut state = 3u64;
     for _ in 0..50 {
-        let c = random_cubic(&mut state, 10.0);
+        let c = common::random_cubic(&mut state, 10.0);
         for eps in [0.5, 0.1, 0.02] {
             let u = flatten_params(&chain(c), Tessellation::Angle { tolerance: eps });
             assert_ascending(&u, 1.0);
@@ -269,7 +199,7 @@ fn distance_mode_holds_on_random_cubics_with_a_fixed_seed() {
     let (mut worst, mut sum) = (0.0f64, 0.0);
     let n = 150;
     for _ in 0..n {
-        let c = random_cubic(&mut state, 100.0);
+        let c = common::random_cubic(&mut state, 100.0);
         let (_, h) = check_distance(&c, 0.01);
         worst = worst.max(h / 0.01);
         sum += h / 0.01;
@@ -297,7 +227,7 @@ fn distance_mode_cusp_and_fold_back() {
 fn distance_mode_tiny_huge_and_degenerate_curves() {
     let mut state = 99u64;
     for scale in [1e-9, 1e-3, 1.0, 1e6] {
-        let c = random_cubic(&mut state, scale);
+        let c = common::random_cubic(&mut state, scale);
         for rel in [1e-2, 1e-4] {
             check_distance(&c, rel * scale);
         }
@@ -354,7 +284,7 @@ fn distance_mode_uses_far_fewer_points_than_uniform_steps() {
     let tol = 0.05;
     let (mut adaptive, mut uniform) = (0usize, 0usize);
     for _ in 0..20 {
-        let curve = chain(random_cubic(&mut state, 100.0));
+        let curve = chain(common::random_cubic(&mut state, 100.0));
         adaptive += flatten_params(&curve, Tessellation::Distance { tolerance: tol }).len() - 1;
         let within = |steps: usize| {
             let u = flatten_params(&curve, Tessellation::Uniform { steps });
