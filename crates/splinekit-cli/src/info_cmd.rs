@@ -48,7 +48,7 @@ struct SurfaceRow {
 /// Runs the command, writing to `out`.
 pub fn run(args: &InfoArgs, out: &mut impl Write) -> anyhow::Result<()> {
     let doc = select::load(&args.file)?;
-    let curves = curve_rows(&doc)?;
+    let curves = curve_rows(&doc);
     let surfaces = surface_rows(&doc);
     if args.json {
         write_json(out, &args.file.display().to_string(), &curves, &surfaces)?;
@@ -58,7 +58,7 @@ pub fn run(args: &InfoArgs, out: &mut impl Write) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn curve_rows(doc: &SwpDocument) -> anyhow::Result<Vec<CurveRow>> {
+fn curve_rows(doc: &SwpDocument) -> Vec<CurveRow> {
     doc.curves
         .iter()
         .enumerate()
@@ -69,14 +69,14 @@ fn curve_rows(doc: &SwpDocument) -> anyhow::Result<Vec<CurveRow>> {
                 SwpGeometry::Circle { .. } => 0,
             };
             let segments = c.to_curve().map(|k| k.num_segments()).unwrap_or(0);
-            Ok(CurveRow {
+            CurveRow {
                 name: c.display_name(i),
                 keyword: c.keyword(),
                 points,
                 segments,
                 steps: c.steps,
                 closed: c.closed,
-            })
+            }
         })
         .collect()
 }

@@ -1,7 +1,7 @@
 //! `splinekit sweep`: the meshes of every surface of an SWP file.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::ValueEnum;
@@ -178,13 +178,9 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
             used.insert(stem.clone());
         }
         let path: PathBuf = args.output.join(format!("{stem}.{}", args.format.extension()));
-        write_mesh(mesh, &path, args.format)?;
+        splinekit_io::mesh::save(mesh, &path, args.format.mesh_format())
+            .with_context(|| format!("cannot write {}", path.display()))?;
         writeln!(out, "{}: {} vertices, {} triangles", path.display(), mesh.num_vertices(), mesh.num_triangles())?;
     }
     Ok(())
-}
-
-fn write_mesh(mesh: &splinekit::TriMesh, path: &Path, format: Format) -> anyhow::Result<()> {
-    splinekit_io::mesh::save(mesh, path, format.mesh_format())
-        .with_context(|| format!("cannot write {}", path.display()))
 }

@@ -1,21 +1,17 @@
 //! Sweeping every bundled SWP file: compat counts (SPEC §2.3), welded watertightness and
 //! orientation, and geometry checked against closed forms.
 
-use std::path::{Path, PathBuf};
-
 use glam::DVec3;
 use splinekit::TriMesh;
 use splinekit::sweep::{MeshLayout, SweepOptions};
 use splinekit_io::SwpDocument;
 use splinekit_io::surface::{SurfaceFrames, SurfaceOptions, SurfaceTessellation};
 
-fn data_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/swp")
-}
+#[allow(dead_code)]
+#[path = "swp/common.rs"]
+mod common;
 
-fn load(rel: &str) -> SwpDocument {
-    SwpDocument::read(&data_dir().join(rel)).unwrap_or_else(|e| panic!("{e}"))
-}
+use common::{DATA_FILES, load};
 
 fn opts(layout: MeshLayout) -> SurfaceOptions {
     SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps: false }, ..SurfaceOptions::default() }
@@ -164,20 +160,7 @@ fn weirder_seam_has_no_twist() {
 
 #[test]
 fn every_bundled_file_sweeps() {
-    for file in [
-        "circles.swp",
-        "core.swp",
-        "extra/dragonfly.swp",
-        "extra/tube-table.swp",
-        "gcyl/flircle.swp",
-        "gcyl/florus.swp",
-        "gcyl/gentorus.swp",
-        "gcyl/tor.swp",
-        "gcyl/weird.swp",
-        "gcyl/weirder.swp",
-        "srev/norm.swp",
-        "srev/wineglass.swp",
-    ] {
+    for file in DATA_FILES {
         let doc = load(file);
         for k in 0..doc.surfaces.len() {
             for layout in [MeshLayout::Compat, MeshLayout::Welded] {
