@@ -441,9 +441,9 @@ impl WidthTable {
             // |C′(t)| ≥ C′(t)·û, û = C′(m)/|C′(m)|, and C′(t) = C′(m) + (t−m)·C″(m) + 3(t−m)²·c
             let x = s2 - 0.5 * w * g.abs() - 0.75 * w * w * (-cd).max(0.0);
             smin[j] = x / s2.sqrt();
-            // max |C″| over the cell ≤ |C″(m)|₁ + 3w·|c|
-            let dd = b * 2.0 + cc * (6.0 * m);
-            dd_cell[j] = (0..P::DIM).map(|i| dd.component(i).abs()).sum::<f64>() + 3.0 * w * cn;
+            // max |C″| over the cell ≤ |C″(m)| + 3w·|c| (C″ is linear; the Euclidean norm keeps
+            // the certificate, and so the count, independent of the curve's rotation)
+            dd_cell[j] = (b * 2.0 + cc * (6.0 * m)).length() + 3.0 * w * cn;
             qmax[j] = if planar {
                 qe[j].max(qe[j + 1])
             } else {
