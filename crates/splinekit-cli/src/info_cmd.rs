@@ -12,6 +12,9 @@ use crate::sweep_cmd;
 
 /// List the curves (kind, points, segments, closed) and surfaces of an SWP file, with the
 /// vertex and triangle counts each surface sweeps to.
+///
+/// For a mesh file (.obj, .ply, .stl): counts, boundary loops, components, Euler
+/// characteristic, genus and every topology problem, by vertex and face index.
 #[derive(Debug, clap::Args)]
 #[command(after_help = "Examples:\n  \
     splinekit info wineglass.swp\n  \
@@ -19,18 +22,20 @@ use crate::sweep_cmd;
     Surface counts are given for both layouts: compat (the course program's, SPEC §2.3) and welded \
     (seams and poles shared; the default of `splinekit sweep`).")]
 pub struct InfoArgs {
-    /// SWP file to read
+    /// SWP file, or mesh file (.obj, .ply, .stl), to read
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
 
     /// Print one JSON object instead of text
-    #[arg(long)]
+    #[arg(long, long_help = crate::mesh_info::JSON_HELP)]
     pub json: bool,
 }
 
 struct CurveRow {
     name: String,
     keyword: &'static str,
+    /// How an exact curve (circle, helix, trefoil) is shown instead of its control points.
+    shape: Option<String>,
     points: usize,
     segments: usize,
     steps: u32,
@@ -47,6 +52,9 @@ struct SurfaceRow {
 
 /// Runs the command, writing to `out`.
 pub fn run(args: &InfoArgs, out: &mut impl Write) -> anyhow::Result<()> {
+    if crate::mesh_info::is_mesh(&args.file) {
+        return crate::mesh_info::run(&args.file, args.json, out);
+    }
     let doc = select::load(&args.file)?;
     let curves = curve_rows(&doc);
     let surfaces = surface_rows(&doc);
@@ -63,15 +71,20 @@ fn curve_rows(doc: &SwpDocument) -> Vec<CurveRow> {
         .iter()
         .enumerate()
         .map(|(i, c)| {
-            let points = match &c.geometry {
-                SwpGeometry::Points(p) => p.len(),
-                SwpGeometry::Hermite { points, .. } => points.len(),
-                SwpGeometry::Circle { .. } => 0,
+            let (points, shape) = match &c.geometry {
+                SwpGeometry::Points(p) => (p.len(), None),
+                SwpGeometry::Hermite { points, .. } => (points.len(), None),
+                SwpGeometry::Circle { .. } => (0, Some(String::from("circle"))),
+                SwpGeometry::Helix { radius, pitch, turns } => {
+                    (0, Some(format!("helix of radius {radius}, pitch {pitch}, {turns} turns")))
+                }
+                SwpGeometry::Trefoil { size } => (0, Some(format!("trefoil knot of size {size}"))),
             };
             let segments = c.to_curve().map(|k| k.num_segments()).unwrap_or(0);
             CurveRow {
                 name: c.display_name(i),
                 keyword: c.keyword(),
+                shape,
                 points,
                 segments,
                 steps: c.steps,
@@ -91,8 +104,11 @@ fn surface_rows(doc: &SwpDocument) -> Vec<SurfaceRow> {
                 SwpSurfaceKind::Revolution { steps, profile } => {
                     ("srev", vec![("profile", name(profile))], Some(steps))
                 }
-                SwpSurfaceKind::GeneralizedCylinder { profile, sweep } => {
-                    ("gcyl", vec![("profile", name(profile)), ("sweep", name(sweep))], None)
+                SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale, twist } => {
+                    let mut curves = vec![("profile", name(profile)), ("sweep", name(sweep))];
+                    curves.extend(scale.map(|i| ("scale", name(i))));
+                    curves.extend(twist.map(|i| ("twist", name(i))));
+                    ("gcyl", curves, None)
                 }
             };
             let counts = sweep_cmd::counts(doc, k).map_err(|e| format!("{e:#}"));
@@ -108,10 +124,9 @@ fn write_text(out: &mut impl Write, file: &str, curves: &[CurveRow], surfaces: &
         writeln!(out, "curves:")?;
         let width = curves.iter().map(|c| c.name.len()).max().unwrap_or(0);
         for (i, c) in curves.iter().enumerate() {
-            let shape = if c.keyword == "circ" {
-                String::from("circle")
-            } else {
-                format!("{} points, {}", c.points, plural(c.segments, "segment"))
+            let shape = match &c.shape {
+                Some(shape) => shape.clone(),
+                None => format!("{} points, {}", c.points, plural(c.segments, "segment")),
             };
             writeln!(
                 out,
@@ -172,4 +187,33 @@ fn write_json(out: &mut impl Write, file: &str, curves: &[CurveRow], surfaces: &
         }
     })?;
     out.write_all(b"\n}\n")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn primitives_and_clauses_are_listed() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("spring.swp");
+        let text = "circ wire 8 0.1\nhelix coil 40 1 0.5 2\ntrefoil knot 30 1.5\n\
+                    bez2 taper 4 4 [1 1] [2 2] [2 2] [1 1]\ngcyl spring wire coil scale taper twist taper\n";
+        std::fs::write(&file, text).unwrap();
+        let mut out = Vec::new();
+        run(&InfoArgs { file: file.clone(), json: false }, &mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(text.contains("helix of radius 1, pitch 0.5, 2 turns, steps 40, open"), "{text}");
+        assert!(text.contains("trefoil knot of size 1.5, steps 30, closed"), "{text}");
+        assert!(text.contains("gcyl: profile wire, sweep coil, scale taper, twist taper;"), "{text}");
+        // compat: 41 rings of 9 points, 40·8·2 triangles; welded: rings of 8, plus two caps
+        assert!(text.contains("compat 369 vertices, 640 triangles; welded 344 vertices, 652 triangles"), "{text}");
+        let mut out = Vec::new();
+        run(&InfoArgs { file, json: true }, &mut out).unwrap();
+        let json: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(json["curves"][1]["kind"], "helix");
+        assert_eq!(json["curves"][1]["segments"], 1);
+        assert_eq!(json["surfaces"][0]["scale"], "taper");
+        assert_eq!(json["surfaces"][0]["twist"], "taper");
+    }
 }

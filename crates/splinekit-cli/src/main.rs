@@ -4,17 +4,23 @@
 //! exit code (0 success, 1 error, 2 usage error from clap). A closed output pipe
 //! (`splinekit curve f.swp | head`) counts as success.
 
+mod alloc;
 mod arclen_cmd;
 mod curve_cmd;
 mod info_cmd;
+mod mesh_info;
 mod output;
 mod select;
+mod subdivide_cmd;
 mod sweep_cmd;
 
 use std::io::{self, Write};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+
+#[global_allocator]
+static ALLOCATOR: alloc::HugePageAlloc = alloc::HugePageAlloc;
 
 /// Spline curves and swept surfaces from SWP files: arc length, u–s tables, arc-length
 /// resampling, tessellated points, and meshes of surfaces of revolution and generalized
@@ -44,6 +50,7 @@ enum Command {
     Curve(curve_cmd::CurveArgs),
     Sweep(sweep_cmd::SweepArgs),
     Info(info_cmd::InfoArgs),
+    Subdivide(subdivide_cmd::SubdivideArgs),
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
@@ -54,6 +61,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Curve(args) => curve_cmd::run(&args, &mut out)?,
         Command::Sweep(args) => sweep_cmd::run(&args, &mut out)?,
         Command::Info(args) => info_cmd::run(&args, &mut out)?,
+        Command::Subdivide(args) => subdivide_cmd::run(&args, &mut out)?,
     }
     out.flush()?;
     Ok(())

@@ -1,22 +1,37 @@
-//! `splinekit sweep`: the meshes of every surface of an SWP file.
+//! `splinekit sweep`: the meshes of every surface of an SWP file, or the surface of a
+//! spline-annotated OBJ file rebuilt from its header.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use anyhow::Context;
+use anyhow::{Context, anyhow, bail};
 use clap::ValueEnum;
+use splinekit::TriMesh;
 use splinekit::sweep::{MeshLayout, SweepOptions};
 use splinekit_io::SwpDocument;
-use splinekit_io::mesh::MeshFormat;
+use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
 use splinekit_io::surface::{SurfaceFrames, SurfaceOptions, SurfaceTessellation};
 
 use crate::select;
 
-/// Sweep every surface of an SWP file (srev, gcyl) into a mesh file.
+/// Sweep every surface of an SWP file (srev, gcyl) into a mesh file, or rebuild the surface
+/// of a spline-annotated OBJ file (`.obj`) from the spline in its header.
 ///
-/// Writes one file per surface into the output directory, named `<surface name>.<ext>`
-/// (anonymous surfaces: `surface_<k>.<ext>`, k counting the file's surfaces from 0), and
-/// prints one line per surface: the path written, its vertex count and its triangle count.
+/// SWP: writes one file per surface into the output directory, named `<surface name>.<ext>`
+/// (anonymous surfaces: `surface_<k>.<ext>`, k counting the file's surfaces from 0).
+///
+/// OBJ: the file must start with the comment header of the CS 4620 revolution tool (`#
+/// Configs: closed, epsilon, isBSpline, Scale, sliceTolerance`) or sweep tool (`#
+/// Cross-section: closed, epsilon >>+<< Swept-along: …`). The surface is rebuilt from the
+/// spline(s) and settings there, ignoring the mesh stored after the header, and written as
+/// `<input file stem>.<ext>` (never over the input file itself). With --compat a sweep-tool
+/// file gets exactly the tool's mesh back (its vertex order, duplicated seams and
+/// triangles); by default seams are welded. A revolution-tool file is revolved about +z in
+/// ceil(2π / sliceTolerance) slices either way. The header fixes the tessellation and the
+/// frames, so --tolerance, --angle-tolerance and --frames are refused; open sweeps are never
+/// capped.
+///
+/// Prints one line per mesh: the path written, its vertex count and its triangle count.
 /// Files are written to a temporary name and renamed into place, so an error never leaves
 /// a partial file.
 #[derive(Debug, clap::Args)]
@@ -24,11 +39,14 @@ use crate::select;
     splinekit sweep wineglass.swp -o out\n  \
     splinekit sweep tor.swp --format glb --frames rmf\n  \
     splinekit sweep wineglass.swp --tolerance 0.001\n  \
-    splinekit sweep weirder.swp --compat\n\n\
+    splinekit sweep weirder.swp --compat\n  \
+    splinekit sweep doughnut.obj -o out --format glb\n  \
+    splinekit sweep doughnut.obj -o out --compat\n\n\
     Layouts: by default seams and poles are welded (closed sweeps are watertight); --compat \
-    reproduces the course program's vertex layout and counts (SPEC §2.3).")]
+    reproduces the course program's vertex layout and counts (SPEC §2.3), or, for a \
+    sweep-tool OBJ, the mesh stored in the file.")]
 pub struct SweepArgs {
-    /// SWP file to read
+    /// SWP file, or spline-annotated OBJ file (by the extension .obj)
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
 
@@ -40,28 +58,29 @@ pub struct SweepArgs {
     #[arg(long, value_enum, value_name = "FORMAT", default_value_t = Format::Obj)]
     pub format: Format,
 
-    /// The course program's vertex layout: duplicated seams, repeated poles (SPEC §2.3 counts)
+    /// The course program's vertex layout: duplicated seams, repeated poles (SPEC §2.3
+    /// counts); for a sweep-tool OBJ, the tool's own mesh
     #[arg(long)]
     pub compat: bool,
 
-    /// Adaptive tessellation: every polyline within T (length units) of its curve
+    /// Adaptive tessellation: every polyline within T (length units) of its curve (SWP only)
     #[arg(long, value_name = "T", conflicts_with = "angle_tolerance")]
     pub tolerance: Option<f64>,
 
-    /// Adaptive tessellation by control-polygon angle, in degrees
+    /// Adaptive tessellation by control-polygon angle, in degrees (SWP only)
     #[arg(long, value_name = "DEGREES")]
     pub angle_tolerance: Option<f64>,
 
-    /// Frames along sweep curves
-    #[arg(long, value_enum, value_name = "METHOD", default_value_t = Frames::Sequential)]
-    pub frames: Frames,
+    /// Frames along sweep curves (SWP only) [default: sequential]
+    #[arg(long, value_enum, value_name = "METHOD")]
+    pub frames: Option<Frames>,
 
     /// Add arc-length texture coordinates (welded seams are then split for the UV jump)
     #[arg(long)]
     pub uvs: bool,
 
     /// Leave open generalized cylinders open (by default a closed profile swept along an
-    /// open curve gets flat end caps; --compat never adds them)
+    /// open curve gets flat end caps; --compat never adds them, nor does an OBJ rebuild)
     #[arg(long)]
     pub no_caps: bool,
 }
@@ -123,7 +142,7 @@ fn options(args: &SweepArgs) -> anyhow::Result<SurfaceOptions> {
             caps: !args.compat && !args.no_caps,
         },
         tessellation,
-        frames: match args.frames {
+        frames: match args.frames.unwrap_or(Frames::Sequential) {
             Frames::Sequential => SurfaceFrames::Sequential,
             Frames::Rmf => SurfaceFrames::RotationMinimizing,
         },
@@ -133,14 +152,14 @@ fn options(args: &SweepArgs) -> anyhow::Result<SurfaceOptions> {
 /// A file name from a surface name: characters other than letters, digits, `-`, `_` and
 /// `.` become `_` (a name cannot leave the output directory).
 fn file_stem(doc: &SwpDocument, k: usize) -> String {
-    match &doc.surfaces[k].name {
-        Some(name) => {
-            let stem: String =
-                name.chars().map(|c| if c.is_alphanumeric() || "-_.".contains(c) { c } else { '_' }).collect();
-            if stem.trim_matches('.').is_empty() { format!("surface_{k}") } else { stem }
-        }
-        None => format!("surface_{k}"),
-    }
+    doc.surfaces[k].name.as_deref().and_then(safe_stem).unwrap_or_else(|| format!("surface_{k}"))
+}
+
+/// `name` with characters other than letters, digits, `-`, `_` and `.` replaced by `_`, or
+/// `None` if nothing but dots would be left.
+fn safe_stem(name: &str) -> Option<String> {
+    let stem: String = name.chars().map(|c| if c.is_alphanumeric() || "-_.".contains(c) { c } else { '_' }).collect();
+    (!stem.trim_matches('.').is_empty()).then_some(stem)
 }
 
 /// Compat and welded `(vertices, triangles)` of surface `k`, for `info`.
@@ -157,6 +176,9 @@ pub fn counts(doc: &SwpDocument, k: usize) -> anyhow::Result<[(usize, usize); 2]
 
 /// Runs the command, writing the report to `out`.
 pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
+    if is_obj(&args.file) {
+        return run_obj(args, out);
+    }
     let doc = select::load(&args.file)?;
     let opts = options(args)?;
     if doc.surfaces.is_empty() {
@@ -178,9 +200,63 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
             used.insert(stem.clone());
         }
         let path: PathBuf = args.output.join(format!("{stem}.{}", args.format.extension()));
-        splinekit_io::mesh::save(mesh, &path, args.format.mesh_format())
-            .with_context(|| format!("cannot write {}", path.display()))?;
-        writeln!(out, "{}: {} vertices, {} triangles", path.display(), mesh.num_vertices(), mesh.num_triangles())?;
+        write_mesh(args, mesh, &path, out)?;
     }
     Ok(())
+}
+
+/// Saves `mesh` to `path` in the chosen format and reports it.
+fn write_mesh(args: &SweepArgs, mesh: &TriMesh, path: &Path, out: &mut impl Write) -> anyhow::Result<()> {
+    splinekit_io::mesh::save(mesh, path, args.format.mesh_format())
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    writeln!(out, "{}: {} vertices, {} triangles", path.display(), mesh.num_vertices(), mesh.num_triangles())?;
+    Ok(())
+}
+
+/// True for a path ending in `.obj` (any case): a spline-annotated OBJ file.
+fn is_obj(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"))
+}
+
+/// What a spline-annotated OBJ's header looks like, for the "no header" message.
+const EXPECTED_HEADER: &str = "expected the leading comments of the CS 4620 revolution tool \
+    (\"# Configs: closed, epsilon, isBSpline, Scale, sliceTolerance\", a values line, then \
+    \"# Cross-section Spline control points:\" and one \"# x y\" line per point) or of its \
+    sweep tool (\"# Cross-section: closed, epsilon >>+<< Swept-along: closed, epsilon >>+<< \
+    Scale of Cross-section\", a values line, then the cross-section and swept-along control points)";
+
+/// `sweep FILE.obj`: rebuilds the surface from the spline header and writes it.
+fn run_obj(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
+    let file = &args.file;
+    let refused = [
+        (args.tolerance.is_some(), "--tolerance"),
+        (args.angle_tolerance.is_some(), "--angle-tolerance"),
+        (args.frames.is_some(), "--frames"),
+    ];
+    if let Some((_, flag)) = refused.iter().find(|(given, _)| *given) {
+        bail!(
+            "{flag} does not apply to {}: the spline header of an OBJ file fixes the tessellation and \
+             the frames (--tolerance, --angle-tolerance and --frames are for SWP files)",
+            file.display()
+        );
+    }
+    let header = SplineHeader::read(file)?
+        .ok_or_else(|| anyhow!("{}: no spline header found; {EXPECTED_HEADER}", file.display()))?;
+    let layout = if args.compat { MeshLayout::Compat } else { MeshLayout::Welded };
+    let options = RebuildOptions::DEFAULT.with_layout(layout).with_uvs(args.uvs);
+    let mesh = header.rebuild(&options).with_context(|| format!("cannot rebuild the surface of {}", file.display()))?;
+    let stem = file.file_stem().and_then(|s| safe_stem(&s.to_string_lossy())).unwrap_or_else(|| "surface".into());
+    let path = args.output.join(format!("{stem}.{}", args.format.extension()));
+    // (an output directory that does not exist yet cannot hold the input)
+    if let (Ok(a), Ok(b)) = (std::fs::canonicalize(&path), std::fs::canonicalize(file))
+        && a == b
+    {
+        bail!(
+            "{} would overwrite the input file; write elsewhere with -o DIR or choose another --format",
+            path.display()
+        );
+    }
+    std::fs::create_dir_all(&args.output)
+        .with_context(|| format!("cannot create output directory {}", args.output.display()))?;
+    write_mesh(args, &mesh, &path, out)
 }

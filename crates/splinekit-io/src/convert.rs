@@ -2,8 +2,8 @@
 //!
 //! Each SWP curve kind maps to its core constructor with the curve's `closed` flag
 //! (and, for Catmull-Rom, its `alpha`), then compiles to a [`PiecewiseCubic`](splinekit::PiecewiseCubic);
-//! circles become exact [`Circle`]s. 2D curves keep `z = 0`, so every curve is an
-//! [`AnyCurve<DVec3>`].
+//! circles, helices and trefoil knots become the exact [`Circle`], [`Helix`] and [`Trefoil`].
+//! 2D curves keep `z = 0`, so every curve is an [`AnyCurve<DVec3>`].
 //!
 //! ```
 //! use splinekit::ParamCurve;
@@ -16,7 +16,7 @@
 //! ```
 
 use glam::DVec3;
-use splinekit::{AnyCurve, BSpline, BezierSpline, CatmullRom, Circle, Hermite, SplineError};
+use splinekit::{AnyCurve, BSpline, BezierSpline, CatmullRom, Circle, Helix, Hermite, SplineError, Trefoil};
 
 use crate::swp::{SwpCurve, SwpCurveKind, SwpGeometry};
 
@@ -30,8 +30,10 @@ impl SwpCurve {
     /// | `cr2`, `cr3` | [`CatmullRom`] with the curve's `alpha` |
     /// | `her2`, `her3` | [`Hermite`] |
     /// | `circ` | [`Circle`] ([`AnyCurve::Circle`]) |
+    /// | `helix` | [`Helix`] ([`AnyCurve::Helix`]) |
+    /// | `trefoil` | [`Trefoil`] ([`AnyCurve::Trefoil`]) |
     ///
-    /// The `closed` flag is passed on (circles are always closed).
+    /// The `closed` flag is passed on (circles and trefoils are always closed, helices open).
     ///
     /// # Errors
     ///
@@ -44,14 +46,23 @@ impl SwpCurve {
     pub fn to_curve(&self) -> Result<AnyCurve<DVec3>, SplineError> {
         let points: &[DVec3] = match &self.geometry {
             SwpGeometry::Points(points) | SwpGeometry::Hermite { points, .. } => points,
-            SwpGeometry::Circle { .. } => &[],
+            SwpGeometry::Circle { .. } | SwpGeometry::Helix { .. } | SwpGeometry::Trefoil { .. } => &[],
         };
         let closed = self.closed;
         let curve = match (self.kind, &self.geometry) {
             (SwpCurveKind::Circle, SwpGeometry::Circle { radius }) => {
                 return Ok(AnyCurve::Circle(Circle::new(*radius)));
             }
-            (SwpCurveKind::Circle, _) | (_, SwpGeometry::Circle { .. }) => return Err(SplineError::Empty),
+            (SwpCurveKind::Helix, SwpGeometry::Helix { radius, pitch, turns }) => {
+                return Ok(AnyCurve::Helix(Helix::new(*radius, *pitch, *turns)));
+            }
+            (SwpCurveKind::Trefoil, SwpGeometry::Trefoil { size }) => {
+                return Ok(AnyCurve::Trefoil(Trefoil::new(*size)));
+            }
+            (SwpCurveKind::Circle | SwpCurveKind::Helix | SwpCurveKind::Trefoil, _)
+            | (_, SwpGeometry::Circle { .. } | SwpGeometry::Helix { .. } | SwpGeometry::Trefoil { .. }) => {
+                return Err(SplineError::Empty);
+            }
             (SwpCurveKind::Bezier, _) => BezierSpline::new(points, closed)?.to_piecewise(),
             (SwpCurveKind::BSpline, _) => BSpline::new(points, closed)?.to_piecewise(),
             (SwpCurveKind::CatmullRom { alpha }, _) => CatmullRom::new(points, closed, alpha)?.to_piecewise(),
@@ -176,6 +187,22 @@ mod tests {
         assert!(close(c.eval(0.25), DVec3::new(0.0, 2.0, 0.0)));
         assert!((c.arclen(1e-9) - 2.0 * TAU).abs() < EPS);
         let wrong = curve(SwpCurveKind::BSpline, false, SwpGeometry::Circle { radius: 1.0 });
+        assert_eq!(wrong.to_curve(), Err(SplineError::Empty));
+    }
+
+    #[test]
+    fn helix_and_trefoil() {
+        let h = curve(SwpCurveKind::Helix, false, SwpGeometry::Helix { radius: 2.0, pitch: 0.5, turns: 3.0 });
+        let c = h.to_curve().unwrap();
+        assert!(matches!(c, AnyCurve::Helix(Helix { radius: 2.0, pitch: 0.5, turns: 3.0 })));
+        assert!(close(c.eval(1.0), DVec3::new(2.0, 0.0, 1.5)));
+        assert!(!c.is_closed());
+        let k = curve(SwpCurveKind::Trefoil, true, SwpGeometry::Trefoil { size: 1.5 }).to_curve().unwrap();
+        assert!(close(k.eval(0.0), DVec3::new(0.0, -1.5, 0.0)));
+        assert!(k.is_closed());
+        let wrong = curve(SwpCurveKind::Helix, false, SwpGeometry::Trefoil { size: 1.0 });
+        assert_eq!(wrong.to_curve(), Err(SplineError::Empty));
+        let wrong = curve(SwpCurveKind::Bezier, false, SwpGeometry::Helix { radius: 1.0, pitch: 1.0, turns: 1.0 });
         assert_eq!(wrong.to_curve(), Err(SplineError::Empty));
     }
 

@@ -21,7 +21,8 @@
 //! assert_eq!(doc.curves[1].geometry, SwpGeometry::Circle { radius: 0.4 });
 //! let profile = doc.curve_index("profile").unwrap();
 //! let sweep = doc.curve_index("sweep").unwrap();
-//! assert_eq!(doc.surfaces[0].kind, SwpSurfaceKind::GeneralizedCylinder { profile, sweep });
+//! let (scale, twist) = (None, None);
+//! assert_eq!(doc.surfaces[0].kind, SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale, twist });
 //! # Ok::<(), splinekit_io::SwpError>(())
 //! ```
 //!
@@ -53,7 +54,7 @@ pub mod surface;
 pub mod swp;
 
 pub use mesh::atomic;
-pub use mesh::{MeshFormat, MeshIoError, MeshIoErrorKind};
+pub use mesh::{LoadedMesh, MeshFormat, MeshIoError, MeshIoErrorKind, ReadWarning, load_mesh};
 pub use swp::{
     MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpError, SwpErrorKind, SwpGeometry, SwpSurface,
     SwpSurfaceKind,

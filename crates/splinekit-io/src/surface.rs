@@ -8,17 +8,42 @@
 //! by more than [`CREASE_ANGLE`]) are sampled twice, once with each tangent, so the surface
 //! gets a crease with sharp normals there; the compat layout keeps the course program's one
 //! sample per point.
+//!
+//! # Scale and twist curves
+//!
+//! A `gcyl` with a `scale` or `twist` clause reads those curves at every sweep sample. The
+//! sample's position along the sweep is its *normalized arc length* `σ = s(u)/L ∈ [0, 1]`
+//! (exact arc length of the sweep curve, to [`SHAPE_ACCURACY`] relative, so uniform and
+//! adaptive tessellations agree; by parameter if the sweep has no length). The scale and
+//! twist curves are read at the same fraction of their *parameter* range, `u = σ·segments`:
+//! a curve's control points are then its keyframes, spread evenly along the sweep, and a
+//! constant stretch (repeated points) keeps its share of the sweep — which reading by the
+//! scale curve's own arc length would squeeze to nothing (a constant scale has no length).
+//!
+//! - Scale: the point `(sx, sy)` of the scale curve multiplies the profile's x by `sx` and its
+//!   y by `sy` (in the sweep frame: along N and B). Factors are meant to be positive; 0
+//!   pinches the tube to a line or point. End caps use the scale at their end.
+//! - Twist: the x coordinate of the twist curve is an angle in degrees; the sweep frame is
+//!   turned by it about T (N toward B) after the closed-curve fix.
+//!
+//! With either clause, vertex normals are the area-weighted normals of the faces around each
+//! vertex (a scaled or twisted tube is no longer described by the profile's normals). On a
+//! closed sweep the welded layout joins the last ring to the first, so the scale there should
+//! be the same at both ends and the twist should differ by a multiple of 360°.
 
 use glam::{DVec2, DVec3};
 use splinekit::flatten::{self, Tessellation};
 use splinekit::frame::{self, CurveSample, Frame, FrameMethod, FrameOptions, Side, StartNormal};
 use splinekit::sweep::{self, MeshLayout, Profile, SweepOptions, SweepPath};
-use splinekit::{AnyCurve, TriMesh};
+use splinekit::{AnyCurve, ParamCurve, TriMesh};
 
-use crate::swp::{SwpDocument, SwpSurfaceKind};
+use crate::swp::{SwpClause, SwpDocument, SwpSurfaceKind};
 
 /// Joins whose tangents turn by more than this (radians, 1°) are creases.
 pub const CREASE_ANGLE: f64 = std::f64::consts::PI / 180.0;
+
+/// Relative accuracy of the sweep's arc length at which scale and twist curves are read.
+pub const SHAPE_ACCURACY: f64 = 1e-9;
 
 /// How curves are tessellated for a sweep.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -76,6 +101,16 @@ pub enum SurfaceError {
         /// Display name of the surface.
         surface: String,
     },
+    /// The scale or twist curve of a surface is a 3D curve.
+    #[error("{role} curve {curve} of surface {surface} is 3D; a {role} curve must be a 2D curve")]
+    ShapeNot2d {
+        /// The clause that names the curve.
+        role: SwpClause,
+        /// Display name of the curve.
+        curve: String,
+        /// Display name of the surface.
+        surface: String,
+    },
     /// The sweep itself failed.
     #[error("surface {surface}: {source}")]
     Sweep {
@@ -89,8 +124,11 @@ pub enum SurfaceError {
 impl SwpDocument {
     /// The mesh of surface `index`.
     ///
+    /// Scale and twist curves of a `gcyl` are applied as the [module docs](self) describe.
+    ///
     /// # Errors
-    /// An unknown index, a curve that does not compile, a 3D profile, or a degenerate sweep.
+    /// An unknown index, a curve that does not compile, a 3D profile, scale or twist curve, or
+    /// a degenerate sweep.
     pub fn surface_mesh(&self, index: usize, options: &SurfaceOptions) -> Result<TriMesh, SurfaceError> {
         let surface = self.surfaces.get(index).ok_or(SurfaceError::NoSuchSurface(index))?;
         let surface_name = surface.display_name(index);
@@ -121,13 +159,40 @@ impl SwpDocument {
                 let steps = revolution_steps(&prof, steps, options.tessellation);
                 sweep::revolve(&prof, steps, options.sweep).map_err(sweep_err)
             }
-            SwpSurfaceKind::GeneralizedCylinder { profile, sweep: path } => {
+            SwpSurfaceKind::GeneralizedCylinder { profile, sweep: path, scale, twist } => {
                 let prof = profile_of(profile)?;
                 let c = curve(path)?;
                 let samples = sample_curve(&c, self.curves[path].steps, options);
-                let frames = frames_for(&samples, options.frames);
-                let path =
-                    SweepPath { positions: samples.iter().map(|s| s.position).collect(), frames, scales: Vec::new() };
+                let mut frames = frames_for(&samples, options.frames);
+                // a scale or twist curve: 2D, read at the samples' normalized arc length
+                let shape = |i: Option<usize>, role: SwpClause| -> Result<Option<AnyCurve<DVec3>>, SurfaceError> {
+                    let Some(i) = i else { return Ok(None) };
+                    if self.curves[i].dim == 3 {
+                        return Err(SurfaceError::ShapeNot2d {
+                            role,
+                            curve: self.curves[i].display_name(i),
+                            surface: surface_name.clone(),
+                        });
+                    }
+                    curve(i).map(Some)
+                };
+                let (scale, twist) = (shape(scale, SwpClause::Scale)?, shape(twist, SwpClause::Twist)?);
+                let mut scales = Vec::new();
+                if scale.is_some() || twist.is_some() {
+                    let sigma = normalized_arclen(&c, &samples);
+                    let at = |shape: &AnyCurve<DVec3>, s: f64| shape.eval(s * shape.domain().1);
+                    scales = match &scale {
+                        Some(sc) => sigma.iter().map(|&s| at(sc, s).truncate()).collect(),
+                        // face normals, as with a scale (see the module docs)
+                        None => vec![DVec2::ONE; samples.len()],
+                    };
+                    if let Some(tw) = &twist {
+                        for (f, &s) in frames.iter_mut().zip(&sigma) {
+                            *f = f.rotated(at(tw, s).x.to_radians());
+                        }
+                    }
+                }
+                let path = SweepPath { positions: samples.iter().map(|s| s.position).collect(), frames, scales };
                 sweep::generalized_cylinder(&prof, &path, options.sweep).map_err(sweep_err)
             }
         }
@@ -166,6 +231,31 @@ fn sample_curve(curve: &AnyCurve<DVec3>, steps: u32, options: &SurfaceOptions) -
         }
         _ => frame::sample(curve, &params),
     }
+}
+
+/// The normalized arc length `s(u)/L ∈ [0, 1]` of the sweep curve at each sample (the
+/// length of each step between consecutive samples to [`SHAPE_ACCURACY`] of the chord
+/// polygon's length); `u` over the domain if the curve has no length.
+fn normalized_arclen(curve: &AnyCurve<DVec3>, samples: &[CurveSample]) -> Vec<f64> {
+    let chord: f64 = samples.windows(2).map(|w| w[0].position.distance(w[1].position)).sum();
+    let share = SHAPE_ACCURACY * chord / samples.len().max(1) as f64;
+    let mut acc = 0.0;
+    let mut s: Vec<f64> = Vec::with_capacity(samples.len());
+    for (i, sample) in samples.iter().enumerate() {
+        if i > 0 {
+            acc += curve.arclen_range(samples[i - 1].u, sample.u, share).length;
+        }
+        s.push(acc);
+    }
+    if acc > 0.0 && acc.is_finite() {
+        s.iter_mut().for_each(|v| *v = (*v / acc).clamp(0.0, 1.0));
+    } else {
+        let (a, b) = curve.domain();
+        for (v, sample) in s.iter_mut().zip(samples) {
+            *v = if b > a { ((sample.u - a) / (b - a)).clamp(0.0, 1.0) } else { 0.0 };
+        }
+    }
+    s
 }
 
 fn frames_for(samples: &[CurveSample], method: SurfaceFrames) -> Vec<Frame> {

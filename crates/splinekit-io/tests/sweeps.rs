@@ -247,6 +247,27 @@ fn open_sweep_with_caps_encloses_a_prism() {
 }
 
 #[test]
+fn caps_of_a_creased_profile_have_no_zero_area_triangles() {
+    // A square profile of four straight Bézier sides: four creases, each sampled twice by the
+    // welded layout; the caps must use each corner once.
+    let doc = SwpDocument::parse(
+        "bez2 sq 4 13 [1 1] [0.3 1] [-0.3 1] [-1 1] [-1 0.3] [-1 -0.3] [-1 -1] [-0.3 -1] [0.3 -1] [1 -1] [1 -0.3] \
+         [1 0.3] [1 1]\nbez3 s 10 4 [0 0 0] [0 0 1] [0 0 2] [0 0 3]\ngcyl box sq s\n",
+        "t.swp",
+    )
+    .unwrap();
+    let o = SurfaceOptions {
+        sweep: SweepOptions { layout: MeshLayout::Welded, uvs: false, caps: true },
+        ..SurfaceOptions::default()
+    };
+    let m = doc.surface_mesh(0, &o).unwrap();
+    m.validate().unwrap();
+    assert!(min_area(&m) > 1e-6, "zero-area triangle");
+    // A 2 × 2 × 3 box.
+    assert!((m.signed_volume() - 12.0).abs() < 1e-9, "{}", m.signed_volume());
+}
+
+#[test]
 fn open_revolution_faces_away_from_its_axis() {
     // norm.swp's profile is open (a tube): its faces must point away from the y axis
     for layout in [MeshLayout::Compat, MeshLayout::Welded] {

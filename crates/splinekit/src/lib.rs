@@ -38,6 +38,7 @@ pub mod flatten;
 pub mod frame;
 mod gauss;
 pub mod mesh;
+pub mod subdiv;
 pub mod sweep;
 pub mod vector;
 
@@ -47,7 +48,7 @@ pub use arclen::{
 };
 pub use curve::{
     Aabb, AnyCurve, BEZIER_BASIS, BSPLINE_BASIS, BSpline, BezierSpline, CATMULL_ROM_BASIS, CatmullRom, Circle,
-    CubicBezier, Hermite, ParamCurve, PiecewiseCubic, SplineError,
+    CubicBezier, Helix, Hermite, ParamCurve, PiecewiseCubic, SplineError, Trefoil,
 };
-pub use mesh::{MeshError, TriMesh};
+pub use mesh::{Adjacency, FaceVarying, MeshError, PolyMesh, TriMesh};
 pub use vector::Vector;

@@ -107,6 +107,25 @@ fn cusp_cubic() -> impl Strategy<Value = CubicBezier<DVec2>> {
     )
 }
 
+/// Cubics whose velocity `q(t) = L·(t − r₁)(t − r₂)` has a root `r₁` close to `[0, 1]`
+/// (`10⁻⁴ … 0.3` off the real axis): the regime of the largest Gauss rules (80 to 128 nodes)
+/// and of splits towards the root.
+fn near_root_cubic() -> impl Strategy<Value = CubicBezier<DVec2>> {
+    (-0.2..1.2f64, -4.0..-0.5f64, -3.0..3.0f64, -3.0..3.0f64, 0.1..300.0f64, 0.0..std::f64::consts::TAU, p2()).prop_map(
+        |(x, log_y, r2x, r2y, size, angle, p0)| {
+            let mul = |u: DVec2, v: DVec2| DVec2::new(u.x * v.x - u.y * v.y, u.x * v.y + u.y * v.x);
+            let (r1, r2) = (DVec2::new(x, 10f64.powf(log_y)), DVec2::new(r2x, r2y));
+            let lead = DVec2::from_angle(angle) * size;
+            let (a, b, c) = (mul(lead, mul(r1, r2)), -mul(lead, r1 + r2), lead);
+            // q = 3(1−t)²d₀ + 6(1−t)t·d₁ + 3t²·d₂ = a + b·t + c·t²
+            let d0 = a / 3.0;
+            let d1 = d0 + b / 6.0;
+            let d2 = c / 3.0 - d0 + 2.0 * d1;
+            CubicBezier::new(p0, p0 + d0, p0 + d0 + d1, p0 + d0 + d1 + d2)
+        },
+    )
+}
+
 const ACCURACIES: [f64; 6] = [1e-1, 1e-3, 1e-5, 1e-7, 1e-9, 1e-11];
 
 fn check_adaptive<P: Vector>(c: &CubicBezier<P>) -> Result<(), TestCaseError> {
@@ -147,6 +166,11 @@ proptest! {
 
     #[test]
     fn adaptive_within_accuracy_cusps(c in cusp_cubic()) {
+        check_adaptive(&c)?;
+    }
+
+    #[test]
+    fn adaptive_within_accuracy_near_roots(c in near_root_cubic()) {
         check_adaptive(&c)?;
     }
 

@@ -45,15 +45,22 @@
 //!
 //! The OBJ files of the CS 4620 spline tools keep the spline that made the mesh in their
 //! leading comments ([`revolution_obj`] describes the layout); [`SplineHeader`] reads both
-//! kinds, and [`write_revolution_obj`] writes the revolution kind.
+//! kinds, [`SplineHeader::rebuild`] rebuilds the mesh from the header alone (module [`rebuild`]
+//! describes the tools' rules, deduced from their files), and
+//! [`write_revolution_obj`] writes the revolution kind.
 
 pub mod atomic;
 mod error;
 mod glb;
+mod load;
 mod obj;
+mod obj_read;
 mod ply;
+mod ply_read;
+pub mod rebuild;
 pub mod revolution_obj;
 mod stl;
+mod stl_read;
 
 use std::io::Write;
 use std::path::Path;
@@ -62,12 +69,17 @@ use splinekit::TriMesh;
 
 pub use error::{MeshIoError, MeshIoErrorKind};
 pub use glb::write_glb;
+pub use load::{LoadedMesh, MAX_WARNINGS, ReadWarning, ReadWarningKind, load_mesh, read_mesh};
 pub use obj::write_obj;
+pub use obj_read::read_obj;
 pub use ply::write_ply;
+pub use ply_read::read_ply;
+pub use rebuild::{RebuildError, RebuildOptions};
 pub use revolution_obj::{
     HeaderSpline, RevolutionHeader, SplineHeader, SweepHeader, save_revolution_obj, write_revolution_obj,
 };
 pub use stl::write_stl;
+pub use stl_read::read_stl;
 
 /// Size of the internal output buffer of the writers.
 const BUFFER_SIZE: usize = 1 << 16;

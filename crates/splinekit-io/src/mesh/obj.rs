@@ -10,7 +10,7 @@ use super::MeshIoError;
 /// Writes `mesh` as Wavefront OBJ text.
 ///
 /// The output holds, in this order, one line per vertex for each attribute the mesh has —
-/// `v x y z`, then `vn x y z`, then `vt u v` — and one `f` line per triangle with 1-based
+/// `v x y z` (`v x y z r g b` with colours), then `vn x y z`, then `vt u v` — and one `f` line per triangle with 1-based
 /// indices. The face form depends on the attributes: `f a/a/a` (UVs and normals), `f a/a`
 /// (UVs only), `f a//a` (normals only) or `f a` (positions only); vertex `i` of the mesh is
 /// index `i + 1` of every attribute. No comments, groups or materials are written, so the
@@ -54,8 +54,11 @@ pub fn write_obj<W: Write + ?Sized>(mesh: &TriMesh, out: &mut W) -> Result<(), M
 
 /// Writes the `v`, `vn`, `vt` and `f` lines.
 fn write_body<W: Write>(mesh: &TriMesh, w: &mut W) -> std::io::Result<()> {
-    for p in &mesh.positions {
-        write_vec3(w, "v", *p)?;
+    for (i, p) in mesh.positions.iter().enumerate() {
+        match mesh.colors.get(i) {
+            Some(c) => writeln!(w, "v {:?} {:?} {:?} {:?} {:?} {:?}", p.x, p.y, p.z, c.x, c.y, c.z)?,
+            None => write_vec3(w, "v", *p)?,
+        }
     }
     for n in &mesh.normals {
         write_vec3(w, "vn", *n)?;

@@ -26,6 +26,9 @@ const FORMAT: &str = "binary PLY";
 /// property float nz
 /// property float u         (u, v only if the mesh has UVs)
 /// property float v
+/// property uchar red       (red, green, blue only if the mesh has colours: round(255·c),
+/// property uchar green      clamped to 0 … 255)
+/// property uchar blue
 /// element face M
 /// property list uchar int vertex_indices
 /// end_header
@@ -61,7 +64,7 @@ pub fn write_ply<W: Write + ?Sized>(mesh: &TriMesh, out: &mut W) -> Result<(), M
 
 /// Writes the header and the records.
 fn write_body<W: Write>(mesh: &TriMesh, w: &mut W) -> std::io::Result<()> {
-    let (has_normals, has_uvs) = (!mesh.normals.is_empty(), !mesh.uvs.is_empty());
+    let (has_normals, has_uvs, has_colors) = (!mesh.normals.is_empty(), !mesh.uvs.is_empty(), !mesh.colors.is_empty());
     let mut header = String::from("ply\nformat binary_little_endian 1.0\ncomment written by splinekit-io\n");
     header += &format!("element vertex {}\n", mesh.positions.len());
     header += "property float x\nproperty float y\nproperty float z\n";
@@ -70,6 +73,9 @@ fn write_body<W: Write>(mesh: &TriMesh, w: &mut W) -> std::io::Result<()> {
     }
     if has_uvs {
         header += "property float u\nproperty float v\n";
+    }
+    if has_colors {
+        header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
     }
     header += &format!("element face {}\n", mesh.triangles.len());
     header += "property list uchar int vertex_indices\nend_header\n";
@@ -88,6 +94,10 @@ fn write_body<W: Write>(mesh: &TriMesh, w: &mut W) -> std::io::Result<()> {
             for x in mesh.uvs[i].to_array() {
                 w.write_all(&to_f32(x).to_le_bytes())?;
             }
+        }
+        if has_colors {
+            // Clamped and rounded: the cast cannot truncate.
+            w.write_all(&mesh.colors[i].to_array().map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))?;
         }
     }
     for tri in &mesh.triangles {

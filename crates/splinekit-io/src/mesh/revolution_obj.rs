@@ -58,7 +58,8 @@
 //!   what was expected — unlike the original tool, which printed a message and kept whatever it
 //!   had parsed.
 //!
-//! The header records the settings, not how to rebuild the surface: that is done elsewhere.
+//! The header records the settings; [`SplineHeader::rebuild`] (module
+//! [`rebuild`](super::rebuild)) turns them back into the mesh.
 
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;

@@ -3,10 +3,11 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use super::SourcePos;
+use super::{SourcePos, SwpClause};
 
 /// The keywords listed in "unknown keyword" messages, in the order they are documented.
-pub(crate) const KEYWORD_LIST: &str = "bez2, bsp2, bez3, bsp3, cr2, cr3, her2, her3, circ, srev or gcyl";
+pub(crate) const KEYWORD_LIST: &str =
+    "bez2, bsp2, bez3, bsp3, cr2, cr3, her2, her3, circ, helix, trefoil, srev or gcyl";
 
 /// Longest token text (in characters) quoted in a message before it is shortened with `…`.
 const MAX_QUOTED_CHARS: usize = 40;
@@ -208,8 +209,23 @@ pub enum SwpErrorKind {
         /// The surface, like `gcyl surface "weird"`.
         surface: String,
     },
+    /// A gcyl's scale or twist curve is a 3D curve.
+    #[error(
+        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2, her2 or circ) as the {role} curve of {surface}",
+        quote(name)
+    )]
+    CurveNot2D {
+        /// The curve's name.
+        name: String,
+        /// The curve's keyword, like `bsp3`.
+        keyword: &'static str,
+        /// The clause that names the curve.
+        role: SwpClause,
+        /// The surface, like `gcyl surface "spring"`.
+        surface: String,
+    },
     /// An unknown curve option, an option on a kind it does not apply to, an option given
-    /// twice, or a bad `alpha` value.
+    /// twice, a bad `alpha` value, or a gcyl `scale` or `twist` clause given twice.
     #[error("found {}, expected {expected}", quote(found))]
     BadOption {
         /// The token found.

@@ -9,14 +9,17 @@
 //!
 //! ```text
 //! document := object*
-//! object   := curve | hermite | circle | srev | gcyl
+//! object   := curve | hermite | circle | helix | trefoil | srev | gcyl
 //! curve    := ("bez2"|"bsp2"|"cr2"|"bez3"|"bsp3"|"cr3") NAME STEPS NPOINTS option* point{NPOINTS}
 //! hermite  := ("her2"|"her3") NAME STEPS NPAIRS option* (point point){NPAIRS}   point, then tangent
 //! point    := "[" x y "]"        2D kinds (bez2 bsp2 cr2 her2); z is 0 in the model
 //!           | "[" x y z "]"      3D kinds (bez3 bsp3 cr3 her3)
 //! circle   := "circ" NAME STEPS RADIUS          xy-plane, centred at the origin
+//! helix    := "helix" NAME STEPS RADIUS PITCH TURNS     3D, about +z from (RADIUS, 0, 0)
+//! trefoil  := "trefoil" NAME STEPS SIZE         3D, closed
 //! srev     := "srev" NAME STEPS PROFILE         surface of revolution
-//! gcyl     := "gcyl" NAME PROFILE SWEEP         generalized cylinder
+//! gcyl     := "gcyl" NAME PROFILE SWEEP clause* generalized cylinder
+//! clause   := "scale" SCALE | "twist" TWIST     each at most once, in either order
 //! option   := "closed" | "open" | "alpha" A | "uniform" | "centripetal" | "chordal"
 //! NAME     := "."                               anonymous, may repeat
 //!           | any other token                   unique among all curves and surfaces
@@ -27,7 +30,8 @@
 //!   other text: `[3 0]`, `[ 3 0 ]` and `[-2 2] [-4 0]` on one line all work. A UTF-8 byte
 //!   order mark at the very start is skipped (it does not count as a column).
 //! - **Keywords** are lowercase. `bez2 bsp2 bez3 bsp3 circ srev gcyl` are the original SWP
-//!   keywords; `cr2 cr3 her2 her3` are ours (see *Extensions*).
+//!   keywords; `cr2 cr3 her2 her3 helix trefoil` and the gcyl clause words `scale` and `twist`
+//!   are ours (see *Extensions*).
 //! - **Names**: `.` is anonymous and may repeat; every other token is a name that must be unique
 //!   across all curves *and* surfaces. `[` and `]` cannot be names, and neither can anything
 //!   starting with `#` (that is a comment). A curve is referenced by name, and only after its
@@ -47,7 +51,7 @@
 //!   `nan`, `inf` and numbers too large for an `f64` are errors. RADIUS must be ≥ 0 (a radius of
 //!   0 is valid: real files use it as a degenerate sweep).
 //! - **Profiles** of `srev` and `gcyl` must be 2D curves (`bez2`, `bsp2`, `cr2`, `her2`, `circ`);
-//!   a `gcyl` sweep may be 2D or 3D.
+//!   a `gcyl` sweep may be 2D or 3D. Scale and twist curves must be 2D as well.
 //! - **Quirks of real files** that are accepted: CRLF line endings, brackets with or without
 //!   inner spaces, several points on one line, repeated end points, trailing spaces, no final
 //!   newline, whitespace-only trailing lines.
@@ -80,6 +84,37 @@
 //! her3 arc 20 2
 //! [0 0 0] [1 0 0]
 //! [1 1 0] [0 1 0]
+//! ```
+//!
+//! - **Helix** `helix NAME STEPS RADIUS PITCH TURNS`: the exact helix
+//!   `(r·cos θ, r·sin θ, PITCH·θ/2π)`, `θ` from 0 to `2π·TURNS` ([`splinekit::Helix`]). RADIUS
+//!   ≥ 0; PITCH, the rise per turn, is any number (negative: left-handed); TURNS is a number
+//!   with 0 < TURNS ≤ [`MAX_HELIX_TURNS`]. Open, one segment: STEPS counts the steps of the
+//!   whole helix (STEPS + 1 points), as for `circ`.
+//! - **Trefoil knot** `trefoil NAME STEPS SIZE`: the exact, closed knot
+//!   `SIZE·(sin t + 2 sin 2t, cos t − 2 cos 2t, −sin 3t)`, `t` from 0 to 2π
+//!   ([`splinekit::Trefoil`]); SIZE ≥ 0. One segment: STEPS + 1 points.
+//!
+//!   Both are 3D curves (like `bez3`): they can be sweeps, not profiles, and they take no
+//!   options.
+//! - **Scale and twist curves** for `gcyl`: `gcyl NAME PROFILE SWEEP [scale SCALE] [twist TWIST]`
+//!   (each clause at most once, in either order). At the sweep point at normalized arc length
+//!   `σ ∈ [0, 1]` of the sweep curve, the curves are read at the same fraction `σ` of their own
+//!   *parameter* range (`u = σ·segments`):
+//!   - the SCALE curve's point `(sx, sy)` scales the profile's x by `sx` and its y by `sy`;
+//!   - the TWIST curve's x coordinate is an angle in degrees by which the profile turns about
+//!     the sweep tangent (from N toward B); its y is not used.
+//!
+//!   Both must be 2D curves defined earlier. The words `scale` and `twist` are recognized only
+//!   right after a gcyl's SWEEP (or after a previous clause); every other position is fixed, so
+//!   curves and surfaces may still be *named* `scale` or `twist`, and no object keyword can be
+//!   mistaken for a clause.
+//!
+//! ```text
+//! circ wire 24 0.15
+//! helix coil 300 1 0.6 5
+//! bsp2 taper 8 6 [0.3 0.3] [1 1] [1 1] [1 1] [1 1] [0.3 0.3]
+//! gcyl spring wire coil scale taper
 //! ```
 //!
 //! # Errors
@@ -123,6 +158,12 @@ pub use error::{SwpError, SwpErrorKind};
 /// STEPS says how finely a curve or surface is tessellated; one million is far more than any
 /// display needs and keeps a typo from asking for gigabytes of vertices.
 pub const MAX_STEPS: u32 = 1_000_000;
+
+/// The largest TURNS value accepted for a helix.
+///
+/// Adaptive tessellation of a helix needs a number of points proportional to its turns; ten
+/// thousand turns is far more than any model needs and keeps a typo from asking for gigabytes.
+pub const MAX_HELIX_TURNS: f64 = 10_000.0;
 
 /// A 1-based position in a source text: line, and column counted in characters.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -174,13 +215,17 @@ pub struct SwpCurve {
     pub name: Option<String>,
     /// The kind of curve (Bézier, B-spline, …).
     pub kind: SwpCurveKind,
-    /// 2 or 3: the dimension of the keyword (`bez2` is 2, `bez3` is 3, `circ` is 2).
+    /// 2 or 3: the dimension of the keyword (`bez2` is 2, `bez3` is 3, `circ` is 2, `helix` and
+    /// `trefoil` are 3).
     pub dim: u8,
-    /// Tessellation steps per segment (for circles: for the whole circle), 1..=[`MAX_STEPS`].
+    /// Tessellation steps per segment (for circles, helices and trefoils: for the whole
+    /// curve), 1..=[`MAX_STEPS`].
     pub steps: u32,
-    /// Whether the curve is closed (the `closed` option). Always `true` for circles.
+    /// Whether the curve is closed (the `closed` option). Always `true` for circles and
+    /// trefoils, `false` for helices.
     pub closed: bool,
-    /// Control points, Hermite data or circle radius, depending on [`kind`](Self::kind).
+    /// Control points, Hermite data or the parameters of a circle, helix or trefoil,
+    /// depending on [`kind`](Self::kind).
     pub geometry: SwpGeometry,
     /// Where the curve's keyword stood.
     pub pos: SourcePos,
@@ -212,6 +257,8 @@ impl SwpCurve {
             (SwpCurveKind::Hermite, false) => "her2",
             (SwpCurveKind::Hermite, true) => "her3",
             (SwpCurveKind::Circle, _) => "circ",
+            (SwpCurveKind::Helix, _) => "helix",
+            (SwpCurveKind::Trefoil, _) => "trefoil",
         }
     }
 }
@@ -232,6 +279,10 @@ pub enum SwpCurveKind {
     Hermite,
     /// Circle in the xy-plane, centred at the origin (`circ`).
     Circle,
+    /// Circular helix about +z (`helix`, an extension).
+    Helix,
+    /// Trefoil knot (`trefoil`, an extension).
+    Trefoil,
 }
 
 /// The geometric data of an SWP curve.
@@ -250,6 +301,20 @@ pub enum SwpGeometry {
     Circle {
         /// The radius.
         radius: f64,
+    },
+    /// A helix (see [`splinekit::Helix`]).
+    Helix {
+        /// The radius (≥ 0).
+        radius: f64,
+        /// The rise per turn along +z (negative: left-handed).
+        pitch: f64,
+        /// The number of turns (in `(0, MAX_HELIX_TURNS]` when parsed).
+        turns: f64,
+    },
+    /// A trefoil knot (see [`splinekit::Trefoil`]).
+    Trefoil {
+        /// The size (≥ 0).
+        size: f64,
     },
 }
 
@@ -286,13 +351,45 @@ pub enum SwpSurfaceKind {
         /// The 2D profile curve.
         profile: usize,
     },
-    /// Generalized cylinder (`gcyl`): a 2D profile swept along a 2D or 3D curve.
+    /// Generalized cylinder (`gcyl`): a 2D profile swept along a 2D or 3D curve, optionally
+    /// scaled and twisted along the way (see *Extensions* in the [module docs](self)).
     GeneralizedCylinder {
         /// The 2D profile curve.
         profile: usize,
         /// The sweep curve.
         sweep: usize,
+        /// The 2D scale curve (`scale` clause): its point `(sx, sy)` scales the profile's x and y.
+        scale: Option<usize>,
+        /// The 2D twist curve (`twist` clause): its x is the twist angle in degrees.
+        twist: Option<usize>,
     },
+}
+
+/// A `gcyl` clause (an extension): which shaping curve it names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SwpClause {
+    /// `scale CURVE`: the profile's x and y are scaled by the curve's point.
+    Scale,
+    /// `twist CURVE`: the profile turns by the curve's x, in degrees.
+    Twist,
+}
+
+impl SwpClause {
+    /// The clause's word: `"scale"` or `"twist"`.
+    #[must_use]
+    pub fn keyword(self) -> &'static str {
+        match self {
+            Self::Scale => "scale",
+            Self::Twist => "twist",
+        }
+    }
+}
+
+impl std::fmt::Display for SwpClause {
+    /// Formats as the clause's word.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.keyword())
+    }
 }
 
 impl SwpDocument {
@@ -351,10 +448,11 @@ impl SwpDocument {
     ///   curves, `_s<index>` for surfaces). Parsed documents never contain such names.
     ///
     /// The writer does not validate. A document that breaks the rules (a wrong point count, a
-    /// 3D profile, a reference out of range — written as `.` —, a non-finite number, `steps`
-    /// out of range, …) is written anyway, and the output then fails to parse. The z
-    /// coordinates of 2D curves are not written; a Hermite curve writes as many pairs as its
-    /// shorter list has entries.
+    /// 3D profile, scale or twist curve, a reference out of range — written as `.` —, a
+    /// non-finite number, `steps` or helix turns out of range, …) is written anyway, and the
+    /// output then fails to parse. The z coordinates of 2D curves are not written; a Hermite
+    /// curve writes as many pairs as its shorter list has entries. Scale and twist clauses are
+    /// written after the sweep, `scale` first.
     #[must_use]
     pub fn to_swp_string(&self) -> String {
         writer::write(self)

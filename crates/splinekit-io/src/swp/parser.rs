@@ -6,10 +6,14 @@ use glam::DVec3;
 
 use super::error::{SwpError, SwpErrorKind};
 use super::lexer::{Token, TokenKind, tokenize};
-use super::{MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind};
+use super::{
+    MAX_HELIX_TURNS, MAX_STEPS, SourcePos, SwpClause, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface,
+    SwpSurfaceKind,
+};
 
 /// Every keyword that starts an object.
-const KEYWORDS: [&str; 11] = ["bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "circ", "srev", "gcyl"];
+const KEYWORDS: [&str; 13] =
+    ["bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "circ", "helix", "trefoil", "srev", "gcyl"];
 
 /// Whether `word` is an SWP keyword.
 pub(crate) fn is_keyword(word: &str) -> bool {
@@ -30,6 +34,8 @@ enum Family {
 enum Keyword {
     Curve { keyword: &'static str, family: Family, dim: u8 },
     Circle,
+    Helix,
+    Trefoil,
     Revolution,
     Cylinder,
 }
@@ -46,6 +52,8 @@ fn keyword(word: &str) -> Option<Keyword> {
         "her2" => curve("her2", Family::Hermite, 2),
         "her3" => curve("her3", Family::Hermite, 3),
         "circ" => Some(Keyword::Circle),
+        "helix" => Some(Keyword::Helix),
+        "trefoil" => Some(Keyword::Trefoil),
         "srev" => Some(Keyword::Revolution),
         "gcyl" => Some(Keyword::Cylinder),
         _ => None,
@@ -173,6 +181,8 @@ impl<'a> Parser<'a> {
             None => Err(self.error(token.pos, SwpErrorKind::UnknownKeyword { found: token.text.to_owned() })),
             Some(Keyword::Curve { keyword, family, dim }) => self.curve(token.pos, keyword, family, dim),
             Some(Keyword::Circle) => self.circle(token.pos),
+            Some(Keyword::Helix) => self.helix(token.pos),
+            Some(Keyword::Trefoil) => self.trefoil(token.pos),
             Some(Keyword::Revolution) => self.revolution(token.pos),
             Some(Keyword::Cylinder) => self.cylinder(token.pos),
         }
@@ -377,15 +387,20 @@ impl<'a> Parser<'a> {
         Ok(DVec3::from_array(xyz))
     }
 
+    /// Reads a number that must satisfy `ok`; `what` describes it, like `a radius (a number ≥ 0)`.
+    fn value(&mut self, what: &str, label: &str, ok: impl Fn(f64) -> bool) -> Result<f64, SwpError> {
+        let expected = || format!("{what} for {label}");
+        let token = self.expect(expected)?;
+        number(token.text).filter(|&v| ok(v)).ok_or_else(|| self.invalid_number(token, expected()))
+    }
+
     /// `circ NAME STEPS RADIUS`, after the keyword.
     fn circle(&mut self, pos: SourcePos) -> Result<(), SwpError> {
         let index = self.doc.curves.len();
         let (name, name_pos) = self.name("circ curve")?;
         let label = label("circ", "curve", name, index);
         let steps = self.steps(&label)?;
-        let expected = || format!("a radius (a number ≥ 0) for {label}");
-        let token = self.expect(expected)?;
-        let radius = number(token.text).filter(|r| *r >= 0.0).ok_or_else(|| self.invalid_number(token, expected()))?;
+        let radius = self.value("a radius (a number ≥ 0)", &label, |r| r >= 0.0)?;
         self.register(name, name_pos, Named::Curve(index));
         self.doc.curves.push(SwpCurve {
             name: name.map(str::to_owned),
@@ -399,13 +414,58 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// `helix NAME STEPS RADIUS PITCH TURNS`, after the keyword.
+    fn helix(&mut self, pos: SourcePos) -> Result<(), SwpError> {
+        let index = self.doc.curves.len();
+        let (name, name_pos) = self.name("helix curve")?;
+        let label = label("helix", "curve", name, index);
+        let steps = self.steps(&label)?;
+        let radius = self.value("a radius (a number ≥ 0)", &label, |r| r >= 0.0)?;
+        let pitch = self.value("a pitch (the rise per turn, a number)", &label, |_| true)?;
+        let turns =
+            self.value(&format!("a number of turns (a number > 0 and ≤ {MAX_HELIX_TURNS})"), &label, |t| {
+                t > 0.0 && t <= MAX_HELIX_TURNS
+            })?;
+        self.register(name, name_pos, Named::Curve(index));
+        self.doc.curves.push(SwpCurve {
+            name: name.map(str::to_owned),
+            kind: SwpCurveKind::Helix,
+            dim: 3,
+            steps,
+            closed: false,
+            geometry: SwpGeometry::Helix { radius, pitch, turns },
+            pos,
+        });
+        Ok(())
+    }
+
+    /// `trefoil NAME STEPS SIZE`, after the keyword.
+    fn trefoil(&mut self, pos: SourcePos) -> Result<(), SwpError> {
+        let index = self.doc.curves.len();
+        let (name, name_pos) = self.name("trefoil curve")?;
+        let label = label("trefoil", "curve", name, index);
+        let steps = self.steps(&label)?;
+        let size = self.value("a size (a number ≥ 0)", &label, |s| s >= 0.0)?;
+        self.register(name, name_pos, Named::Curve(index));
+        self.doc.curves.push(SwpCurve {
+            name: name.map(str::to_owned),
+            kind: SwpCurveKind::Trefoil,
+            dim: 3,
+            steps,
+            closed: true,
+            geometry: SwpGeometry::Trefoil { size },
+            pos,
+        });
+        Ok(())
+    }
+
     /// `srev NAME STEPS PROFILE`, after the keyword.
     fn revolution(&mut self, pos: SourcePos) -> Result<(), SwpError> {
         let index = self.doc.surfaces.len();
         let (name, name_pos) = self.name("srev surface")?;
         let label = label("srev", "surface", name, index);
         let steps = self.steps(&label)?;
-        let profile = self.reference(&label, true)?;
+        let profile = self.reference(&label, Role::Profile)?;
         self.register(name, name_pos, Named::Surface(index));
         self.doc.surfaces.push(SwpSurface {
             name: name.map(str::to_owned),
@@ -415,27 +475,52 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
-    /// `gcyl NAME PROFILE SWEEP`, after the keyword.
+    /// `gcyl NAME PROFILE SWEEP clause*`, after the keyword.
+    ///
+    /// A clause starts with the word `scale` or `twist` right after SWEEP (or after another
+    /// clause). No object starts with these words, so whatever else follows ends the gcyl.
     fn cylinder(&mut self, pos: SourcePos) -> Result<(), SwpError> {
         let index = self.doc.surfaces.len();
         let (name, name_pos) = self.name("gcyl surface")?;
         let label = label("gcyl", "surface", name, index);
-        let profile = self.reference(&label, true)?;
-        let sweep = self.reference(&label, false)?;
+        let profile = self.reference(&label, Role::Profile)?;
+        let sweep = self.reference(&label, Role::Sweep)?;
+        let mut scale: Option<(Token<'a>, usize)> = None;
+        let mut twist: Option<(Token<'a>, usize)> = None;
+        while let Some(token) = self.peek().filter(|t| t.kind == TokenKind::Word) {
+            let (slot, role) = match token.text {
+                "scale" => (&mut scale, Role::Clause(SwpClause::Scale)),
+                "twist" => (&mut twist, Role::Clause(SwpClause::Twist)),
+                _ => break,
+            };
+            if let Some((first, _)) = *slot {
+                let message = format!(
+                    "at most one {} clause for {label} (already given at line {}, column {})",
+                    token.text, first.pos.line, first.pos.column
+                );
+                return Err(self.bad_option(token, message));
+            }
+            self.next += 1;
+            *slot = Some((token, self.reference(&label, role)?));
+        }
         self.register(name, name_pos, Named::Surface(index));
         self.doc.surfaces.push(SwpSurface {
             name: name.map(str::to_owned),
-            kind: SwpSurfaceKind::GeneralizedCylinder { profile, sweep },
+            kind: SwpSurfaceKind::GeneralizedCylinder {
+                profile,
+                sweep,
+                scale: scale.map(|(_, curve)| curve),
+                twist: twist.map(|(_, curve)| curve),
+            },
             pos,
         });
         Ok(())
     }
 
-    /// Reads a reference to a curve defined earlier: the profile (which must be 2D) or the
-    /// sweep of the surface `label`.
-    fn reference(&mut self, label: &str, profile: bool) -> Result<usize, SwpError> {
-        let role = if profile { "profile" } else { "sweep" };
-        let expected = || format!("the name of the {role} curve of {label}");
+    /// Reads a reference to a curve defined earlier, for `role` in the surface `label`
+    /// (profiles, scale and twist curves must be 2D).
+    fn reference(&mut self, label: &str, role: Role) -> Result<usize, SwpError> {
+        let expected = || format!("the name of the {} curve of {label}", role.name());
         let token = self.expect(expected)?;
         if token.kind != TokenKind::Word {
             return Err(self.unexpected(token, expected()));
@@ -457,17 +542,34 @@ impl<'a> Parser<'a> {
             }
             None => return Err(undefined("no curve of this name is defined before it")),
         };
-        if profile && let Some(curve) = self.doc.curves.get(index).filter(|c| c.dim != 2) {
-            return Err(self.error(
-                token.pos,
-                SwpErrorKind::ProfileNot2D {
-                    name: token.text.to_owned(),
-                    keyword: curve.keyword(),
-                    surface: label.to_owned(),
-                },
-            ));
+        if let Some(curve) = self.doc.curves.get(index).filter(|c| c.dim != 2) {
+            let (name, keyword, surface) = (token.text.to_owned(), curve.keyword(), label.to_owned());
+            let kind = match role {
+                Role::Sweep => return Ok(index),
+                Role::Profile => SwpErrorKind::ProfileNot2D { name, keyword, surface },
+                Role::Clause(role) => SwpErrorKind::CurveNot2D { name, keyword, role, surface },
+            };
+            return Err(self.error(token.pos, kind));
         }
         Ok(index)
+    }
+}
+
+/// What a surface uses a curve for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Role {
+    Profile,
+    Sweep,
+    Clause(SwpClause),
+}
+
+impl Role {
+    fn name(self) -> &'static str {
+        match self {
+            Self::Profile => "profile",
+            Self::Sweep => "sweep",
+            Self::Clause(clause) => clause.keyword(),
+        }
     }
 }
 

@@ -19,8 +19,10 @@ fn output_names(doc: &SwpDocument) -> (Vec<Option<String>>, Vec<Option<String>>)
         .surfaces
         .iter()
         .flat_map(|s| match s.kind {
-            SwpSurfaceKind::Revolution { profile, .. } => [Some(profile), None],
-            SwpSurfaceKind::GeneralizedCylinder { profile, sweep } => [Some(profile), Some(sweep)],
+            SwpSurfaceKind::Revolution { profile, .. } => [Some(profile), None, None, None],
+            SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale, twist } => {
+                [Some(profile), Some(sweep), scale, twist]
+            }
         })
         .flatten()
         .collect();
@@ -80,8 +82,15 @@ pub(crate) fn write(doc: &SwpDocument) -> String {
             SwpSurfaceKind::Revolution { steps, profile } => {
                 writeln!(out, "srev {name} {steps} {}", reference(profile))
             }
-            SwpSurfaceKind::GeneralizedCylinder { profile, sweep } => {
-                writeln!(out, "gcyl {name} {} {}", reference(profile), reference(sweep))
+            SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale, twist } => {
+                let _ = write!(out, "gcyl {name} {} {}", reference(profile), reference(sweep));
+                if let Some(scale) = scale {
+                    let _ = write!(out, " scale {}", reference(scale));
+                }
+                if let Some(twist) = twist {
+                    let _ = write!(out, " twist {}", reference(twist));
+                }
+                writeln!(out)
             }
         };
     }
@@ -95,7 +104,7 @@ fn write_curve(out: &mut String, curve: &SwpCurve, name: &str) {
     let (points, tangents) = match &curve.geometry {
         SwpGeometry::Points(points) => (points.as_slice(), None),
         SwpGeometry::Hermite { points, tangents } => (points.as_slice(), Some(tangents.as_slice())),
-        SwpGeometry::Circle { .. } => (empty, None),
+        SwpGeometry::Circle { .. } | SwpGeometry::Helix { .. } | SwpGeometry::Trefoil { .. } => (empty, None),
     };
     // `fmt::Write` for `String` never fails, so the results below are ignored.
     match (curve.kind, &curve.geometry) {
@@ -105,6 +114,20 @@ fn write_curve(out: &mut String, curve: &SwpCurve, name: &str) {
                 _ => 0.0,
             };
             let _ = writeln!(out, "circ {name} {} {radius}", curve.steps);
+        }
+        (SwpCurveKind::Helix, geometry) => {
+            let (radius, pitch, turns) = match geometry {
+                SwpGeometry::Helix { radius, pitch, turns } => (*radius, *pitch, *turns),
+                _ => (0.0, 0.0, 0.0),
+            };
+            let _ = writeln!(out, "helix {name} {} {radius} {pitch} {turns}", curve.steps);
+        }
+        (SwpCurveKind::Trefoil, geometry) => {
+            let size = match geometry {
+                SwpGeometry::Trefoil { size } => *size,
+                _ => 0.0,
+            };
+            let _ = writeln!(out, "trefoil {name} {} {size}", curve.steps);
         }
         (SwpCurveKind::Hermite, _) => {
             let tangents = tangents.unwrap_or(empty);
@@ -185,7 +208,7 @@ mod tests {
             ],
             surfaces: vec![SwpSurface {
                 name: None,
-                kind: SwpSurfaceKind::GeneralizedCylinder { profile: 0, sweep: 1 },
+                kind: SwpSurfaceKind::GeneralizedCylinder { profile: 0, sweep: 1, scale: None, twist: None },
                 pos: SourcePos::default(),
             }],
         };
@@ -204,14 +227,36 @@ mod tests {
             curves: vec![circle(Some("_c1")), circle(None), circle(Some("a b")), circle(Some("_c1"))],
             surfaces: vec![SwpSurface {
                 name: Some("_c1_1".into()),
-                kind: SwpSurfaceKind::GeneralizedCylinder { profile: 1, sweep: 7 },
+                kind: SwpSurfaceKind::GeneralizedCylinder { profile: 1, sweep: 7, scale: Some(2), twist: None },
                 pos: SourcePos::default(),
             }],
         };
         assert_eq!(
             write(&doc),
             "circ _c1 10 1\n\ncirc _c1_2 10 1\n\ncirc _c2 10 1\n\ncirc _c3 10 1\n\n\
-             gcyl _c1_1 _c1_2 .\n"
+             gcyl _c1_1 _c1_2 . scale _c2\n"
+        );
+    }
+
+    #[test]
+    fn primitives_and_clauses() {
+        let doc = SwpDocument {
+            curves: vec![
+                curve(None, SwpCurveKind::Circle, 2, SwpGeometry::Circle { radius: 0.25 }),
+                curve(None, SwpCurveKind::Helix, 3, SwpGeometry::Helix { radius: 1.5, pitch: -0.1, turns: 2.5 }),
+                curve(Some("k"), SwpCurveKind::Trefoil, 3, SwpGeometry::Trefoil { size: 2.0 }),
+                curve(Some("s"), SwpCurveKind::Circle, 2, SwpGeometry::Circle { radius: 1.0 }),
+            ],
+            surfaces: vec![SwpSurface {
+                name: None,
+                kind: SwpSurfaceKind::GeneralizedCylinder { profile: 0, sweep: 1, scale: Some(3), twist: Some(0) },
+                pos: SourcePos::default(),
+            }],
+        };
+        assert_eq!(
+            write(&doc),
+            "circ _c0 10 0.25\n\nhelix _c1 10 1.5 -0.1 2.5\n\ntrefoil k 10 2\n\ncirc s 10 1\n\n\
+             gcyl . _c0 _c1 scale s twist _c0\n"
         );
     }
 

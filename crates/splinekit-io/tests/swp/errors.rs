@@ -27,7 +27,7 @@ fn unknown_keyword() {
         2,
         3,
         &[
-            r#"found "BEZ2", expected a keyword (bez2, bsp2, bez3, bsp3, cr2, cr3, her2, her3, circ, srev or gcyl)"#,
+            r#"found "BEZ2", expected a keyword (bez2, bsp2, bez3, bsp3, cr2, cr3, her2, her3, circ, helix, trefoil, srev or gcyl)"#,
             "(keywords are lowercase)",
         ],
     );

@@ -121,7 +121,10 @@ fn names_may_look_like_keywords_or_numbers() {
     );
     assert_eq!(doc.curve_index("circ"), Some(0));
     assert_eq!(doc.curve_index("20"), Some(1));
-    assert_eq!(doc.surfaces[0].kind, SwpSurfaceKind::GeneralizedCylinder { profile: 0, sweep: 1 });
+    assert_eq!(
+        doc.surfaces[0].kind,
+        SwpSurfaceKind::GeneralizedCylinder { profile: 0, sweep: 1, scale: None, twist: None }
+    );
     assert_eq!(doc.surfaces[0].name.as_deref(), Some("closed"));
 }
 

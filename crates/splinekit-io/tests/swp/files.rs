@@ -21,7 +21,7 @@ fn summary(doc: &SwpDocument) -> Vec<(&'static str, Option<&str>, u32, Option<us
 }
 
 fn gcyl(profile: usize, sweep: usize) -> SwpSurfaceKind {
-    SwpSurfaceKind::GeneralizedCylinder { profile, sweep }
+    SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale: None, twist: None }
 }
 
 /// Checks that the last three control points repeat the first three: how these files write a

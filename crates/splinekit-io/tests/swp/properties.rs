@@ -183,7 +183,7 @@ fn document() -> impl Strategy<Value = SwpDocument> {
                     let kind = if revolution {
                         SwpSurfaceKind::Revolution { steps, profile }
                     } else {
-                        SwpSurfaceKind::GeneralizedCylinder { profile, sweep }
+                        SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale: None, twist: None }
                     };
                     surfaces.push(SwpSurface {
                         name: name.map(|base| format!("{base}S{j}")),
@@ -195,7 +195,7 @@ fn document() -> impl Strategy<Value = SwpDocument> {
             for s in &surfaces {
                 let (a, b) = match s.kind {
                     SwpSurfaceKind::Revolution { profile, .. } => (profile, profile),
-                    SwpSurfaceKind::GeneralizedCylinder { profile, sweep } => (profile, sweep),
+                    SwpSurfaceKind::GeneralizedCylinder { profile, sweep, .. } => (profile, sweep),
                 };
                 for i in [a, b] {
                     curves[i].name.get_or_insert_with(|| format!("r{i}"));

@@ -1,25 +1,32 @@
 //! [`AnyCurve`]: one type for every curve a file can hold.
 
 use crate::arclen::ArclenEstimate;
-use crate::curve::{Aabb, Circle, ParamCurve, PiecewiseCubic};
+use crate::curve::{Aabb, Circle, Helix, ParamCurve, PiecewiseCubic, Trefoil};
 use crate::vector::Vector;
 
-/// Any curve splinekit can evaluate: a chain of cubics (every spline kind) or an exact circle.
+/// Any curve splinekit can evaluate: a chain of cubics (every spline kind) or an exact
+/// parametric curve (circle, helix, trefoil knot).
 #[derive(Clone, Debug, PartialEq)]
 pub enum AnyCurve<P> {
     /// A compiled spline.
     Piecewise(PiecewiseCubic<P>),
     /// An exact circle.
     Circle(Circle),
+    /// An exact circular helix (open).
+    Helix(Helix),
+    /// The exact trefoil knot (closed).
+    Trefoil(Trefoil),
 }
 
 impl<P: Vector> AnyCurve<P> {
-    /// Whether the curve is a closed loop.
+    /// Whether the curve is a closed loop: as defined for splines, always for circles and
+    /// trefoils, never for helices.
     #[must_use]
     pub fn is_closed(&self) -> bool {
         match self {
             Self::Piecewise(c) => c.is_closed(),
-            Self::Circle(_) => true,
+            Self::Circle(_) | Self::Trefoil(_) => true,
+            Self::Helix(_) => false,
         }
     }
 }
@@ -29,6 +36,8 @@ macro_rules! dispatch {
         match $self {
             AnyCurve::Piecewise($c) => $e,
             AnyCurve::Circle($c) => $e,
+            AnyCurve::Helix($c) => $e,
+            AnyCurve::Trefoil($c) => $e,
         }
     };
 }

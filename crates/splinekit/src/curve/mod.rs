@@ -4,24 +4,29 @@
 //! Every kind (Bézier, uniform B-spline, Catmull-Rom, Hermite) validates its input once
 //! and compiles into a [`PiecewiseCubic`]: a chain of [`CubicBezier`] segments with the
 //! *concatenated parameter* `u ∈ [0, segments]`, segment `k` covering `[k, k+1]`
-//! with local `t = u − k` (SPEC §1.1). Circles ([`Circle`]) are exact, not cubic.
+//! with local `t = u − k` (SPEC §1.1). Circles ([`Circle`]), helices ([`Helix`]) and the
+//! trefoil knot ([`Trefoil`]) are exact parametric curves of one segment, not cubics.
 
 mod any;
 mod bezier;
 mod bspline;
 mod catmull_rom;
 mod circle;
+mod helix;
 mod hermite;
 mod piecewise;
 mod planar;
+mod trefoil;
 
 pub use any::AnyCurve;
 pub use bezier::{BEZIER_BASIS, CubicBezier};
 pub use bspline::{BSPLINE_BASIS, BSpline};
 pub use catmull_rom::{CATMULL_ROM_BASIS, CatmullRom};
 pub use circle::Circle;
+pub use helix::Helix;
 pub use hermite::Hermite;
 pub use piecewise::{BezierSpline, PiecewiseCubic};
+pub use trefoil::Trefoil;
 
 use crate::arclen::ArclenEstimate;
 use crate::vector::Vector;

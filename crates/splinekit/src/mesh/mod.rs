@@ -1,7 +1,20 @@
 //! Meshes. [`TriMesh`] is the indexed triangle mesh that sweeps produce and the mesh
-//! writers consume.
+//! writers consume; [`PolyMesh`] is the polygon mesh that readers produce and subdivision
+//! works on, with its half-edge [`Adjacency`].
 
 use std::collections::HashMap;
+
+mod adjacency;
+mod poly;
+mod validate;
+
+pub use adjacency::{Adjacency, EdgeProblem, NONE};
+pub use poly::{FaceVarying, PolyMesh};
+pub use validate::{
+    BoundaryLoop, Component, DEFAULT_DEGENERATE_TOLERANCE, DEFAULT_LISTED, Degeneracy, DegenerateFace, DuplicateFace,
+    InconsistentEdge, InvalidIndex, NonManifoldEdge, NonManifoldVertex, ShortFace, SplitReport, TopologyReport,
+    split_nonmanifold,
+};
 
 use glam::{DVec2, DVec3};
 
@@ -21,7 +34,7 @@ pub enum MeshError {
     /// An attribute array has the wrong length.
     #[error("{attribute}: {found} values for {expected} vertices")]
     AttributeLength {
-        /// `normals` or `uvs`.
+        /// `normals`, `uvs` or `colors`.
         attribute: &'static str,
         /// Its length.
         found: usize,
@@ -33,15 +46,15 @@ pub enum MeshError {
     NonFinite {
         /// Vertex index.
         vertex: usize,
-        /// `position`, `normal` or `uv`.
+        /// `position`, `normal`, `uv` or `color`.
         attribute: &'static str,
     },
 }
 
-/// An indexed triangle mesh with optional per-vertex normals and UVs.
+/// An indexed triangle mesh with optional per-vertex normals, UVs and colours.
 ///
 /// Triangles are counter-clockwise seen from the front (outside) of the surface.
-/// `normals` and `uvs` are either empty or hold one value per vertex.
+/// `normals`, `uvs` and `colors` are either empty or hold one value per vertex.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TriMesh {
     /// Vertex positions.
@@ -50,6 +63,8 @@ pub struct TriMesh {
     pub normals: Vec<DVec3>,
     /// Texture coordinates (empty, or one per vertex).
     pub uvs: Vec<DVec2>,
+    /// RGB colours in `[0, 1]` (empty, or one per vertex).
+    pub colors: Vec<DVec3>,
     /// Vertex indices of each triangle, counter-clockwise from the front.
     pub triangles: Vec<[u32; 3]>,
 }
@@ -73,7 +88,9 @@ impl TriMesh {
     /// The first problem found, naming the triangle or vertex.
     pub fn validate(&self) -> Result<(), MeshError> {
         let n = self.positions.len();
-        for (attribute, found) in [("normals", self.normals.len()), ("uvs", self.uvs.len())] {
+        for (attribute, found) in
+            [("normals", self.normals.len()), ("uvs", self.uvs.len()), ("colors", self.colors.len())]
+        {
             if found != 0 && found != n {
                 return Err(MeshError::AttributeLength { attribute, found, expected: n });
             }
@@ -96,6 +113,11 @@ impl TriMesh {
         for (vertex, p) in self.uvs.iter().enumerate() {
             if !p.is_finite() {
                 return Err(MeshError::NonFinite { vertex, attribute: "uv" });
+            }
+        }
+        for (vertex, p) in self.colors.iter().enumerate() {
+            if !p.is_finite() {
+                return Err(MeshError::NonFinite { vertex, attribute: "color" });
             }
         }
         Ok(())

@@ -339,6 +339,14 @@ pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepO
 fn add_cap(mesh: &mut TriMesh, ring: &[DVec2], frame: Frame, centre: DVec3, scale: DVec2, outward: DVec3) {
     let base = mesh.positions.len() as u32;
     let uv = !mesh.uvs.is_empty();
+    // A crease samples its corner twice (one point per side): the cap needs it once, or
+    // its triangulation gets zero-area triangles.
+    let mut ring: Vec<DVec2> = ring.to_vec();
+    ring.dedup();
+    while ring.len() > 1 && ring.first() == ring.last() {
+        ring.pop();
+    }
+    let ring = ring.as_slice();
     for q in ring {
         mesh.positions.push(frame.n * (q.x * scale.x) + frame.b * (q.y * scale.y) + centre);
         mesh.normals.push(outward.normalize_or_zero());

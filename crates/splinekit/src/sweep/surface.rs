@@ -890,7 +890,7 @@ fn build(g: Grid) -> Result<TriMesh, SurfaceError> {
         UvMode::SplitSeams => true,
     };
     if !want_uvs {
-        return Ok(TriMesh { positions, normals, uvs: Vec::new(), triangles });
+        return Ok(TriMesh { positions, normals, triangles, ..TriMesh::default() });
     }
 
     // UV layout: every column 0..=nu and row 0..=nv has its own vertices (identical to the

@@ -1,0 +1,148 @@
+#!/usr/bin/env bash
+# Loop subdivision speed against the peers (issue #4): OpenSubdiv, CGAL, OpenMesh, libigl and
+# splinekit (1 and 2 threads) on three meshes, one line per (tool, mesh, levels), then the ratios.
+#
+#   bench/compare_loop.sh [--levels N] [--repeat R] [--no-install] [--no-igl] [--no-splinekit]
+#
+# Installs the peers if missing (bench/install_peers.sh: Debian libosd-dev libcgal-dev
+# libopenmesh-dev, PyPI libigl in bench/.venv), builds the C++ drivers (bench/drivers/) and
+# `cargo build --release -p splinekit-cli`, generates the meshes with bench/meshgen.py into
+# target/bench-meshes/ (once), and runs every tool once per mesh with --repeat R.
+#
+# seconds  = median of R repeats of the subdivision alone (no file I/O; see each driver's header
+#            for exactly what is timed), levels N (default 3), peers on one thread;
+# rss_MB   = peak resident memory of the whole process (GNU time %M: input, output, everything);
+# out_MB   = size of the output arrays, V*3*8 + F*3*4 bytes (f64 positions, u32 triangles).
+#
+# Documentation and measurement only: never run by CI, asserts nothing. Takes about two minutes.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(cd "$here/.." && pwd)"
+levels=3
+repeat=5
+install=1
+igl=1
+splinekit=1
+while [ $# -gt 0 ]; do
+    case "$1" in
+    --levels) levels="$2"; shift 2 ;;
+    --repeat) repeat="$2"; shift 2 ;;
+    --no-install) install=0; shift ;;
+    --no-igl) igl=0; shift ;;
+    --no-splinekit) splinekit=0; shift ;;
+    *) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+    esac
+done
+if [ "${CI:-}" = true ]; then
+    echo "compare_loop.sh: a measurement for people, not for CI" >&2
+    exit 0
+fi
+
+peers="$root/target/bench-peers"
+meshdir="$root/target/bench-meshes"
+py="${BENCH_VENV:-$here/.venv}/bin/python"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
+
+[ "$install" = 1 ] && "$here/install_peers.sh"
+"$here/drivers/build.sh" "$peers"
+[ -x /usr/bin/time ] || { echo "compare_loop.sh: GNU time missing (apt-get install time)" >&2; exit 1; }
+
+# ---- meshes (bench/meshgen.py; deterministic, generated once)
+mkdir -p "$meshdir"
+declare -A gen_args=(
+    [torus100k]="torus 250 200"    # 100000 triangles, closed, genus 1, valence 6
+    [icosphere20k]="icosphere 5"   # 20480 triangles, closed, valences 5 and 6
+    [grid50k]="grid 250 100"       # 50000 triangles, open: one boundary loop, 4 corners
+)
+meshes=(torus100k icosphere20k grid50k)
+for m in "${meshes[@]}"; do
+    if [ ! -s "$meshdir/$m.obj" ]; then
+        # shellcheck disable=SC2086
+        python3 "$here/meshgen.py" ${gen_args[$m]} "$meshdir/$m.obj.tmp"
+        mv "$meshdir/$m.obj.tmp" "$meshdir/$m.obj"
+    fi
+done
+
+# ---- splinekit
+sk="$root/target/release/splinekit"
+notes=()
+if [ "$splinekit" = 1 ]; then
+    echo "compare_loop.sh: cargo build --release -p splinekit-cli" >&2
+    if ! (cd "$root" && cargo build --release -p splinekit-cli) >"$tmp/cargo.log" 2>&1; then
+        notes+=("splinekit skipped: cargo build --release -p splinekit-cli failed (last lines below)")
+        notes+=("$(tail -n 5 "$tmp/cargo.log")")
+        splinekit=0
+    elif ! "$sk" subdivide --help >/dev/null 2>&1; then
+        notes+=("splinekit skipped: this build has no 'subdivide' subcommand yet")
+        splinekit=0
+    fi
+fi
+
+# ---- runs
+load="$(cut -d' ' -f1 /proc/loadavg)"
+echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; Loop, $levels levels, median of $repeat repeats; peers on one thread"
+if ! python3 -c 'import sys; sys.exit(float(sys.argv[1]) >= 0.5)' "$load"; then
+    notes+=("the machine was busy at the start (load average $load): other work inflates every time")
+fi
+declare -A secs counts
+fmt='%-18s %-13s %6s %10s %10s %10s %9s %9s\n'
+printf "$fmt" tool mesh levels seconds vertices faces rss_MB out_MB
+run() { # tool mesh command...
+    local tool="$1" mesh="$2"
+    shift 2
+    if ! /usr/bin/time -f '%M' -o "$tmp/rss" "$@" >"$tmp/out" 2>"$tmp/err"; then
+        printf '%-18s %-13s %6s   failed: %s\n' "$tool" "$mesh" "$levels" "$(tail -n 1 "$tmp/err")"
+        return 0
+    fi
+    local line
+    line="$(python3 - "$tmp/out" "$tmp/rss" <<'PY'
+import json, sys
+out = open(sys.argv[1]).read().strip().splitlines()
+j = json.loads(out[-1])
+rss_kb = int(open(sys.argv[2]).read().split()[-1])
+v, f, s = int(j["vertices"]), int(j["faces"]), float(j["seconds"])
+print("%.6f" % s, v, f, "%.1f" % (rss_kb / 1024), "%.1f" % ((24 * v + 12 * f) / 1e6))
+PY
+)"
+    read -r s v f rss outmb <<<"$line"
+    secs["$tool/$mesh"]="$s"
+    if [ -z "${counts[$mesh]:-}" ]; then
+        counts["$mesh"]="$v $f"
+    elif [ "${counts[$mesh]}" != "$v $f" ]; then
+        notes+=("$tool on $mesh: $v vertices $f faces, but the first tool gave ${counts[$mesh]}")
+    fi
+    printf "$fmt" "$tool" "$mesh" "$levels" "$s" "$v" "$f" "$rss" "$outmb"
+}
+for m in "${meshes[@]}"; do
+    in="$meshdir/$m.obj"
+    [ -x "$peers/osd_loop" ] && run opensubdiv "$m" "$peers/osd_loop" "$in" -n "$levels" --repeat "$repeat"
+    [ -x "$peers/cgal_loop" ] && run cgal "$m" "$peers/cgal_loop" "$in" -n "$levels" --repeat "$repeat"
+    [ -x "$peers/openmesh_loop" ] && run openmesh "$m" "$peers/openmesh_loop" "$in" -n "$levels" --repeat "$repeat"
+    if [ "$igl" = 1 ] && [ -x "$py" ]; then
+        run libigl "$m" "$py" "$here/drivers/igl_loop.py" "$in" -n "$levels" --repeat "$repeat"
+    fi
+    if [ "$splinekit" = 1 ]; then
+        for t in 1 2; do
+            run "splinekit-t$t" "$m" "$sk" subdivide "$in" -n "$levels" --json --repeat "$repeat" --threads "$t"
+        done
+    fi
+done
+
+# ---- ratios (issue #4 targets: OpenSubdiv / splinekit-t1 >= 8, splinekit t1 / t2 >= 1.7)
+echo
+if [ "$splinekit" = 1 ]; then
+    printf '%-13s %22s %22s %20s\n' mesh "opensubdiv/splinekit-t1" "opensubdiv/splinekit-t2" "splinekit t1/t2"
+    for m in "${meshes[@]}"; do
+        o="${secs[opensubdiv/$m]:-}" s1="${secs[splinekit-t1/$m]:-}" s2="${secs[splinekit-t2/$m]:-}"
+        python3 -c '
+import sys
+m, o, s1, s2 = sys.argv[1:]
+r = lambda a, b: "%.2f" % (float(a) / float(b)) if a and b and float(b) > 0 else "-"
+print("%-13s %22s %22s %20s" % (m, r(o, s1), r(o, s2), r(s1, s2)))' "$m" "$o" "$s1" "$s2"
+    done
+else
+    echo "no splinekit lines, so no ratios"
+fi
+for n in "${notes[@]}"; do echo "note: $n"; done

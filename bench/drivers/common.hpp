@@ -1,0 +1,129 @@
+// Shared helpers of the Loop drivers: a small OBJ reader/writer (v and f lines only), the
+// command line, a clock and the JSON line. File I/O is never inside the timed region.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+struct Tri {
+    std::vector<double> xyz;  // 3 per vertex
+    std::vector<int> tri;     // 3 per face, 0-based
+    int num_vertices() const { return int(xyz.size() / 3); }
+    int num_faces() const { return int(tri.size() / 3); }
+};
+
+// Reads `v x y z` and `f a b c` (also a/b/c forms and negative indices); other lines are skipped.
+inline Tri read_obj(const char* path) {
+    FILE* f = std::fopen(path, "r");
+    if (!f) {
+        std::fprintf(stderr, "cannot open %s\n", path);
+        std::exit(2);
+    }
+    Tri m;
+    char line[4096];
+    long lineno = 0;
+    while (std::fgets(line, sizeof line, f)) {
+        ++lineno;
+        if (line[0] == 'v' && (line[1] == ' ' || line[1] == '\t')) {
+            double x, y, z;
+            if (std::sscanf(line + 2, "%lf %lf %lf", &x, &y, &z) != 3) {
+                std::fprintf(stderr, "%s:%ld: bad vertex\n", path, lineno);
+                std::exit(2);
+            }
+            m.xyz.insert(m.xyz.end(), {x, y, z});
+        } else if (line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
+            std::vector<int> face;
+            char* s = line + 2;
+            while (true) {
+                while (*s == ' ' || *s == '\t') ++s;
+                if (*s == '\0' || *s == '\n' || *s == '\r') break;
+                char* end;
+                long k = std::strtol(s, &end, 10);
+                if (end == s) {
+                    std::fprintf(stderr, "%s:%ld: bad face\n", path, lineno);
+                    std::exit(2);
+                }
+                face.push_back(int(k > 0 ? k - 1 : m.num_vertices() + k));
+                s = end;
+                while (*s && *s != ' ' && *s != '\t' && *s != '\n' && *s != '\r') ++s;
+            }
+            if (face.size() != 3) {
+                std::fprintf(stderr, "%s:%ld: not a triangle\n", path, lineno);
+                std::exit(2);
+            }
+            m.tri.insert(m.tri.end(), face.begin(), face.end());
+        }
+    }
+    std::fclose(f);
+    return m;
+}
+
+// Writes positions with %.17g (exact round trip) and 1-based faces.
+inline void write_obj(const char* path, const Tri& m, const std::string& comment) {
+    FILE* f = std::fopen(path, "w");
+    if (!f) {
+        std::fprintf(stderr, "cannot write %s\n", path);
+        std::exit(2);
+    }
+    std::fprintf(f, "# %s\n", comment.c_str());
+    for (int v = 0; v < m.num_vertices(); ++v)
+        std::fprintf(f, "v %.17g %.17g %.17g\n", m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]);
+    for (int t = 0; t < m.num_faces(); ++t)
+        std::fprintf(f, "f %d %d %d\n", m.tri[3 * t] + 1, m.tri[3 * t + 1] + 1, m.tri[3 * t + 2] + 1);
+    std::fclose(f);
+}
+
+struct Args {
+    const char* input = nullptr;
+    const char* output = nullptr;
+    int levels = 1;
+    int repeat = 1;
+    bool corners = false;
+};
+
+inline Args parse_args(int argc, char** argv, const char* usage, bool has_corners) {
+    Args a;
+    for (int i = 1; i < argc; ++i) {
+        std::string s = argv[i];
+        if (s == "-n" && i + 1 < argc) a.levels = std::atoi(argv[++i]);
+        else if (s == "--repeat" && i + 1 < argc) a.repeat = std::atoi(argv[++i]);
+        else if (s == "-o" && i + 1 < argc) a.output = argv[++i];
+        else if (s == "--corners" && has_corners) a.corners = true;
+        else if (s == "--json") {
+        }  // always JSON
+        else if (!a.input && s[0] != '-') a.input = argv[i];
+        else {
+            std::fprintf(stderr, "usage: %s\n", usage);
+            std::exit(2);
+        }
+    }
+    if (!a.input || a.levels < 0 || a.repeat < 1) {
+        std::fprintf(stderr, "usage: %s\n", usage);
+        std::exit(2);
+    }
+    return a;
+}
+
+inline double now_seconds() {
+    using namespace std::chrono;
+    return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+
+inline double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The same JSON line as `splinekit subdivide --json`, plus every repeat's time.
+inline void print_json(long vertices, long faces, const std::vector<double>& times) {
+    std::printf("{\"vertices\": %ld, \"faces\": %ld, \"seconds\": %.6f, \"all_seconds\": [", vertices, faces,
+                median(times));
+    for (size_t i = 0; i < times.size(); ++i) std::printf("%s%.6f", i ? ", " : "", times[i]);
+    std::printf("]}\n");
+}

@@ -1,0 +1,156 @@
+//! `splinekit subdivide`: counts, the JSON contract, output files read back, and bad input
+//! (a clear message, a non-zero exit, no output file).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde_json::Value;
+
+struct Run {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+}
+
+fn splinekit(args: &[&str]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_splinekit")).args(args).output().expect("running splinekit");
+    Run {
+        code: out.status.code(),
+        stdout: String::from_utf8(out.stdout).expect("UTF-8"),
+        stderr: String::from_utf8(out.stderr).expect("UTF-8"),
+    }
+}
+
+impl Run {
+    #[track_caller]
+    fn ok(&self) -> &str {
+        assert_eq!(self.code, Some(0), "stdout:\n{}\nstderr:\n{}", self.stdout, self.stderr);
+        &self.stdout
+    }
+
+    #[track_caller]
+    fn fails(&self) -> &str {
+        assert!(self.code.is_some_and(|c| c != 0), "expected failure\nstdout:\n{}", self.stdout);
+        assert!(self.stdout.is_empty());
+        &self.stderr
+    }
+}
+
+/// The course meshes (`../shared/data/obj`), as shipped (HTML lines included).
+fn shared(name: &str) -> String {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/obj").join(name);
+    assert!(p.exists(), "{} missing", p.display());
+    p.to_string_lossy().into_owned()
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("splinekit-subdivide-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Counts `v` and `f` lines of an OBJ file.
+fn obj_counts(path: &Path) -> (usize, usize) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let count = |p: &str| text.lines().filter(|l| l.starts_with(p)).count();
+    (count("v "), count("f "))
+}
+
+#[test]
+fn json_contract_and_counts() {
+    let ico = shared("icosahedron.obj");
+    for (levels, v, f) in [(1, 42, 80), (2, 162, 320), (3, 642, 1280)] {
+        let run =
+            splinekit(&["subdivide", &ico, "-n", &levels.to_string(), "--json", "--repeat", "3", "--threads", "1"]);
+        let json: Value = serde_json::from_str(run.ok()).unwrap();
+        let keys: Vec<&str> = json.as_object().unwrap().keys().map(String::as_str).collect();
+        assert_eq!(keys.len(), 3, "{json}");
+        assert_eq!(json["vertices"], v);
+        assert_eq!(json["faces"], f);
+        assert!(json["seconds"].as_f64().unwrap() >= 0.0);
+    }
+}
+
+#[test]
+fn writes_every_format_and_warns_about_html_lines() {
+    let dir = temp_dir("formats");
+    let bunny = shared("bunny.obj");
+    for ext in ["obj", "ply", "stl", "glb"] {
+        let out = dir.join(format!("bunny.{ext}"));
+        let run = splinekit(&["subdivide", &bunny, "-n", "1", "-o", out.to_str().unwrap()]);
+        let text = run.ok();
+        assert!(text.contains("vertices") && text.contains("19872 triangles"), "{text}");
+        assert!(run.stderr.contains("warning"), "the HTML lines are reported: {}", run.stderr);
+        assert!(out.metadata().unwrap().len() > 0);
+    }
+    // V + E for the bunny: V = 2503, F = 4968, 42 boundary edges → E = (3F + 42) / 2.
+    let (v, f) = obj_counts(&dir.join("bunny.obj"));
+    assert_eq!((v, f), (2503 + (3 * 4968 + 42) / 2, 4 * 4968));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn options_change_the_result() {
+    let dir = temp_dir("options");
+    let patch = shared("patch.obj");
+    let mut outputs = Vec::new();
+    for flags in [&["--weights", "loop"][..], &["--weights", "warren"], &["--boundary", "corners"]] {
+        let out = dir.join(format!("patch{}.obj", outputs.len()));
+        let mut args = vec!["subdivide", &patch, "-n", "2", "-o", out.to_str().unwrap()];
+        args.extend_from_slice(flags);
+        splinekit(&args).ok();
+        outputs.push(std::fs::read_to_string(&out).unwrap());
+    }
+    assert_ne!(outputs[0], outputs[2], "corners fixed moves fewer vertices");
+    // Colour by level: OBJ vertices get r g b.
+    let out = dir.join("colored.obj");
+    splinekit(&["subdivide", &patch, "-n", "2", "--color-by-level", "-o", out.to_str().unwrap()]).ok();
+    let text = std::fs::read_to_string(&out).unwrap();
+    let v: Vec<&str> = text.lines().filter(|l| l.starts_with("v ")).collect();
+    assert!(v.iter().all(|l| l.split_whitespace().count() == 7), "v x y z r g b");
+    // The 16 base vertices are grey (0.6), the rest coloured.
+    assert!(v[..16].iter().all(|l| l.ends_with(" 0.6 0.6 0.6")));
+    assert!(!v[16].ends_with(" 0.6 0.6 0.6"));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn bad_input_fails_cleanly() {
+    let dir = temp_dir("bad");
+    let quad = dir.join("quad.obj");
+    std::fs::write(&quad, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+    let out = dir.join("out.obj");
+    let err =
+        splinekit(&["subdivide", quad.to_str().unwrap(), "-n", "1", "-o", out.to_str().unwrap()]).fails().to_owned();
+    assert!(err.contains("face 0 has 4 corners"), "{err}");
+    assert!(!out.exists());
+
+    let bowtie = dir.join("bowtie.obj");
+    std::fs::write(&bowtie, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n").unwrap();
+    let err =
+        splinekit(&["subdivide", bowtie.to_str().unwrap(), "-n", "1", "-o", out.to_str().unwrap()]).fails().to_owned();
+    assert!(err.contains("vertex 0 is non-manifold"), "{err}");
+    assert!(err.contains("--split-nonmanifold"), "the message says how to go on: {err}");
+    assert!(!out.exists());
+    let run = splinekit(&[
+        "subdivide",
+        bowtie.to_str().unwrap(),
+        "-n",
+        "1",
+        "--split-nonmanifold",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    run.ok();
+    assert_eq!(obj_counts(&out), (6 + 6, 8));
+
+    let broken = dir.join("broken.obj");
+    std::fs::write(&broken, "v 0 0 0\nv 1 0 x\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let err =
+        splinekit(&["subdivide", broken.to_str().unwrap(), "-n", "1", "-o", out.to_str().unwrap()]).fails().to_owned();
+    assert!(err.contains("broken.obj:2:"), "{err}");
+    let err = splinekit(&["subdivide", &shared("patch.obj"), "-n", "1", "-o", "x.xyz"]).fails().to_owned();
+    assert!(err.contains("unknown output format"), "{err}");
+    let _ = std::fs::remove_dir_all(dir);
+}

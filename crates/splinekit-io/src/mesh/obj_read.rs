@@ -1,0 +1,550 @@
+//! The Wavefront OBJ reader.
+
+use std::io::Read;
+
+use glam::{DVec2, DVec3};
+use splinekit::mesh::{FaceVarying, PolyMesh};
+
+use super::load::{self, LoadedMesh, ReadWarningKind, Warnings, next_token, parse_f64, parse_i64};
+use super::{MeshIoError, MeshIoErrorKind};
+use crate::swp::SourcePos;
+
+/// "No value" in the per-corner index arrays while reading.
+const ABSENT: u32 = u32::MAX;
+
+/// What the values of a `v` line are, by position.
+const VERTEX_VALUES: [&str; 6] =
+    ["x coordinate", "y coordinate", "z coordinate", "w weight or red component", "green component", "blue component"];
+
+/// Reads a Wavefront OBJ mesh from `reader`; `origin` names it in errors (usually the path).
+///
+/// # What is read
+///
+/// - `v x y z`, `v x y z w` (the weight is ignored: it only matters for rational curves and
+///   surfaces) and `v x y z r g b` (a vertex colour, kept as given, usually in `[0, 1]`).
+///   Colours are kept only if every vertex has one; otherwise they are dropped with a
+///   [`ColorsDropped`](ReadWarningKind::ColorsDropped) warning.
+/// - `vt u [v [w]]` (`v` defaults to 0, `w` is ignored) and `vn x y z`.
+/// - `f` with one reference per corner, in any of the forms `v`, `v/vt`, `v//vn`, `v/vt/vn`
+///   (forms may be mixed within a face), with 1-based indices or negative ones relative to
+///   the end of the list so far (`-1` is the last vertex defined). Polygons of any size are
+///   kept as they are; faces with one or two corners are kept too (for
+///   [`TopologyReport`](splinekit::mesh::TopologyReport) to report). A positive index may
+///   refer to a vertex defined later in the file.
+/// - Texture coordinates and normals become face-varying attributes
+///   ([`FaceVarying`]): `vt`/`vn` values as written, and per corner the index given. An
+///   attribute is kept only if every corner of every face gives it; if some faces have it
+///   and some do not, it is dropped with an
+///   [`AttributeDropped`](ReadWarningKind::AttributeDropped) warning naming the first face
+///   line without it.
+/// - `o`, `g`, `s`, `usemtl`, `mtllib`, `l` and `p` are ignored, as are comments (`#` to the
+///   end of the line, also after a statement) and empty lines. Any other statement —
+///   including free-form geometry (`vp`, `curv`, `surf`, …) and the HTML lines around the
+///   course's `icosahedron.obj` and `bunny.obj` — is skipped with an
+///   [`UnknownStatement`](ReadWarningKind::UnknownStatement) warning naming the line (at most
+///   [`MAX_WARNINGS`](super::MAX_WARNINGS) of them, then a count).
+///
+/// Lines end at LF; a CR before it and a UTF-8 byte order mark are ignored. Backslash line
+/// continuation is not supported. The file is read in one pass without allocating per line.
+///
+/// # Errors
+///
+/// A [`MeshIoError`] at `origin:LINE:COL` (1-based, the column counted in characters) naming
+/// what was found and what was expected: a malformed number, a missing or extra value, a
+/// malformed face reference, index 0, or an index out of range (checked against the
+/// vertices, texture coordinates or normals defined so far for negative indices, and in the
+/// whole file for positive ones). Nothing is returned on error.
+///
+/// ```
+/// use splinekit_io::mesh::read_obj;
+///
+/// let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 -2/1/1 -1/1/1\n";
+/// let loaded = read_obj(text.as_bytes(), "quad.obj")?;
+/// assert_eq!(loaded.mesh.face(0), &[0, 1, 2, 3]);
+/// assert_eq!(loaded.mesh.uvs.unwrap().indices, vec![0; 4]);
+///
+/// let err = read_obj("v 0 0 0\nv 1 0 0\nv 1 1,5 0\n".as_bytes(), "bad.obj").unwrap_err();
+/// assert_eq!(err.to_string(), r#"bad.obj:3:5: found "1,5", expected a number (y coordinate)"#);
+/// # Ok::<(), splinekit_io::MeshIoError>(())
+/// ```
+pub fn read_obj<R: Read>(reader: R, origin: &str) -> Result<LoadedMesh, MeshIoError> {
+    let bytes = load::read_all(reader, origin)?;
+    parse_obj(&bytes, origin)
+}
+
+/// Which list a face index refers to.
+#[derive(Clone, Copy)]
+enum List {
+    Vertex,
+    TexCoord,
+    Normal,
+}
+
+impl List {
+    fn name(self) -> &'static str {
+        match self {
+            Self::Vertex => "vertex",
+            Self::TexCoord => "texture coordinate",
+            Self::Normal => "normal",
+        }
+    }
+}
+
+/// A positive index beyond the list so far, checked at the end of the file.
+struct Forward {
+    list: List,
+    index: u32,
+    token: Vec<u8>,
+    pos: SourcePos,
+}
+
+/// Per-face bookkeeping of one attribute.
+#[derive(Default)]
+struct Presence {
+    any_corner: bool,
+    faces_with: usize,
+    faces_without: usize,
+    first_without: usize,
+}
+
+impl Presence {
+    fn face(&mut self, line: usize, with: usize, corners: usize) {
+        self.any_corner |= with > 0;
+        if with == corners {
+            self.faces_with += 1;
+        } else {
+            self.faces_without += 1;
+            if self.first_without == 0 {
+                self.first_without = line;
+            }
+        }
+    }
+
+    /// Whether to keep the attribute; warns when dropping it.
+    fn keep(&self, attribute: &'static str, warnings: &mut Warnings) -> bool {
+        if !self.any_corner {
+            return false;
+        }
+        if self.faces_without == 0 {
+            return true;
+        }
+        warnings.push(
+            0,
+            ReadWarningKind::AttributeDropped {
+                attribute,
+                faces_with: self.faces_with,
+                faces_without: self.faces_without,
+                first_without: self.first_without,
+            },
+        );
+        false
+    }
+}
+
+/// Parses OBJ text (see [`read_obj`]).
+pub(crate) fn parse_obj(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIoError> {
+    let mut positions: Vec<DVec3> = Vec::new();
+    let mut colors: Vec<DVec3> = Vec::new();
+    let (mut colored, mut first_uncolored) = (0usize, 0usize);
+    let mut tex: Vec<DVec2> = Vec::new();
+    let mut normals: Vec<DVec3> = Vec::new();
+    let mut face_offsets = vec![0u32];
+    let mut face_vertices: Vec<u32> = Vec::new();
+    let mut face_tex: Vec<u32> = Vec::new();
+    let mut face_normals: Vec<u32> = Vec::new();
+    let (mut tex_presence, mut normal_presence) = (Presence::default(), Presence::default());
+    let mut forward: Vec<Forward> = Vec::new();
+    let mut warnings = Warnings::default();
+
+    for (no, line) in load::lines(bytes) {
+        let mut pos = 0;
+        let Some((_, key)) = next_token(line, &mut pos) else { continue };
+        let unexpected =
+            |offset: usize, token: &[u8], expected: String| load::unexpected(origin, no, line, offset, token, expected);
+        match key {
+            b"v" => {
+                let mut values = [0.0; 6];
+                let (n, end) = numbers(line, &mut pos, &mut values, &VERTEX_VALUES, &unexpected)?;
+                if n < 3 || n == 5 {
+                    return Err(unexpected(end, b"", format!("a number ({})", VERTEX_VALUES[n])));
+                }
+                if positions.len() >= ABSENT as usize {
+                    return Err(too_many(origin, no, line, "vertices"));
+                }
+                positions.push(DVec3::new(values[0], values[1], values[2]));
+                if n == 6 {
+                    colored += 1;
+                    // Kept only while every vertex so far has one; the count decides at the end.
+                    if colors.len() + 1 == positions.len() {
+                        colors.push(DVec3::new(values[3], values[4], values[5]));
+                    }
+                } else if first_uncolored == 0 {
+                    first_uncolored = no;
+                }
+            }
+            b"vt" => {
+                let mut values = [0.0; 3];
+                let names = ["u coordinate", "v coordinate", "w coordinate"];
+                let (n, end) = numbers(line, &mut pos, &mut values, &names, &unexpected)?;
+                if n == 0 {
+                    return Err(unexpected(end, b"", String::from("a number (u coordinate)")));
+                }
+                if tex.len() >= ABSENT as usize {
+                    return Err(too_many(origin, no, line, "texture coordinates"));
+                }
+                tex.push(DVec2::new(values[0], values[1]));
+            }
+            b"vn" => {
+                let mut values = [0.0; 3];
+                let names = ["x component", "y component", "z component"];
+                let (n, end) = numbers(line, &mut pos, &mut values, &names, &unexpected)?;
+                if n < 3 {
+                    return Err(unexpected(end, b"", format!("a number ({})", names[n])));
+                }
+                if normals.len() >= ABSENT as usize {
+                    return Err(too_many(origin, no, line, "normals"));
+                }
+                normals.push(DVec3::from_array(values));
+            }
+            b"f" => {
+                let start = face_vertices.len();
+                let mut end = pos;
+                while let Some((offset, token)) = next_token(line, &mut pos) {
+                    end = pos;
+                    let counts = [positions.len(), tex.len(), normals.len()];
+                    let corner = parse_reference(token, offset, counts, &unexpected, &mut |list, index, at| {
+                        forward.push(Forward {
+                            list,
+                            index,
+                            token: token_at(line, at).to_vec(),
+                            pos: SourcePos::new(no, load::column(line, at)),
+                        });
+                    })?;
+                    face_vertices.push(corner[0]);
+                    face_tex.push(corner[1]);
+                    face_normals.push(corner[2]);
+                }
+                let corners = face_vertices.len() - start;
+                if corners == 0 {
+                    return Err(unexpected(end, b"", String::from("a vertex reference v, v/vt, v//vn or v/vt/vn")));
+                }
+                let with_tex = face_tex[start..].iter().filter(|&&t| t != ABSENT).count();
+                let with_normal = face_normals[start..].iter().filter(|&&t| t != ABSENT).count();
+                tex_presence.face(no, with_tex, corners);
+                normal_presence.face(no, with_normal, corners);
+                face_offsets.push(face_vertices.len() as u32);
+            }
+            b"o" | b"g" | b"s" | b"usemtl" | b"mtllib" | b"l" | b"p" => {}
+            _ => warnings.unknown(no, line),
+        }
+    }
+
+    // Forward references, in file order.
+    for f in &forward {
+        let count = match f.list {
+            List::Vertex => positions.len(),
+            List::TexCoord => tex.len(),
+            List::Normal => normals.len(),
+        };
+        if f.index as usize >= count {
+            let kind = MeshIoErrorKind::UnexpectedToken {
+                found: String::from_utf8_lossy(&f.token).into_owned(),
+                expected: range_message(f.list, count, true),
+            };
+            return Err(MeshIoError::at(origin, f.pos, kind));
+        }
+    }
+
+    let keep_colors = colored > 0 && colored == positions.len();
+    if colored > 0 && !keep_colors {
+        warnings.push(
+            0,
+            ReadWarningKind::ColorsDropped {
+                vertices_with: colored,
+                vertices_without: positions.len() - colored,
+                first_without: first_uncolored,
+            },
+        );
+    }
+    let uvs = tex_presence
+        .keep("texture coordinates", &mut warnings)
+        .then_some(FaceVarying { values: tex, indices: face_tex });
+    let normals = normal_presence
+        .keep("normals", &mut warnings)
+        .then_some(FaceVarying { values: normals, indices: face_normals });
+    let mesh = PolyMesh {
+        positions,
+        colors: if keep_colors { colors } else { Vec::new() },
+        face_offsets,
+        face_vertices,
+        normals,
+        uvs,
+    };
+    Ok(LoadedMesh { mesh, warnings: warnings.finish() })
+}
+
+/// The token of `line` starting at byte `at`.
+fn token_at(line: &[u8], at: usize) -> &[u8] {
+    let end = line[at..].iter().position(|&b| b.is_ascii_whitespace() || b == b'/').map_or(line.len(), |e| at + e);
+    &line[at..end]
+}
+
+fn too_many(origin: &str, no: usize, line: &[u8], what: &str) -> MeshIoError {
+    load::error_at(
+        origin,
+        no,
+        line,
+        0,
+        MeshIoErrorKind::Unrepresentable { format: "32-bit indices", what: format!("more than 4294967294 {what}") },
+    )
+}
+
+/// Reads up to `values.len()` numbers from the rest of the line; returns how many, and the
+/// byte offset just after the last token (for "expected more" errors).
+fn numbers<F>(
+    line: &[u8],
+    pos: &mut usize,
+    values: &mut [f64],
+    names: &[&str],
+    unexpected: &F,
+) -> Result<(usize, usize), MeshIoError>
+where
+    F: Fn(usize, &[u8], String) -> MeshIoError,
+{
+    let mut n = 0;
+    let mut end = *pos;
+    while let Some((offset, token)) = next_token(line, pos) {
+        if n == values.len() {
+            return Err(unexpected(offset, token, String::from("end of line")));
+        }
+        values[n] = parse_f64(token).ok_or_else(|| unexpected(offset, token, format!("a number ({})", names[n])))?;
+        n += 1;
+        end = *pos;
+    }
+    Ok((n, end))
+}
+
+/// Parses one face corner reference `v`, `v/vt`, `v//vn` or `v/vt/vn` at byte `offset`;
+/// returns the 0-based indices (or [`ABSENT`]). Positive indices beyond the lists so far go
+/// to `forward(list, index, byte offset)`.
+fn parse_reference<F>(
+    token: &[u8],
+    offset: usize,
+    counts: [usize; 3],
+    unexpected: &F,
+    forward: &mut dyn FnMut(List, u32, usize),
+) -> Result<[u32; 3], MeshIoError>
+where
+    F: Fn(usize, &[u8], String) -> MeshIoError,
+{
+    let form = "a vertex reference v, v/vt, v//vn or v/vt/vn";
+    let mut out = [ABSENT; 3];
+    let mut start = 0;
+    for (k, list) in [List::Vertex, List::TexCoord, List::Normal].into_iter().enumerate() {
+        if start > token.len() {
+            break;
+        }
+        let end = token[start..].iter().position(|&b| b == b'/').map_or(token.len(), |e| start + e);
+        let part = &token[start..end];
+        let at = offset + start;
+        if !part.is_empty() {
+            let value = parse_i64(part)
+                .ok_or_else(|| unexpected(at, part, format!("an integer {} index (in {form})", list.name())))?;
+            out[k] = resolve(value, counts[k], list, at, part, unexpected, forward)?;
+        } else if k == 0 {
+            return Err(unexpected(offset, token, String::from(form)));
+        }
+        start = end + 1;
+    }
+    if start <= token.len() {
+        // A fourth part.
+        return Err(unexpected(offset, token, String::from(form)));
+    }
+    Ok(out)
+}
+
+/// Turns a 1-based or negative OBJ index into a 0-based one.
+fn resolve<F>(
+    value: i64,
+    count: usize,
+    list: List,
+    at: usize,
+    part: &[u8],
+    unexpected: &F,
+    forward: &mut dyn FnMut(List, u32, usize),
+) -> Result<u32, MeshIoError>
+where
+    F: Fn(usize, &[u8], String) -> MeshIoError,
+{
+    let count_i = count as i64;
+    if value == 0 {
+        return Err(unexpected(at, part, format!("a non-zero {} index (OBJ counts from 1)", list.name())));
+    }
+    if value < 0 {
+        if value < -count_i {
+            return Err(unexpected(at, part, range_message(list, count, false)));
+        }
+        return Ok((count_i + value) as u32);
+    }
+    let index = value - 1;
+    if index >= i64::from(ABSENT) {
+        return Err(unexpected(at, part, range_message(list, count, false)));
+    }
+    if index >= count_i {
+        forward(list, index as u32, at);
+    }
+    Ok(index as u32)
+}
+
+/// "a vertex index from 1 to N or from -N to -1" (`in_file`: the count is the whole file's).
+fn range_message(list: List, count: usize, in_file: bool) -> String {
+    let name = list.name();
+    if count == 0 {
+        let plural = match list {
+            List::Vertex => "vertices",
+            List::TexCoord => "texture coordinates",
+            List::Normal => "normals",
+        };
+        let scope = if in_file { "in the file" } else { "before this line" };
+        return format!("a {name} index, but there are no {plural} {scope}");
+    }
+    format!("a {name} index from 1 to {count} or from -{count} to -1")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read(text: &str) -> Result<LoadedMesh, MeshIoError> {
+        read_obj(text.as_bytes(), "t.obj")
+    }
+
+    fn err(text: &str) -> String {
+        read(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn forms_and_relative_indices() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n\
+                    f 1/1/1 2/2/1 3/3/1\nf -3/-3/-1 -2/-2/-1 -1/-1/-1\n";
+        let m = read(text).unwrap().mesh;
+        assert_eq!(m.face_vertices, vec![0, 1, 2, 0, 1, 2]);
+        assert_eq!(m.uvs.as_ref().unwrap().indices, vec![0, 1, 2, 0, 1, 2]);
+        assert_eq!(m.normals.as_ref().unwrap().indices, vec![0; 6]);
+        assert_eq!(m.uvs.unwrap().values[1], DVec2::new(1.0, 0.0));
+        let m = read("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n").unwrap().mesh;
+        assert!(m.uvs.is_none());
+        assert_eq!(m.normals.unwrap().indices, vec![0; 3]);
+        let m = read("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.5\nf 1/1 2/1 3/1\n").unwrap().mesh;
+        assert_eq!(m.uvs.unwrap().values, vec![DVec2::new(0.5, 0.0)]);
+    }
+
+    #[test]
+    fn colours_and_weights() {
+        let m = read("v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n").unwrap();
+        assert_eq!(m.mesh.colors, vec![DVec3::X, DVec3::Y, DVec3::Z]);
+        assert!(m.warnings.is_empty());
+        let m = read("v 0 0 0 1\nv 1 0 0 2\nv 0 1 0 3\nf 1 2 3\n").unwrap();
+        assert!(m.mesh.colors.is_empty());
+        assert_eq!(m.mesh.positions[2], DVec3::Y);
+        let m = read("v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0 0 0 1\nf 1 2 3\n").unwrap();
+        assert!(m.mesh.colors.is_empty());
+        assert_eq!(
+            m.warnings[0].to_string(),
+            "dropped the vertex colours: 2 vertices have one, 1 do not (the first at line 2)"
+        );
+    }
+
+    #[test]
+    fn mixed_attributes_are_dropped_with_a_warning() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\n\
+                    f 1/1 2/1 3/1\nf 2/1 4 3\n";
+        let m = read(text).unwrap();
+        assert!(m.mesh.uvs.is_none());
+        assert_eq!(
+            m.warnings[0].to_string(),
+            "dropped the texture coordinates: 1 faces have them, 1 do not (the first at line 7)"
+        );
+    }
+
+    #[test]
+    fn ignored_and_unknown_statements() {
+        let text = "# c\nmtllib a.mtl\no obj\ng grp\ns 1\nusemtl m\nv 0 0 0 # inline\nv 1 0 0\nv 0 1 0\n\
+                    l 1 2\np 1\nvp 0.5\n<html><pre># x\nf 1 2 3\n\n";
+        let m = read(text).unwrap();
+        assert_eq!(m.mesh.num_faces(), 1);
+        let w: Vec<String> = m.warnings.iter().map(ToString::to_string).collect();
+        assert_eq!(
+            w,
+            vec![
+                r#"line 12: skipped unknown statement "vp 0.5""#,
+                r#"line 13: skipped unknown statement "<html><pre># x""#
+            ]
+        );
+    }
+
+    #[test]
+    fn forward_references() {
+        let m = read("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap();
+        assert_eq!(m.mesh.face(0), &[0, 1, 2]);
+        assert_eq!(
+            err("f 1 2 4\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"),
+            r#"t.obj:1:7: found "4", expected a vertex index from 1 to 3 or from -3 to -1"#
+        );
+    }
+
+    #[test]
+    fn errors_name_line_column_and_expectation() {
+        let v3 = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+        assert_eq!(err("v 0 0\n"), "t.obj:1:6: found end of line, expected a number (z coordinate)");
+        assert_eq!(err("v 0 0 0 1 2\n"), "t.obj:1:12: found end of line, expected a number (blue component)");
+        assert_eq!(err("v 0 0 0 1 2 3 4\n"), r#"t.obj:1:15: found "4", expected end of line"#);
+        assert_eq!(err("v 0 x 0\n"), r#"t.obj:1:5: found "x", expected a number (y coordinate)"#);
+        assert_eq!(err("vn 0 0\n"), "t.obj:1:7: found end of line, expected a number (z component)");
+        assert_eq!(err("vt\n"), "t.obj:1:3: found end of line, expected a number (u coordinate)");
+        assert_eq!(
+            err(&format!("{v3}f 1 0 3\n")),
+            r#"t.obj:4:5: found "0", expected a non-zero vertex index (OBJ counts from 1)"#
+        );
+        assert_eq!(
+            err(&format!("{v3}f 1 2 -4\n")),
+            r#"t.obj:4:7: found "-4", expected a vertex index from 1 to 3 or from -3 to -1"#
+        );
+        for extreme in ["-9223372036854775808", "9223372036854775807", "99999999999999999999"] {
+            assert!(err(&format!("{v3}f 1 2 {extreme}\n")).starts_with("t.obj:4:7: found "), "{extreme}");
+        }
+        assert_eq!(
+            err(&format!("{v3}f 1/1 2 3\n")),
+            r#"t.obj:4:5: found "1", expected a texture coordinate index, but there are no texture coordinates in the file"#
+        );
+        assert_eq!(
+            err(&format!("{v3}f 1//x 2 3\n")),
+            r#"t.obj:4:6: found "x", expected an integer normal index (in a vertex reference v, v/vt, v//vn or v/vt/vn)"#
+        );
+        assert_eq!(
+            err(&format!("{v3}f 1/1/1/1 2 3\n")),
+            r#"t.obj:4:3: found "1/1/1/1", expected a vertex reference v, v/vt, v//vn or v/vt/vn"#
+        );
+        assert_eq!(
+            err(&format!("{v3}f /1 2 3\n")),
+            r#"t.obj:4:3: found "/1", expected a vertex reference v, v/vt, v//vn or v/vt/vn"#
+        );
+        assert_eq!(
+            err(&format!("{v3}f\n")),
+            "t.obj:4:2: found end of line, expected a vertex reference v, v/vt, v//vn or v/vt/vn"
+        );
+        assert_eq!(
+            err(&format!("{v3}f 1 2 3.0\n")),
+            r#"t.obj:4:7: found "3.0", expected an integer vertex index (in a vertex reference v, v/vt, v//vn or v/vt/vn)"#
+        );
+        // Columns count characters, not bytes.
+        assert_eq!(err("g é\nv 0 é 0\n"), r#"t.obj:2:5: found "é", expected a number (y coordinate)"#);
+    }
+
+    #[test]
+    fn crlf_short_faces_and_trailing_slash() {
+        let m = read("v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1/ 2/ 3/\r\nf 1 2\r\n").unwrap().mesh;
+        assert_eq!(m.face_offsets, vec![0, 3, 5]);
+        assert!(m.uvs.is_none());
+    }
+}

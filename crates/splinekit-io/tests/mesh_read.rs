@@ -1,0 +1,511 @@
+//! Integration tests of the mesh readers (OBJ, PLY, STL) and `load_mesh`: the bundled course
+//! meshes with their known counts and topology, round trips through our writers, generated
+//! ASCII and binary samples, and errors with exact positions.
+
+use std::collections::HashMap;
+use std::f64::consts::TAU;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use glam::{DVec2, DVec3};
+use splinekit::TriMesh;
+use splinekit::mesh::{Degeneracy, PolyMesh, TopologyReport};
+use splinekit_io::mesh::{
+    LoadedMesh, MeshFormat, ReadWarningKind, load_mesh, read_mesh, read_obj, read_ply, read_stl, write_mesh,
+};
+
+// ---------------------------------------------------------------------------------------
+// Helpers
+
+/// The folder holding `name` among the test copies and the shared data folder.
+fn data_file(name: &str) -> PathBuf {
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let candidates = [
+        crate_dir.join("tests/data/obj"),
+        crate_dir.join("../../../shared/data/obj"),
+        crate_dir.join("../../shared/data/obj"),
+    ];
+    candidates
+        .iter()
+        .map(|d| d.join(name))
+        .find(|p| p.is_file())
+        .unwrap_or_else(|| panic!("no {name} in any of {candidates:?}"))
+}
+
+fn load(name: &str) -> LoadedMesh {
+    let path = data_file(name);
+    load_mesh(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn report(mesh: &PolyMesh) -> TopologyReport {
+    TopologyReport::new(mesh, 0.0)
+}
+
+/// A temporary directory, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(tag: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("splinekit-mesh-read-{tag}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+
+    fn write(&self, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
+        let path = self.0.join(name);
+        fs::write(&path, bytes).unwrap();
+        path
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A torus of `n × m` quads split into triangles, with normals and UVs, coordinates not
+/// exact in binary.
+fn torus(n: u32, m: u32) -> TriMesh {
+    let mut mesh = TriMesh::default();
+    for i in 0..n {
+        for j in 0..m {
+            let (u, v) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(m));
+            let (su, cu) = (TAU * u).sin_cos();
+            let (sv, cv) = (TAU * v).sin_cos();
+            let r = 1.0 + 0.3 * cv;
+            mesh.positions.push(DVec3::new(r * cu, r * su, 0.3 * sv) * 0.7);
+            mesh.normals.push(DVec3::new(cv * cu, cv * su, sv));
+            mesh.uvs.push(DVec2::new(u, v));
+        }
+    }
+    let id = |i: u32, j: u32| (i % n) * m + (j % m);
+    for i in 0..n {
+        for j in 0..m {
+            mesh.triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            mesh.triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    mesh
+}
+
+fn bytes_of(mesh: &TriMesh, format: MeshFormat) -> Vec<u8> {
+    let mut out = Vec::new();
+    write_mesh(mesh, &mut out, format).unwrap();
+    out
+}
+
+fn f32_round(p: DVec3) -> DVec3 {
+    p.as_vec3().as_dvec3()
+}
+
+/// Merges equal positions (test-side welding of OBJ files with duplicated seams): exactly
+/// equal ones with `decimals` `None`, else those equal when rounded to that many decimals
+/// (correctly rounded, as Python's `round(x, n)`).
+fn weld(mesh: &PolyMesh, decimals: Option<usize>) -> PolyMesh {
+    let mut map: HashMap<[i64; 3], u32> = HashMap::new();
+    let mut positions = Vec::new();
+    let remap: Vec<u32> = mesh
+        .positions
+        .iter()
+        .map(|p| {
+            let key = match decimals {
+                None => p.to_array().map(|x| x.to_bits() as i64),
+                Some(n) => p.to_array().map(|x| (format!("{x:.n$}").parse::<f64>().unwrap() + 0.0).to_bits() as i64),
+            };
+            *map.entry(key).or_insert_with(|| {
+                positions.push(*p);
+                positions.len() as u32 - 1
+            })
+        })
+        .collect();
+    PolyMesh {
+        positions,
+        face_offsets: mesh.face_offsets.clone(),
+        face_vertices: mesh.face_vertices.iter().map(|&v| remap[v as usize]).collect(),
+        ..PolyMesh::default()
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// The course meshes (counts from shared/data/SOURCES.md)
+
+#[test]
+fn icosahedron_with_its_html_lines() {
+    let loaded = load("icosahedron.obj");
+    let m = &loaded.mesh;
+    assert_eq!((m.num_vertices(), m.num_faces()), (12, 20));
+    assert!(m.is_triangle_mesh() && m.normals.is_none() && m.uvs.is_none() && m.colors.is_empty());
+    let warnings: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(warnings.len(), 3, "{warnings:#?}");
+    assert!(
+        warnings[0]
+            .starts_with(r#"line 2: skipped unknown statement "<!-- saved from url=(0060)http://people.sc.fsu.edu"#)
+    );
+    assert!(warnings[1].starts_with(r#"line 3: skipped unknown statement "<html><head><meta http-equiv="#));
+    assert!(warnings[2].starts_with(r#"line 40: skipped unknown statement "</pre></body>"#));
+    assert!(warnings.iter().all(|w| w.chars().count() < 120), "{warnings:#?}");
+    let r = report(m);
+    assert!(r.is_clean(), "{r}");
+    assert!(r.is_closed());
+    assert_eq!((r.num_edges, r.euler_characteristic, r.genus(), r.components.len()), (30, 2, Some(0), 1));
+    // Consistently oriented outward: positive signed volume.
+    assert!(m.to_tri_mesh().signed_volume() > 0.0);
+
+    let clean = load("clean/icosahedron.obj");
+    assert!(clean.warnings.is_empty());
+    assert_eq!(clean.mesh, loaded.mesh);
+}
+
+#[test]
+fn bunny_has_four_holes() {
+    let loaded = load("bunny.obj");
+    let m = &loaded.mesh;
+    assert_eq!((m.num_vertices(), m.num_faces()), (2503, 4968));
+    let lines: Vec<usize> = loaded.warnings.iter().map(|w| w.line).collect();
+    assert_eq!(lines, vec![2, 3, 7477]);
+    let r = report(m);
+    assert!(r.is_clean(), "{r}");
+    assert_eq!(r.num_boundary_edges, 42);
+    assert_eq!(r.boundary_loops.len(), 4);
+    assert!(r.boundary_loops.iter().all(|l| l.closed));
+    assert_eq!(r.boundary_loops.iter().map(|l| l.num_edges()).sum::<usize>(), 42);
+    assert_eq!((r.euler_characteristic, r.components.len(), r.genus()), (-2, 1, Some(0)));
+    assert!(r.is_consistently_oriented());
+
+    let clean = load("clean/bunny.obj");
+    assert!(clean.warnings.is_empty());
+    assert_eq!(clean.mesh, loaded.mesh);
+}
+
+#[test]
+fn patch_is_an_open_grid() {
+    let loaded = load("patch.obj");
+    assert!(loaded.warnings.is_empty());
+    let m = &loaded.mesh;
+    assert_eq!((m.num_vertices(), m.num_faces()), (16, 18));
+    let r = report(m);
+    assert!(r.is_clean(), "{r}");
+    assert_eq!(r.boundary_loops.len(), 1);
+    assert_eq!(r.boundary_loops[0].num_edges(), 12);
+    assert_eq!((r.num_boundary_edges, r.euler_characteristic, r.genus()), (12, 1, Some(0)));
+    // Faces point toward +z.
+    let t = m.to_tri_mesh();
+    assert!((0..t.num_triangles()).all(|i| t.face_normal(i).z > 0.0));
+}
+
+#[test]
+fn spline_annotated_objs_read_with_attributes() {
+    // (file, V, F; welded exactly: V, boundary edges; welded at 1e-4 (as SOURCES.md's
+    // statistics were): boundary edges, faces with a repeated vertex, non-manifold edges)
+    let expected = [
+        ("cs4620-splines/challace_revolution.obj", 2310, 4416, 2240, 64, 64, 0, 0),
+        ("cs4620-splines/doughnut.obj", 6561, 12800, 6400, 0, 0, 0, 0),
+        ("cs4620-splines/pi.obj", 11160, 21896, 10948, 0, 0, 12, 0),
+        ("cs4620-splines/tie_fighter.obj", 11336, 22248, 11124, 0, 0, 2700, 21),
+    ];
+    for (name, v, f, welded_v, boundary, coarse_boundary, degenerate, nonmanifold) in expected {
+        let loaded = load(name);
+        assert!(loaded.warnings.is_empty(), "{name}: {:?}", loaded.warnings);
+        let m = &loaded.mesh;
+        assert_eq!((m.num_vertices(), m.num_faces()), (v, f), "{name}");
+        // `v`, `vt` and `vn` are 1:1 and faces are `f a/a/a`.
+        let uvs = m.uvs.as_ref().unwrap();
+        let normals = m.normals.as_ref().unwrap();
+        assert_eq!((uvs.values.len(), normals.values.len()), (v, v), "{name}");
+        assert_eq!(uvs.indices, m.face_vertices, "{name}");
+        assert_eq!(normals.indices, m.face_vertices, "{name}");
+        // Seam vertices are duplicated; welded, the topology of SOURCES.md appears.
+        let welded = weld(m, None);
+        let r = report(&welded);
+        assert_eq!((welded.num_vertices(), r.num_boundary_edges), (welded_v, boundary), "{name}:\n{r}");
+        assert!(r.is_clean(), "{name}:\n{r}");
+        let coarse = weld(m, Some(4));
+        let r = report(&coarse);
+        assert_eq!(r.num_boundary_edges, coarse_boundary, "{name}:\n{r}");
+        let repeated =
+            r.degenerate_faces.iter().filter(|d| matches!(d.kind, Degeneracy::RepeatedVertex { .. })).count();
+        assert_eq!(repeated, degenerate, "{name}:\n{r}");
+        assert_eq!(r.nonmanifold_edges.len(), nonmanifold, "{name}:\n{r}");
+        // Splitting makes it manifold.
+        let (split, _) = splinekit::mesh::split_nonmanifold(&coarse);
+        let r = report(&split);
+        assert!(r.is_manifold() && r.is_consistently_oriented(), "{name}:\n{r}");
+    }
+}
+
+#[test]
+fn objs_agree_with_tobj() {
+    for name in ["icosahedron.obj", "bunny.obj", "patch.obj", "cs4620-splines/doughnut.obj"] {
+        let path = data_file(name);
+        let ours = load_mesh(&path).unwrap().mesh;
+        let options = tobj::LoadOptions { triangulate: false, single_index: false, ..Default::default() };
+        let (models, _) = tobj::load_obj(&path, &options).unwrap();
+        assert_eq!(models.len(), 1, "{name}");
+        // tobj renumbers vertices by first use; compare corner by corner.
+        let theirs = &models[0].mesh;
+        let position = |i: u32| {
+            let k = 3 * i as usize;
+            DVec3::new(theirs.positions[k], theirs.positions[k + 1], theirs.positions[k + 2])
+        };
+        assert_eq!(theirs.indices.len(), ours.face_vertices.len(), "{name}");
+        for (&t, &o) in theirs.indices.iter().zip(&ours.face_vertices) {
+            assert_eq!(position(t), ours.positions[o as usize], "{name}");
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Round trips through our writers
+
+#[test]
+fn obj_round_trip_is_exact() {
+    for mesh in [torus(12, 7), TriMesh { normals: vec![], uvs: vec![], ..torus(5, 4) }] {
+        let bytes = bytes_of(&mesh, MeshFormat::Obj);
+        let read = read_obj(bytes.as_slice(), "rt.obj").unwrap();
+        assert!(read.warnings.is_empty());
+        let m = read.mesh;
+        assert_eq!(m.positions, mesh.positions);
+        assert_eq!(m.triangles().unwrap(), mesh.triangles);
+        // Attributes come back face-varying with per-vertex indices, and convert back.
+        assert_eq!(m.to_tri_mesh(), mesh);
+        assert_eq!(m.uvs.is_some(), !mesh.uvs.is_empty());
+    }
+}
+
+#[test]
+fn ply_round_trip_rounds_to_f32() {
+    let mesh = torus(9, 6);
+    let m = read_ply(bytes_of(&mesh, MeshFormat::Ply).as_slice(), "rt.ply").unwrap().mesh;
+    assert_eq!(m.positions, mesh.positions.iter().map(|&p| f32_round(p)).collect::<Vec<_>>());
+    assert_eq!(m.triangles().unwrap(), mesh.triangles);
+    assert_eq!(m.normals.as_ref().unwrap().values, mesh.normals.iter().map(|&p| f32_round(p)).collect::<Vec<_>>());
+    let uvs: Vec<DVec2> = mesh.uvs.iter().map(|p| p.as_vec2().as_dvec2()).collect();
+    assert_eq!(m.uvs.as_ref().unwrap().values, uvs);
+    assert!(report(&m).is_clean());
+}
+
+#[test]
+fn stl_round_trip_welds_back_to_the_mesh() {
+    let mesh = torus(10, 8);
+    let m = read_stl(bytes_of(&mesh, MeshFormat::Stl).as_slice(), "rt.stl").unwrap().mesh;
+    // Welding restores the shared vertices (every f32-rounded position is distinct), in
+    // order of first appearance.
+    assert_eq!(m.num_vertices(), mesh.num_vertices());
+    assert_eq!(m.num_faces(), mesh.num_triangles());
+    for (t, &tri) in m.triangles().unwrap().iter().zip(&mesh.triangles) {
+        for k in 0..3 {
+            assert_eq!(m.positions[t[k] as usize], f32_round(mesh.positions[tri[k] as usize]));
+        }
+    }
+    let r = report(&m);
+    assert!(r.is_clean() && r.is_closed(), "{r}");
+    assert_eq!((r.euler_characteristic, r.genus()), (0, Some(1)));
+}
+
+// ---------------------------------------------------------------------------------------
+// Generated ASCII and binary samples
+
+/// The torus as ASCII PLY with uchar colours, written by hand.
+fn ascii_ply(mesh: &TriMesh) -> String {
+    let mut s = format!(
+        "ply\nformat ascii 1.0\ncomment by hand\nelement vertex {}\nproperty double x\nproperty double y\n\
+         property double z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face {}\n\
+         property list uchar uint vertex_indices\nend_header\n",
+        mesh.num_vertices(),
+        mesh.num_triangles()
+    );
+    for (i, p) in mesh.positions.iter().enumerate() {
+        s += &format!("{:?} {:?} {:?} {} 0 255\n", p.x, p.y, p.z, i % 256);
+    }
+    for t in &mesh.triangles {
+        s += &format!("3 {} {} {}\n", t[0], t[1], t[2]);
+    }
+    s
+}
+
+#[test]
+fn ascii_and_big_endian_ply() {
+    let mesh = torus(6, 5);
+    let m = read_ply(ascii_ply(&mesh).as_bytes(), "a.ply").unwrap().mesh;
+    assert_eq!(m.positions, mesh.positions);
+    assert_eq!(m.triangles().unwrap(), mesh.triangles);
+    assert_eq!(m.colors[7], DVec3::new(7.0 / 255.0, 0.0, 1.0));
+
+    // Binary big endian, doubles and short indices, with quads.
+    let mut b = format!(
+        "ply\nformat binary_big_endian 1.0\nelement vertex {}\nproperty double x\nproperty double y\n\
+         property double z\nelement face 2\nproperty list uchar short vertex_indices\nend_header\n",
+        4
+    )
+    .into_bytes();
+    let quad = [DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+    for p in quad {
+        for x in p.to_array() {
+            b.extend(x.to_be_bytes());
+        }
+    }
+    for face in [&[0i16, 1, 2, 3][..], &[0, 2, 1]] {
+        b.push(face.len() as u8);
+        for &i in face {
+            b.extend(i.to_be_bytes());
+        }
+    }
+    let m = read_ply(b.as_slice(), "b.ply").unwrap().mesh;
+    assert_eq!(m.positions, quad);
+    assert_eq!(m.face_offsets, vec![0, 4, 7]);
+    assert_eq!(m.face_vertices, vec![0, 1, 2, 3, 0, 2, 1]);
+}
+
+#[test]
+fn ascii_stl_welds_like_binary_stl() {
+    let mesh = torus(7, 5);
+    let mut s = String::from("solid torus\n");
+    for t in &mesh.triangles {
+        s += "  facet normal 0 0 0\n    outer loop\n";
+        for &v in t {
+            // The f32 values, written exactly.
+            let p = f32_round(mesh.positions[v as usize]);
+            s += &format!("      vertex {:?} {:?} {:?}\n", p.x, p.y, p.z);
+        }
+        s += "    endloop\n  endfacet\n";
+    }
+    s += "endsolid torus\n";
+    let ascii = read_stl(s.as_bytes(), "a.stl").unwrap().mesh;
+    let binary = read_stl(bytes_of(&mesh, MeshFormat::Stl).as_slice(), "b.stl").unwrap().mesh;
+    assert_eq!(ascii, binary);
+    assert_eq!(ascii.num_vertices(), mesh.num_vertices());
+}
+
+#[test]
+fn a_large_obj_reads() {
+    // 100 000 triangles; reading is one pass without per-line allocation (time it with
+    // `cargo test --release -- --nocapture a_large_obj`).
+    let mesh = torus(250, 200);
+    let bytes = bytes_of(&mesh, MeshFormat::Obj);
+    let start = std::time::Instant::now();
+    let m = read_obj(bytes.as_slice(), "big.obj").unwrap().mesh;
+    eprintln!("read {} MB of OBJ ({} triangles) in {:?}", bytes.len() >> 20, m.num_faces(), start.elapsed());
+    assert_eq!(m.num_faces(), 100_000);
+    assert_eq!(m.positions, mesh.positions);
+}
+
+// ---------------------------------------------------------------------------------------
+// load_mesh, streams and errors
+
+#[test]
+fn load_mesh_chooses_by_extension() {
+    let dir = TempDir::new("ext");
+    let mesh = torus(4, 3);
+    let obj = dir.write("t.OBJ", bytes_of(&mesh, MeshFormat::Obj));
+    let ply = dir.write("t.ply", bytes_of(&mesh, MeshFormat::Ply));
+    let stl = dir.write("t.Stl", bytes_of(&mesh, MeshFormat::Stl));
+    for path in [obj, ply, stl] {
+        let m = load_mesh(&path).unwrap_or_else(|e| panic!("{e}")).mesh;
+        assert_eq!((m.num_vertices(), m.num_faces()), (12, 24), "{}", path.display());
+    }
+    let e = load_mesh(dir.write("t.glb", b"glTF")).unwrap_err().to_string();
+    assert!(e.ends_with(r#"t.glb: found ".glb", expected a mesh file ending in .obj, .ply or .stl (binary glTF is written, not read)"#), "{e}");
+    let e = load_mesh(dir.write("t.off", b"OFF")).unwrap_err().to_string();
+    assert!(e.ends_with(r#"t.off: found ".off", expected a mesh file ending in .obj, .ply or .stl"#), "{e}");
+    let e = load_mesh(dir.0.join("missing.obj")).unwrap_err().to_string();
+    assert!(e.contains("missing.obj: cannot read: "), "{e}");
+    // Stream form.
+    let m = read_mesh(bytes_of(&mesh, MeshFormat::Ply).as_slice(), MeshFormat::Ply, "s").unwrap();
+    assert_eq!(m.mesh.num_faces(), 24);
+    assert!(read_mesh(&b""[..], MeshFormat::Glb, "s").is_err());
+}
+
+#[test]
+fn errors_name_file_line_and_column() {
+    let dir = TempDir::new("err");
+    let cases: [(&str, &[u8], &str); 7] = [
+        ("a.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", r#"a.obj:4:7: found "4", expected a vertex index from 1 to 3 or from -3 to -1"#),
+        ("b.obj", b"v 0 0 0\r\nv 1 0.5.0 0\r\n", r#"b.obj:2:5: found "0.5.0", expected a number (y coordinate)"#),
+        ("c.obj", b"v 0 0 0\nf 1 1 0\n", r#"c.obj:2:7: found "0", expected a non-zero vertex index (OBJ counts from 1)"#),
+        ("d.obj", b"v 0 0 0\nvt 0 0\nf 1/2 1/1 1/1\n", r#"d.obj:3:5: found "2", expected a texture coordinate index from 1 to 1 or from -1 to -1"#),
+        ("e.ply", b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 nan0\n", r#"e.ply:8:5: found "nan0", expected a float (property z of vertex 0 of 1)"#),
+        ("f.ply", b"ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n\0\0\0\0", "f.ply: found end of file, expected a float (property y of vertex 0 of 2)"),
+        ("g.stl", b"solid g\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1\nendloop\n", r#"g.stl:7:1: found "endloop", expected a number (z coordinate of vertex 3)"#),
+    ];
+    for (name, bytes, message) in cases {
+        let e = load_mesh(dir.write(name, bytes)).unwrap_err().to_string();
+        assert_eq!(e, format!("{}/{message}", dir.0.display()));
+    }
+    // A binary STL of 0 triangles with trailing bytes reads, with a warning.
+    let m = load_mesh(dir.write("h.stl", [0u8; 90])).unwrap();
+    assert_eq!(m.mesh.num_faces(), 0);
+    assert_eq!(m.warnings[0].kind, ReadWarningKind::TrailingBytes { count: 6 });
+}
+
+// ---------------------------------------------------------------------------------------
+// Never a panic
+
+mod no_panic {
+    use proptest::prelude::*;
+    use splinekit_io::mesh::{MeshFormat, read_mesh};
+
+    /// Small valid files of each format, to be mutated.
+    fn seeds() -> Vec<(MeshFormat, Vec<u8>)> {
+        let ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+                   element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        let mut binary_ply = ply.replace("ascii", "binary_little_endian").into_bytes();
+        binary_ply.truncate(binary_ply.len() - 26);
+        binary_ply.extend([0u8; 36]);
+        binary_ply.extend([3, 0, 0, 0, 0, 1, 0, 0, 0, 2, 0, 0, 0]);
+        let mut stl = vec![0u8; 80];
+        stl.extend(1u32.to_le_bytes());
+        stl.extend([0u8; 50]);
+        vec![
+            (MeshFormat::Obj, b"v 0 0 0\nv 1 0 0 1 1 1\nv 0 1 0\nv 1 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2//1 -1/1\nf 1 2 3 4\n".to_vec()),
+            (MeshFormat::Ply, ply.as_bytes().to_vec()),
+            (MeshFormat::Ply, binary_ply),
+            (MeshFormat::Stl, b"solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n".to_vec()),
+            (MeshFormat::Stl, stl),
+        ]
+    }
+
+    #[test]
+    fn seeds_are_valid() {
+        for (format, bytes) in seeds() {
+            read_mesh(bytes.as_slice(), format, "seed").unwrap_or_else(|e| panic!("{format}: {e}"));
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+        /// Flipping, inserting or deleting bytes of a valid file gives a mesh or an error.
+        #[test]
+        fn mutated_files_do_not_panic(
+            seed in 0..5usize,
+            edits in proptest::collection::vec((any::<u16>(), any::<u8>(), 0..3u8), 1..6),
+        ) {
+            let (format, mut bytes) = seeds().swap_remove(seed);
+            for (at, byte, op) in edits {
+                let at = at as usize % (bytes.len() + 1);
+                match op {
+                    0 if at < bytes.len() => bytes[at] = byte,
+                    1 => bytes.insert(at, byte),
+                    _ if at < bytes.len() => { bytes.remove(at); }
+                    _ => {}
+                }
+            }
+            if let Ok(loaded) = read_mesh(bytes.as_slice(), format, "m") {
+                // Whatever is read has valid indices and can be analysed.
+                let m = &loaded.mesh;
+                prop_assert!(m.face_vertices.iter().all(|&v| (v as usize) < m.num_vertices()));
+                let _ = splinekit::mesh::TopologyReport::new(m, 0.0).to_string();
+                let _ = splinekit::mesh::split_nonmanifold(m);
+            }
+        }
+
+        /// Arbitrary bytes never panic any reader.
+        #[test]
+        fn random_bytes_do_not_panic(bytes in proptest::collection::vec(any::<u8>(), 0..300), seed in 0..3usize) {
+            let format = [MeshFormat::Obj, MeshFormat::Ply, MeshFormat::Stl][seed];
+            let _ = read_mesh(bytes.as_slice(), format, "r");
+        }
+    }
+}

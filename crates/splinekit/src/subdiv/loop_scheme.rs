@@ -1,0 +1,607 @@
+//! Loop subdivision of triangle meshes (SPEC §3.2).
+//!
+//! Each level splits every triangle into four, inserting one *odd* vertex per edge and moving
+//! the *even* (old) vertices:
+//!
+//! - odd, interior edge `(v0, v1)` with opposite vertices `a`, `b`: `3/8·(v0 + v1) + 1/8·(a + b)`;
+//! - odd, boundary edge: the midpoint;
+//! - even, interior, valence `n`, neighbours `qᵢ`: `(1 − nβ)·p + β·Σqᵢ` with β from
+//!   [`LoopWeights`] — Loop's original `β(n) = (1/n)(5/8 − (3/8 + 1/4·cos(2π/n))²)` by default
+//!   (what OpenSubdiv, CGAL, PMP and trimesh compute), or Warren's `3/(8n)`, `3/16` for `n = 3`
+//!   (the course's formula; libigl and Open3D);
+//! - even, boundary, boundary neighbours `a`, `b`: `3/4·p + 1/8·(a + b)` (the crease rule: the
+//!   boundary curve is a cubic B-spline of its own); with [`BoundaryRule::Corners`] a vertex
+//!   with a single face stays where it is. [`BoundaryRule::Smooth`] is OpenSubdiv's
+//!   `VTX_BOUNDARY_EDGE_ONLY`, `Corners` its `VTX_BOUNDARY_EDGE_AND_CORNER`.
+//!
+//! Triangle `(i0, i1, i2)` with odd vertices `m01, m12, m20` becomes `(i0, m01, m20)`,
+//! `(i1, m12, m01)`, `(i2, m20, m12)`, `(m01, m12, m20)`, in that order at `4f .. 4f + 4`:
+//! orientation is kept. A level's vertices are the parent's vertices (same indices) followed
+//! by one odd vertex per parent edge, in the parent's edge order.
+//!
+//! **Attributes.** Colours (per vertex) are carried with the position weights. Normals and
+//! UVs are face-varying: each is subdivided as a mesh of its own over the same triangles,
+//! whose edges are joined only where both sides share the value indices — a UV seam is a
+//! boundary of the UV mesh, so it gets the boundary rules and the two sides never blend.
+//! Normals are renormalized when a level is turned into a mesh. With
+//! [`LoopOptions::color_by_level`], vertices are instead coloured by the level that created
+//! them ([`LEVEL_COLORS`]).
+//!
+//! **Speed.** The base level's adjacency is built once ([`Topology::build`]); every further
+//! level's adjacency follows in closed form ([`topology`](super::topology)), and each pass is
+//! a parallel map (rayon) over vertices, edges or faces writing its own output slot, so
+//! results do not depend on the number of threads. Per-vertex and per-edge code does not
+//! allocate.
+
+use core::ops::{Add, Mul};
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+use super::topology::{MIN_LEN, Topology, TopologyError};
+use std::collections::HashMap;
+
+use crate::mesh::{FaceVarying, NONE, PolyMesh, TriMesh};
+
+/// The even-vertex weights β(n).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum LoopWeights {
+    /// Loop's original `β(n) = (1/n)(5/8 − (3/8 + 1/4·cos(2π/n))²)` (OpenSubdiv, CGAL, PMP,
+    /// trimesh). The default.
+    #[default]
+    Loop,
+    /// Warren's `3/(8n)` for `n > 3`, `3/16` for `n = 3` (the course material, libigl, Open3D).
+    Warren,
+}
+
+/// What boundary vertices do.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum BoundaryRule {
+    /// Every boundary vertex follows the crease rule `3/4·p + 1/8·(a + b)` (the default).
+    #[default]
+    Smooth,
+    /// As `Smooth`, but a boundary vertex with a single face (a corner) stays fixed.
+    Corners,
+}
+
+/// Options of Loop subdivision.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct LoopOptions {
+    /// Even-vertex weights.
+    pub weights: LoopWeights,
+    /// Boundary rule.
+    pub boundary: BoundaryRule,
+    /// Colour vertices by the level that created them ([`LEVEL_COLORS`]), replacing any
+    /// input colours.
+    pub color_by_level: bool,
+}
+
+/// The colours of [`LoopOptions::color_by_level`]: level `k` uses entry `k % 8` (base mesh
+/// grey, then red, orange, yellow, green, cyan, blue, magenta).
+pub const LEVEL_COLORS: [DVec3; 8] = [
+    DVec3::new(0.6, 0.6, 0.6),
+    DVec3::new(0.9, 0.2, 0.2),
+    DVec3::new(0.95, 0.6, 0.1),
+    DVec3::new(0.9, 0.85, 0.1),
+    DVec3::new(0.2, 0.75, 0.3),
+    DVec3::new(0.1, 0.75, 0.85),
+    DVec3::new(0.2, 0.35, 0.9),
+    DVec3::new(0.8, 0.3, 0.85),
+];
+
+/// Why a mesh cannot be Loop-subdivided.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum SubdivError {
+    /// Loop subdivision needs triangles.
+    #[error("face {face} has {corners} corners; Loop subdivision needs triangles (triangulate the mesh first)")]
+    NotTriangles {
+        /// The face.
+        face: usize,
+        /// Its number of corners.
+        corners: usize,
+    },
+    /// The triangles are not a manifold, consistently oriented surface.
+    #[error("{0}")]
+    Topology(#[from] TopologyError),
+    /// A face-varying attribute is malformed.
+    #[error("{attribute}: {problem}")]
+    Attribute {
+        /// `normals`, `uvs` or `colors`.
+        attribute: &'static str,
+        /// What is wrong.
+        problem: String,
+    },
+}
+
+/// A value that can be subdivided: an affine combination of values is a value.
+pub trait Attribute: Copy + Default + Send + Sync + Add<Output = Self> + Mul<f64, Output = Self> {}
+impl<T: Copy + Default + Send + Sync + Add<Output = T> + Mul<f64, Output = T>> Attribute for T {}
+
+/// The subdivision weights, with β tabulated for small valences.
+#[derive(Clone, Debug)]
+struct Rules {
+    beta: [f64; 16],
+    warren: bool,
+    corners: bool,
+}
+
+impl Rules {
+    fn new(options: &LoopOptions) -> Self {
+        let warren = options.weights == LoopWeights::Warren;
+        let mut beta = [0.0; 16];
+        for (n, b) in beta.iter_mut().enumerate().skip(1) {
+            *b = Self::compute_beta(warren, n as u32);
+        }
+        Self { beta, warren, corners: options.boundary == BoundaryRule::Corners }
+    }
+
+    fn compute_beta(warren: bool, n: u32) -> f64 {
+        let nf = f64::from(n);
+        if warren {
+            if n == 3 { 3.0 / 16.0 } else { 3.0 / (8.0 * nf) }
+        } else {
+            let c = 0.375 + 0.25 * (core::f64::consts::TAU / nf).cos();
+            (0.625 - c * c) / nf
+        }
+    }
+
+    #[inline]
+    fn beta(&self, n: u32) -> f64 {
+        match self.beta.get(n as usize) {
+            Some(&b) => b,
+            None => Self::compute_beta(self.warren, n),
+        }
+    }
+}
+
+#[inline]
+fn next(i: u32) -> u32 {
+    if i == 2 { 0 } else { i + 1 }
+}
+
+#[inline]
+fn prev(i: u32) -> u32 {
+    if i == 0 { 2 } else { i - 1 }
+}
+
+/// The new value of even vertex `v`.
+#[inline]
+fn even<T: Attribute>(tris: &[[u32; 3]], topo: &Topology, p: &[T], v: usize, rules: &Rules) -> T {
+    let start = topo.vertex_start[v];
+    if start == NONE {
+        return p[v];
+    }
+    let mut h = start;
+    let mut n = 0u32;
+    let mut sum = T::default();
+    loop {
+        let t = &tris[(h / 3) as usize];
+        let i = h % 3;
+        sum = sum + p[t[next(i) as usize] as usize];
+        n += 1;
+        let tw = topo.twin[(h - i + prev(i)) as usize];
+        if tw == NONE {
+            if rules.corners && n == 1 {
+                return p[v];
+            }
+            let s = &tris[(start / 3) as usize];
+            let a = p[s[next(start % 3) as usize] as usize];
+            let b = p[t[prev(i) as usize] as usize];
+            return p[v] * 0.75 + (a + b) * 0.125;
+        }
+        if tw == start {
+            break;
+        }
+        h = tw;
+    }
+    let beta = rules.beta(n);
+    p[v] * (1.0 - f64::from(n) * beta) + sum * beta
+}
+
+/// The value of the odd vertex on edge `e`.
+#[inline]
+fn odd<T: Attribute>(tris: &[[u32; 3]], topo: &Topology, p: &[T], e: usize) -> T {
+    let h = topo.edge_owner[e];
+    let i = h % 3;
+    let t = &tris[(h / 3) as usize];
+    let a = p[t[i as usize] as usize];
+    let b = p[t[next(i) as usize] as usize];
+    let tw = topo.twin[h as usize];
+    if tw == NONE {
+        return (a + b) * 0.5;
+    }
+    let c = p[t[prev(i) as usize] as usize];
+    let d = p[tris[(tw / 3) as usize][prev(tw % 3) as usize] as usize];
+    (a + b) * 0.375 + (c + d) * 0.125
+}
+
+/// One level of values: the parent's evens, then one odd value per parent edge.
+fn refine_values<T: Attribute>(tris: &[[u32; 3]], topo: &Topology, p: &[T], rules: &Rules) -> Vec<T> {
+    let nv = topo.num_vertices();
+    let mut out = Vec::new();
+    (0..nv + topo.num_edges())
+        .into_par_iter()
+        .with_min_len(MIN_LEN)
+        .map(|k| if k < nv { even(tris, topo, p, k, rules) } else { odd(tris, topo, p, k - nv) })
+        .collect_into_vec(&mut out);
+    out
+}
+
+/// A face-varying attribute at one level: its own triangles (value indices) and topology.
+#[derive(Clone, Debug)]
+struct Channel<T> {
+    triangles: Vec<[u32; 3]>,
+    topology: Option<Topology>,
+    values: Vec<T>,
+}
+
+impl<T: Attribute> Channel<T> {
+    /// The base level of `fv` over triangles with position topology `pos`: edges join where
+    /// both sides share value indices; a value whose corners fall into several fans is
+    /// duplicated per fan, so every value is a manifold vertex of the channel's mesh.
+    fn base(attribute: &'static str, pos: &Topology, fv: &FaceVarying<T>) -> Result<Self, SubdivError> {
+        let nh = pos.twin.len();
+        if fv.indices.len() != nh {
+            return Err(SubdivError::Attribute {
+                attribute,
+                problem: format!("{} indices for {nh} face corners", fv.indices.len()),
+            });
+        }
+        if let Some(c) = fv.indices.iter().position(|&i| i as usize >= fv.values.len()) {
+            return Err(SubdivError::Attribute {
+                attribute,
+                problem: format!("face {} refers to value {}, but there are {}", c / 3, fv.indices[c], fv.values.len()),
+            });
+        }
+        let mut idx = fv.indices.clone();
+        let mut values = fv.values.clone();
+        let nx = |h: usize| h - h % 3 + next((h % 3) as u32) as usize;
+        let pv = |h: usize| h - h % 3 + prev((h % 3) as u32) as usize;
+        let twin: Vec<u32> = (0..nh)
+            .map(|h| {
+                let t = pos.twin[h];
+                if t != NONE && idx[h] == idx[nx(t as usize)] && idx[nx(h)] == idx[t as usize] { t } else { NONE }
+            })
+            .collect();
+        let mut assigned = vec![false; nh];
+        let mut used = vec![false; values.len()];
+        for h0 in 0..nh {
+            if assigned[h0] {
+                continue;
+            }
+            // Rewind to the start of h0's fan (or stay, if the fan is closed).
+            let mut s = h0;
+            loop {
+                let t = twin[s];
+                if t == NONE {
+                    break;
+                }
+                let b = nx(t as usize);
+                if b == h0 {
+                    break;
+                }
+                s = b;
+            }
+            let u = idx[s] as usize;
+            let target = if used[u] {
+                values.push(values[u]);
+                (values.len() - 1) as u32
+            } else {
+                used[u] = true;
+                u as u32
+            };
+            let mut h = s;
+            loop {
+                assigned[h] = true;
+                idx[h] = target;
+                let t = twin[pv(h)];
+                if t == NONE || t as usize == s {
+                    break;
+                }
+                h = t as usize;
+            }
+        }
+        let triangles: Vec<[u32; 3]> = idx.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+        let topology = Topology::from_twins(&triangles, twin, values.len());
+        Ok(Self { triangles, topology: Some(topology), values })
+    }
+
+    fn refine(&mut self, rules: &Rules, with_topology: bool) -> Self {
+        let topo = self.topology.as_ref().expect("a level is refined only with its topology");
+        let values = refine_values(&self.triangles, topo, &self.values, rules);
+        let (triangles, topology) = topo.refine(&self.triangles, with_topology);
+        Self { triangles, topology, values }
+    }
+
+    fn face_varying(&self) -> FaceVarying<T> {
+        FaceVarying { values: self.values.clone(), indices: self.triangles.iter().flatten().copied().collect() }
+    }
+}
+
+/// One level of a [`LoopPyramid`].
+#[derive(Clone, Debug)]
+pub struct LoopLevel {
+    /// Triangles, counter-clockwise from the front.
+    pub triangles: Vec<[u32; 3]>,
+    /// Vertex positions.
+    pub positions: Vec<DVec3>,
+    /// Vertex colours (empty when the input has none and colour-by-level is off).
+    pub colors: Vec<DVec3>,
+    /// Which level this is (0 = base).
+    depth: usize,
+    topology: Option<Topology>,
+    normals: Option<Channel<DVec3>>,
+    uvs: Option<Channel<DVec2>>,
+}
+
+impl LoopLevel {
+    /// Number of vertices.
+    #[must_use]
+    pub fn num_vertices(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of triangles.
+    #[must_use]
+    pub fn num_triangles(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Which level this is (0 = base).
+    #[must_use]
+    pub fn depth(&self) -> usize {
+        self.depth
+    }
+
+    /// This level as a triangle mesh for the writers, consuming it. Without normals and UVs
+    /// the triangles and positions are moved, not copied; with them, a vertex on a seam
+    /// becomes one vertex per distinct (position, normal, UV) corner, so every side keeps
+    /// its own values (normals renormalized).
+    #[must_use]
+    pub fn into_tri_mesh(self) -> TriMesh {
+        if self.normals.is_none() && self.uvs.is_none() {
+            return TriMesh {
+                positions: self.positions,
+                triangles: self.triangles,
+                colors: self.colors,
+                ..TriMesh::default()
+            };
+        }
+        let mut ids: HashMap<[u32; 3], u32> = HashMap::new();
+        let mut mesh = TriMesh::default();
+        let mut triangles = Vec::with_capacity(self.triangles.len());
+        for (f, t) in self.triangles.iter().enumerate() {
+            let mut out = [0u32; 3];
+            for (i, &v) in t.iter().enumerate() {
+                let key = [
+                    v,
+                    self.normals.as_ref().map_or(0, |c| c.triangles[f][i]),
+                    self.uvs.as_ref().map_or(0, |c| c.triangles[f][i]),
+                ];
+                out[i] = *ids.entry(key).or_insert_with(|| {
+                    mesh.positions.push(self.positions[v as usize]);
+                    if let Some(c) = self.colors.get(v as usize) {
+                        mesh.colors.push(*c);
+                    }
+                    if let Some(c) = &self.normals {
+                        mesh.normals.push(c.values[key[1] as usize].normalize_or_zero());
+                    }
+                    if let Some(c) = &self.uvs {
+                        mesh.uvs.push(c.values[key[2] as usize]);
+                    }
+                    (mesh.positions.len() - 1) as u32
+                });
+            }
+            triangles.push(out);
+        }
+        mesh.triangles = triangles;
+        mesh
+    }
+
+    /// This level as a polygon mesh (normals renormalized).
+    #[must_use]
+    pub fn to_mesh(&self) -> PolyMesh {
+        let mut m = PolyMesh::from_triangles(self.positions.clone(), &self.triangles);
+        m.colors.clone_from(&self.colors);
+        m.normals = self.normals.as_ref().map(|c| {
+            let mut fv = c.face_varying();
+            for n in &mut fv.values {
+                *n = n.normalize_or_zero();
+            }
+            fv
+        });
+        m.uvs = self.uvs.as_ref().map(Channel::face_varying);
+        m
+    }
+}
+
+/// The levels of a Loop subdivision, from the base mesh (level 0) to the finest: refine and
+/// coarsen at will; edited base positions are pushed through every level without rebuilding
+/// any topology ([`Self::set_base_positions`]).
+#[derive(Clone, Debug)]
+pub struct LoopPyramid {
+    options: LoopOptions,
+    rules: Rules,
+    levels: Vec<LoopLevel>,
+}
+
+impl LoopPyramid {
+    /// Level 0 of `mesh`.
+    ///
+    /// # Errors
+    /// Non-triangle faces, non-manifold or inconsistently oriented topology, malformed
+    /// attributes — naming the face, edge or vertex.
+    pub fn new(mesh: &PolyMesh, options: LoopOptions) -> Result<Self, SubdivError> {
+        let mut triangles = Vec::with_capacity(mesh.num_faces());
+        for (face, f) in mesh.faces().enumerate() {
+            match f {
+                &[a, b, c] => triangles.push([a, b, c]),
+                _ => return Err(SubdivError::NotTriangles { face, corners: f.len() }),
+            }
+        }
+        let n = mesh.num_vertices();
+        let topology = Topology::build(&triangles, n)?;
+        if !mesh.colors.is_empty() && mesh.colors.len() != n {
+            return Err(SubdivError::Attribute {
+                attribute: "colors",
+                problem: format!("{} colours for {n} vertices", mesh.colors.len()),
+            });
+        }
+        let normals = mesh.normals.as_ref().map(|fv| Channel::base("normals", &topology, fv)).transpose()?;
+        let uvs = mesh.uvs.as_ref().map(|fv| Channel::base("uvs", &topology, fv)).transpose()?;
+        let colors = if options.color_by_level { vec![LEVEL_COLORS[0]; n] } else { mesh.colors.clone() };
+        let level = LoopLevel {
+            triangles,
+            positions: mesh.positions.clone(),
+            colors,
+            depth: 0,
+            topology: Some(topology),
+            normals,
+            uvs,
+        };
+        Ok(Self { rules: Rules::new(&options), options, levels: vec![level] })
+    }
+
+    /// The options.
+    #[must_use]
+    pub fn options(&self) -> &LoopOptions {
+        &self.options
+    }
+
+    /// Number of levels, the base included.
+    #[must_use]
+    pub fn num_levels(&self) -> usize {
+        self.levels.len()
+    }
+
+    /// Level `k` (0 = base).
+    ///
+    /// # Panics
+    /// If `k >= self.num_levels()`.
+    #[must_use]
+    pub fn level(&self, k: usize) -> &LoopLevel {
+        &self.levels[k]
+    }
+
+    /// The finest level.
+    #[must_use]
+    pub fn finest(&self) -> &LoopLevel {
+        self.levels.last().expect("a pyramid has a base level")
+    }
+
+    /// The finest level, consuming the pyramid.
+    #[must_use]
+    pub fn into_finest(mut self) -> LoopLevel {
+        self.levels.pop().expect("a pyramid has a base level")
+    }
+
+    /// Adds one level.
+    pub fn refine(&mut self) {
+        self.refine_step(false);
+    }
+
+    /// Refines until there are `levels + 1` levels, calling `progress(k)` after level `k` is
+    /// made. Only levels that will be refined again get adjacency tables.
+    pub fn refine_to(&mut self, levels: usize, mut progress: impl FnMut(usize)) {
+        while self.levels.len() <= levels {
+            let keep = self.levels.len() < levels;
+            self.refine_step(keep);
+            progress(self.levels.len() - 1);
+        }
+    }
+
+    /// Drops the finest level (never the base). Returns whether a level was dropped.
+    pub fn coarsen(&mut self) -> bool {
+        self.levels.len() > 1 && self.levels.pop().is_some()
+    }
+
+    /// Replaces the base positions and recomputes every finer level's positions and colours
+    /// (topology and face-varying attributes are unchanged).
+    ///
+    /// # Errors
+    /// When the number of positions differs from the base's.
+    pub fn set_base_positions(&mut self, positions: Vec<DVec3>) -> Result<(), SubdivError> {
+        let n = self.levels[0].positions.len();
+        if positions.len() != n {
+            return Err(SubdivError::Attribute {
+                attribute: "positions",
+                problem: format!("{} positions for {n} vertices", positions.len()),
+            });
+        }
+        self.levels[0].positions = positions;
+        for k in 1..self.levels.len() {
+            self.ensure_topology(k - 1);
+            let (parent, rest) = self.levels.split_at_mut(k);
+            let parent = &parent[k - 1];
+            let topo = parent.topology.as_ref().expect("ensured");
+            rest[0].positions = refine_values(&parent.triangles, topo, &parent.positions, &self.rules);
+        }
+        Ok(())
+    }
+
+    /// Makes sure level `k` has its adjacency tables (derived from level `k − 1`'s).
+    fn ensure_topology(&mut self, k: usize) {
+        if self.levels[k].topology.is_some() {
+            return;
+        }
+        self.ensure_topology(k - 1);
+        let (parent, rest) = self.levels.split_at_mut(k);
+        let parent = &parent[k - 1];
+        let (_, topology) = parent.topology.as_ref().expect("ensured").refine(&parent.triangles, true);
+        rest[0].topology = topology;
+        derive_topology(&mut rest[0].normals, &parent.normals);
+        derive_topology(&mut rest[0].uvs, &parent.uvs);
+    }
+
+    fn refine_step(&mut self, with_topology: bool) {
+        self.ensure_topology(self.levels.len() - 1);
+        let rules = &self.rules;
+        let level = self.levels.last_mut().expect("a pyramid has a base level");
+        let depth = level.depth + 1;
+        let topo = level.topology.as_ref().expect("ensured");
+        let positions = refine_values(&level.triangles, topo, &level.positions, rules);
+        let colors = if self.options.color_by_level {
+            let mut c = level.colors.clone();
+            c.resize(positions.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
+            c
+        } else if level.colors.is_empty() {
+            Vec::new()
+        } else {
+            refine_values(&level.triangles, topo, &level.colors, rules)
+        };
+        let (triangles, topology) = topo.refine(&level.triangles, with_topology);
+        let normals = level.normals.as_mut().map(|c| c.refine(rules, with_topology));
+        let uvs = level.uvs.as_mut().map(|c| c.refine(rules, with_topology));
+        self.levels.push(LoopLevel { triangles, positions, colors, depth, topology, normals, uvs });
+    }
+}
+
+impl LoopPyramid {
+    /// Refines to `levels` levels below the base like [`Self::refine_to`], dropping every
+    /// level as soon as its child is made, and returns the finest: the least memory for a
+    /// one-shot subdivision (at most one parent level besides the output).
+    #[must_use]
+    pub fn into_refined(mut self, levels: usize, mut progress: impl FnMut(usize)) -> LoopLevel {
+        for k in 1..=levels {
+            self.refine_step(k < levels);
+            self.levels.remove(0);
+            progress(k);
+        }
+        self.into_finest()
+    }
+}
+
+/// Gives a channel the adjacency tables derived from its parent's.
+fn derive_topology<T>(channel: &mut Option<Channel<T>>, parent: &Option<Channel<T>>) {
+    if let (Some(c), Some(pc)) = (channel.as_mut(), parent.as_ref()) {
+        c.topology = pc.topology.as_ref().and_then(|t| t.refine(&pc.triangles, true).1);
+    }
+}
+
+/// `levels` levels of Loop subdivision of a triangle mesh (see the module docs).
+///
+/// # Errors
+/// As [`LoopPyramid::new`].
+pub fn loop_subdivide(mesh: &PolyMesh, levels: u32, options: &LoopOptions) -> Result<PolyMesh, SubdivError> {
+    Ok(LoopPyramid::new(mesh, *options)?.into_refined(levels as usize, |_| {}).to_mesh())
+}

@@ -1,0 +1,24 @@
+//! Subdivision surfaces: Loop subdivision of triangle meshes (SPEC §3.2).
+//!
+//! ```
+//! use glam::DVec3;
+//! use splinekit::PolyMesh;
+//! use splinekit::subdiv::{LoopOptions, loop_subdivide};
+//! // A tetrahedron: V = 4, E = 6, F = 4.
+//! let mesh = PolyMesh::from_triangles(
+//!     vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+//!     &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+//! );
+//! let fine = loop_subdivide(&mesh, 1, &LoopOptions::default())?;
+//! assert_eq!((fine.num_vertices(), fine.num_faces()), (4 + 6, 4 * 4));
+//! # Ok::<(), splinekit::subdiv::SubdivError>(())
+//! ```
+
+mod loop_scheme;
+pub mod topology;
+
+pub use loop_scheme::{
+    Attribute, BoundaryRule, LEVEL_COLORS, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
+    loop_subdivide,
+};
+pub use topology::{Topology, TopologyError};

@@ -1,0 +1,310 @@
+//! Loop subdivision against independent implementations (issue #4): OpenSubdiv 3.5 (Loop's β,
+//! boundary crease rules with one-face corners smoothed or, with `VTX_BOUNDARY_EDGE_AND_CORNER`,
+//! fixed) and libigl 2.6.3 (Warren's β, the same crease rules), on the reference meshes in
+//! `tests/data/loop/` (made by `bench/make_loop_references.sh`; its README says how).
+//!
+//! Our vertex numbering differs from the peers', so meshes are compared as point sets plus
+//! topology: every vertex of ours is matched to the reference vertex nearest to it, the
+//! matching must be a bijection within [`MATCH_TOL`], and our triangles renumbered through it
+//! must be exactly the reference's triangles, with the same orientation (up to rotation of the
+//! three corners). The counts V+E, 2E+3F, 4F are checked on the inputs and on the reference files.
+
+use std::collections::HashSet;
+use std::fmt::Write as _;
+
+use glam::DVec3;
+use splinekit::PolyMesh;
+use splinekit::subdiv::{BoundaryRule, LoopOptions, LoopWeights, loop_subdivide};
+
+/// Largest distance allowed between a vertex of ours and its match in the reference, as a
+/// fraction of the diagonal of the reference's bounding box (the meshes are 0.15 to 3 units
+/// across). The peers agree with each other to 3e-16 of it, and any two reference vertices are
+/// more than 1e-3 of it apart.
+const MATCH_TOL: f64 = 1e-12;
+
+/// The reference meshes and the finest level stored for each (the bunny base only at level 1,
+/// to keep the data small).
+const MESHES: [(&str, u32); 5] =
+    [("icosahedron20", 2), ("icosphere80", 2), ("torus96", 2), ("grid32", 2), ("bunnybase883", 1)];
+
+/// A triangle mesh as read from an OBJ file.
+struct Obj {
+    positions: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+}
+
+/// Reads the `v` and `f` lines of `tests/data/loop/<file>` (1-based indices; `a/b/c` corners
+/// use `a`); every other line is ignored. The core crate has no I/O of its own.
+fn read_obj(file: &str) -> Obj {
+    let path = format!("{}/tests/data/loop/{file}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("reading {path}: {e}"));
+    let mut obj = Obj { positions: Vec::new(), triangles: Vec::new() };
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let bad = || -> ! { panic!("{path}:{}: cannot read {line:?}", n + 1) };
+        match words.next() {
+            Some("v") => {
+                let mut c = [0.0; 3];
+                for x in &mut c {
+                    *x = words.next().and_then(|w| w.parse().ok()).unwrap_or_else(|| bad());
+                }
+                obj.positions.push(DVec3::from_array(c));
+            }
+            Some("f") => {
+                let corners: Vec<u32> = words
+                    .map(|w| {
+                        w.split('/')
+                            .next()
+                            .and_then(|k| k.parse::<u32>().ok())
+                            .filter(|&k| k >= 1)
+                            .unwrap_or_else(|| bad())
+                            - 1
+                    })
+                    .collect();
+                if corners.len() != 3 {
+                    bad();
+                }
+                obj.triangles.push([corners[0], corners[1], corners[2]]);
+            }
+            _ => {}
+        }
+    }
+    let n = obj.positions.len() as u32;
+    assert!(obj.triangles.iter().flatten().all(|&v| v < n), "{path}: a face refers to a missing vertex");
+    obj
+}
+
+/// The input mesh `<name>.in.obj`.
+fn input(name: &str) -> PolyMesh {
+    let obj = read_obj(&format!("{name}.in.obj"));
+    PolyMesh::from_triangles(obj.positions, &obj.triangles)
+}
+
+fn options(weights: LoopWeights, boundary: BoundaryRule) -> LoopOptions {
+    LoopOptions { weights, boundary, ..LoopOptions::default() }
+}
+
+/// The triangle rotated so that its smallest index comes first (orientation kept).
+fn canonical([a, b, c]: [u32; 3]) -> [u32; 3] {
+    if a <= b && a <= c {
+        [a, b, c]
+    } else if b <= a && b <= c {
+        [b, c, a]
+    } else {
+        [c, a, b]
+    }
+}
+
+/// Number of distinct undirected edges.
+fn count_edges(triangles: &[[u32; 3]]) -> usize {
+    let edges: HashSet<(u32, u32)> = triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+        .collect();
+    edges.len()
+}
+
+fn diagonal(points: &[DVec3]) -> f64 {
+    let lo = points.iter().fold(DVec3::INFINITY, |a, &p| a.min(p));
+    let hi = points.iter().fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
+    lo.distance(hi)
+}
+
+/// Exact nearest-neighbour queries: the points sorted by x, scanned outwards from the query's
+/// x until the x gap alone exceeds the best distance found.
+struct NearestByX<'a> {
+    points: &'a [DVec3],
+    order: Vec<usize>,
+    xs: Vec<f64>,
+}
+
+impl<'a> NearestByX<'a> {
+    fn new(points: &'a [DVec3]) -> Self {
+        let mut order: Vec<usize> = (0..points.len()).collect();
+        order.sort_by(|&i, &j| points[i].x.total_cmp(&points[j].x));
+        let xs = order.iter().map(|&i| points[i].x).collect();
+        Self { points, order, xs }
+    }
+
+    /// The index of the point nearest to `q`, and its distance.
+    fn nearest(&self, q: DVec3) -> (usize, f64) {
+        let start = self.xs.partition_point(|&x| x < q.x);
+        let mut best = (usize::MAX, f64::INFINITY);
+        for k in start..self.xs.len() {
+            if self.xs[k] - q.x > best.1 {
+                break;
+            }
+            let d = self.points[self.order[k]].distance(q);
+            if d < best.1 {
+                best = (self.order[k], d);
+            }
+        }
+        for k in (0..start).rev() {
+            if q.x - self.xs[k] > best.1 {
+                break;
+            }
+            let d = self.points[self.order[k]].distance(q);
+            if d < best.1 {
+                best = (self.order[k], d);
+            }
+        }
+        best
+    }
+}
+
+/// Compares our output with a reference mesh as described in the module docs.
+fn compare(ours: &PolyMesh, reference: &Obj) -> Result<(), String> {
+    let Some(triangles) = ours.triangles() else {
+        return Err("our output has faces that are not triangles".into());
+    };
+    let counts = (ours.num_vertices(), triangles.len());
+    let expected = (reference.positions.len(), reference.triangles.len());
+    if counts != expected {
+        return Err(format!("(vertices, faces) = {counts:?}, the reference has {expected:?}"));
+    }
+    if let Some(i) = ours.positions.iter().position(|p| !p.is_finite()) {
+        return Err(format!("our vertex {i} is at {}", ours.positions[i]));
+    }
+
+    // Vertices: nearest reference vertex, within the tolerance, one to one.
+    let tol = MATCH_TOL * diagonal(&reference.positions);
+    let index = NearestByX::new(&reference.positions);
+    let mut map = Vec::with_capacity(ours.num_vertices());
+    let mut worst = (0, 0, 0.0);
+    for (i, &p) in ours.positions.iter().enumerate() {
+        let (j, d) = index.nearest(p);
+        if d > worst.2 {
+            worst = (i, j, d);
+        }
+        map.push(j as u32);
+    }
+    let (i, j, d) = worst;
+    if d > tol {
+        let far = ours.positions.iter().zip(&map).filter(|&(&p, &j)| p.distance(reference.positions[j as usize]) > tol);
+        return Err(format!(
+            "{} vertices are farther than {tol:.1e} from every reference vertex; the worst, our vertex {i} at {}, is \
+             {d:.3e} from reference vertex {j} at {}",
+            far.count(),
+            ours.positions[i],
+            reference.positions[j]
+        ));
+    }
+    let mut owner = vec![usize::MAX; reference.positions.len()];
+    for (i, &j) in map.iter().enumerate() {
+        if owner[j as usize] != usize::MAX {
+            return Err(format!("our vertices {} and {i} both match reference vertex {j}", owner[j as usize]));
+        }
+        owner[j as usize] = i;
+    }
+
+    // Triangles, renumbered into the reference's vertex numbers.
+    let theirs: HashSet<[u32; 3]> = reference.triangles.iter().map(|&t| canonical(t)).collect();
+    if theirs.len() != reference.triangles.len() {
+        return Err("the reference has duplicate triangles".into());
+    }
+    let mine: HashSet<[u32; 3]> = triangles.iter().map(|t| canonical(t.map(|v| map[v as usize]))).collect();
+    if mine.len() != triangles.len() {
+        return Err("our output has duplicate triangles".into());
+    }
+    if mine != theirs {
+        let extra: Vec<_> = mine.difference(&theirs).collect();
+        let missing: Vec<_> = theirs.difference(&mine).collect();
+        let flipped = extra.iter().filter(|&&&[a, b, c]| theirs.contains(&canonical([a, c, b]))).count();
+        return Err(format!(
+            "{} of our triangles are not in the reference ({flipped} of them reversed), {} reference triangles are \
+             missing; in reference numbering, first extra {:?}, first missing {:?}",
+            extra.len(),
+            missing.len(),
+            &extra[..extra.len().min(4)],
+            &missing[..missing.len().min(4)]
+        ));
+    }
+    Ok(())
+}
+
+/// Subdivides `<name>.in.obj` and compares with `<name>.<peer>.l<level>.obj` for each level up
+/// to `max_level`, collecting every failure.
+fn check(cases: &[(&str, u32)], peer: &str, opts: &LoopOptions, failures: &mut String) {
+    for &(name, max_level) in cases {
+        let mesh = input(name);
+        for level in 1..=max_level {
+            let what = format!("{name}.{peer}.l{level}");
+            let result = loop_subdivide(&mesh, level, opts)
+                .map_err(|e| format!("loop_subdivide failed: {e}"))
+                .and_then(|ours| compare(&ours, &read_obj(&format!("{what}.obj"))));
+            if let Err(e) = result {
+                writeln!(failures, "{what}: {e}").unwrap();
+            }
+        }
+    }
+}
+
+#[test]
+fn loop_weights_match_opensubdiv() {
+    let mut failures = String::new();
+    check(&MESHES, "osd", &options(LoopWeights::Loop, BoundaryRule::Smooth), &mut failures);
+    assert!(failures.is_empty(), "against OpenSubdiv (Loop's β, boundary EDGE_ONLY):\n{failures}");
+}
+
+#[test]
+fn warren_weights_match_libigl() {
+    let mut failures = String::new();
+    check(&MESHES, "igl", &options(LoopWeights::Warren, BoundaryRule::Smooth), &mut failures);
+    assert!(failures.is_empty(), "against libigl (Warren's β):\n{failures}");
+}
+
+/// The grid has two one-face corners, at (1, 0) and (0, 1); OpenSubdiv's
+/// `VTX_BOUNDARY_EDGE_AND_CORNER` keeps them where they are.
+#[test]
+fn fixed_corners_match_opensubdiv_edge_and_corner() {
+    let mut failures = String::new();
+    check(&[("grid32", 2)], "osd-corners", &options(LoopWeights::Loop, BoundaryRule::Corners), &mut failures);
+    assert!(failures.is_empty(), "against OpenSubdiv (Loop's β, boundary EDGE_AND_CORNER):\n{failures}");
+}
+
+/// Each level maps (V, E, F) to (V+E, 2E+3F, 4F), closed or not, so V−E+F is kept. Checked for
+/// our output (levels 1 to 3) and for every reference file.
+#[test]
+fn counts_follow_v_plus_e_2e_plus_3f_4f() {
+    for (name, max_level) in MESHES {
+        let obj = read_obj(&format!("{name}.in.obj"));
+        let mesh = PolyMesh::from_triangles(obj.positions.clone(), &obj.triangles);
+        let mut expected = (obj.positions.len(), count_edges(&obj.triangles), obj.triangles.len());
+        for level in 1..=3 {
+            let (v, e, f) = expected;
+            expected = (v + e, 2 * e + 3 * f, 4 * f);
+            let ours = loop_subdivide(&mesh, level, &LoopOptions::default()).unwrap();
+            let triangles = ours.triangles().expect("triangles");
+            let counts = (ours.num_vertices(), count_edges(&triangles), triangles.len());
+            assert_eq!(counts, expected, "{name} level {level}: (V, E, F) of our output");
+            if level <= max_level {
+                for peer in ["osd", "igl"] {
+                    let r = read_obj(&format!("{name}.{peer}.l{level}.obj"));
+                    let counts = (r.positions.len(), count_edges(&r.triangles), r.triangles.len());
+                    assert_eq!(counts, expected, "{name}.{peer}.l{level}.obj: (V, E, F)");
+                }
+            }
+        }
+    }
+    // SPEC §3.2: icosahedron level 1 has 42 vertices and 80 faces.
+    let ours = loop_subdivide(&input("icosahedron20"), 1, &LoopOptions::default()).unwrap();
+    assert_eq!((ours.num_vertices(), ours.num_faces()), (42, 80));
+}
+
+/// The comparison itself must notice a moved vertex and a reversed triangle.
+#[test]
+fn the_comparison_notices_a_moved_vertex_and_a_reversed_triangle() {
+    let reference = read_obj("torus96.osd.l1.obj");
+    let exact = PolyMesh::from_triangles(reference.positions.clone(), &reference.triangles);
+    assert_eq!(compare(&exact, &reference), Ok(()));
+
+    let mut moved = reference.positions.clone();
+    moved[7].z += 1e-9;
+    let err = compare(&PolyMesh::from_triangles(moved, &reference.triangles), &reference).unwrap_err();
+    assert!(err.contains("1 vertices are farther"), "{err}");
+
+    let mut triangles = reference.triangles.clone();
+    triangles[5].swap(1, 2);
+    let err = compare(&PolyMesh::from_triangles(reference.positions.clone(), &triangles), &reference).unwrap_err();
+    assert!(err.contains("(1 of them reversed)"), "{err}");
+}
