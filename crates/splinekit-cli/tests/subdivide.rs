@@ -36,9 +36,9 @@ impl Run {
     }
 }
 
-/// The course meshes (`../shared/data/obj`), as shipped (HTML lines included).
+/// The course meshes as shipped (HTML lines included): the io crate's test copies.
 fn shared(name: &str) -> String {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/obj").join(name);
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../splinekit-io/tests/data/obj").join(name);
     assert!(p.exists(), "{} missing", p.display());
     p.to_string_lossy().into_owned()
 }
