@@ -4,7 +4,8 @@
 //!
 //! Before timing, it prints an accuracy report: the largest |error| / accuracy over the
 //! same curves for both libraries (reference: splinekit's adaptive length at 1e-13, whose
-//! own accuracy is property-tested against an independent quadrature).
+//! own accuracy is property-tested against an independent quadrature), and for splinekit
+//! how large its error estimate gets and whether any error exceeds it.
 //!
 //! `cargo bench -p splinekit --bench arclen`
 
@@ -28,15 +29,21 @@ fn to_kurbo(c: &CubicBezier<DVec2>) -> CubicBez {
 fn accuracy_report(ours: &[CubicBezier<DVec2>], theirs: &[CubicBez]) {
     for acc in [1e-6, 1e-9] {
         let (mut worst_ours, mut worst_kurbo, mut miss_kurbo) = (0.0f64, 0.0f64, 0);
+        // the estimate returned with each length is a bound: count where the error exceeds it
+        // (beyond the reference's own 1e-13), and the largest estimate/accuracy
+        let (mut above_estimate, mut worst_estimate) = (0, 0.0f64);
         for (c, k) in ours.iter().zip(theirs) {
             let truth = c.arclen_range(0.0, 1.0, 1e-13).length;
-            worst_ours = worst_ours.max((c.arclen_range(0.0, 1.0, acc).length - truth).abs() / acc);
+            let e = c.arclen_range(0.0, 1.0, acc);
+            worst_ours = worst_ours.max((e.length - truth).abs() / acc);
+            above_estimate += usize::from((e.length - truth).abs() > e.error + 2e-13);
+            worst_estimate = worst_estimate.max(e.error / acc);
             let e = (k.arclen(acc) - truth).abs() / acc;
             worst_kurbo = worst_kurbo.max(e);
             miss_kurbo += usize::from(e > 1.0);
         }
         println!(
-            "arclen  accuracy {acc:e}: worst |error|/accuracy splinekit {worst_ours:.3}, kurbo {worst_kurbo:.3} ({miss_kurbo} of {N} kurbo answers miss)"
+            "arclen  accuracy {acc:e}: worst |error|/accuracy splinekit {worst_ours:.3}, kurbo {worst_kurbo:.3} ({miss_kurbo} of {N} kurbo answers miss); splinekit estimate/accuracy ≤ {worst_estimate:.3}, error above estimate on {above_estimate} of {N}"
         );
     }
     for acc in [1e-6, 1e-9] {

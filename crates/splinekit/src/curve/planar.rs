@@ -23,13 +23,14 @@
 //!    `m − 1 ≥ log2(E₁/budget) / log2(ρ²)` (`E₁` the bound for one node). The logarithms
 //!    are bounded from the floating-point representation (exponent, plus the mantissa with
 //!    a quadratic correction, each in the safe direction) and by `ln(1 + g) ≥ 2g/(2 + g)`;
-//!    the next whole number picks the rule from the table (1…20, 24, 28, 32, 40, …, 64, 80,
-//!    96, 112, 128 nodes) with no logarithm, power or second check. A relative margin of
+//!    the next whole number picks the rule from the table (1 to 20 nodes, then steps of 4 to
+//!    64 and of 8 to 128) with no logarithm, power or second check. A relative margin of
 //!    `1e-9` covers the rounding of this arithmetic. The bound itself, at most the budget,
 //!    is the error estimate returned.
 //!
-//! The cost per piece is then a short chain (three square roots and two divisions, most of
-//! them side by side) and the nodes, two at a time (`q(±x)` share their even part).
+//! The cost per piece is then a short chain (a few square roots and two divisions, mostly
+//! side by side) and the nodes, in pairs (`q(±x)` share their even part), four pairs at a
+//! time in packed arithmetic.
 //!
 //! # Roots near the interval
 //! - Roots that are real (exact cusps: the velocity vanishes) or near enough to real that
@@ -82,7 +83,10 @@ fn csqrt(z: DVec2) -> DVec2 {
     let big = (0.5 * sum).sqrt();
     let inv = if sum > 0.0 { 1.0 / sum } else { 0.0 };
     let small = z.y * big * inv;
-    if z.x >= 0.0 { DVec2::new(big, small) } else { DVec2::new(small.abs(), big.copysign(z.y)) }
+    // (big, small) for z.x ≥ 0, else (small, big): a blend, not a branch on the
+    // unpredictable sign
+    let t = f64::from(u8::from(z.x >= 0.0));
+    DVec2::new(t * big + (1.0 - t) * small, t * small + (1.0 - t) * big)
 }
 
 /// For the Bernstein ellipse through `(x + iy)/h` (`α` its semi-major axis, `ε = α² − 1`):
@@ -191,7 +195,15 @@ impl PlanarSpeed {
             let big = -0.5 * (b + sq);
             // 1/c is ready before big is
             let r1 = cmul(big, cdiv(DVec2::X, c));
-            let r2 = if big != DVec2::ZERO { cdiv(a, big) } else { r1 };
+            // a/big = a·conj(big)/|big|², scaled only where |big|² could overflow or underflow
+            let n2 = big.length_squared();
+            let r2 = if n2 > 1e-290 && n2 < 1e290 {
+                DVec2::new(a.x * big.x + a.y * big.y, a.y * big.x - a.x * big.y) * (1.0 / n2)
+            } else if big != DVec2::ZERO {
+                cdiv(a, big)
+            } else {
+                r1
+            };
             (l1(c), [r1, r2], 2)
         } else if l1(b) > 1e-14 * size {
             (l1(b), [-cdiv(a, b), DVec2::ZERO], 1)
