@@ -83,10 +83,7 @@ fn csqrt(z: DVec2) -> DVec2 {
     let big = (0.5 * sum).sqrt();
     let inv = if sum > 0.0 { 1.0 / sum } else { 0.0 };
     let small = z.y * big * inv;
-    // (big, small) for z.x ≥ 0, else (small, big): a blend, not a branch on the
-    // unpredictable sign
-    let t = f64::from(u8::from(z.x >= 0.0));
-    DVec2::new(t * big + (1.0 - t) * small, t * small + (1.0 - t) * big)
+    if z.x >= 0.0 { DVec2::new(big, small) } else { DVec2::new(small.abs(), big.copysign(z.y)) }
 }
 
 /// For the Bernstein ellipse through `(x + iy)/h` (`α` its semi-major axis, `ε = α² − 1`):
@@ -240,7 +237,6 @@ impl PlanarSpeed {
     }
 
     /// Integrates `[lo, cut]` and `[cut, hi]`, sharing `budget` in proportion to width.
-    #[cold]
     fn split(&self, lo: f64, cut: f64, hi: f64, budget: f64, depth: u32, out: &mut ArclenEstimate) {
         let left = budget * ((cut - lo) / (hi - lo));
         self.piece(lo, cut, left, depth + 1, out);
