@@ -8,54 +8,11 @@ use std::process::{Command, Stdio};
 
 use serde_json::Value;
 
+mod common;
+use common::{Run, splinekit};
+
 // ---------------------------------------------------------------------------------------
 // Harness
-
-/// The outcome of one run of the binary.
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-impl Run {
-    /// Asserts success and returns stdout.
-    #[track_caller]
-    fn ok(&self) -> &str {
-        assert_eq!(self.code, Some(0), "expected success\nstdout:\n{}\nstderr:\n{}", self.stdout, self.stderr);
-        &self.stdout
-    }
-
-    /// Asserts a non-zero exit with nothing on stdout, and returns stderr.
-    #[track_caller]
-    fn fails(&self) -> &str {
-        assert!(
-            self.code.is_some_and(|c| c != 0),
-            "expected failure, got {:?}\nstdout:\n{}\nstderr:\n{}",
-            self.code,
-            self.stdout,
-            self.stderr
-        );
-        assert!(self.stdout.is_empty(), "partial output on failure:\n{}", self.stdout);
-        assert!(!self.stderr.trim().is_empty(), "no message on failure");
-        &self.stderr
-    }
-
-    /// Asserts success and parses stdout as one JSON value.
-    #[track_caller]
-    fn json(&self) -> Value {
-        serde_json::from_str(self.ok()).unwrap_or_else(|e| panic!("bad JSON ({e}):\n{}", self.stdout))
-    }
-}
-
-fn splinekit<S: AsRef<OsStr>>(args: &[S]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_splinekit")).args(args).output().expect("running splinekit");
-    Run {
-        code: out.status.code(),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
 
 /// Runs `splinekit` with `file` as the argument after the subcommand.
 fn on(command: &str, file: &Path, rest: &[&str]) -> Run {

@@ -1,64 +1,18 @@
 //! `splinekit info MESH`: counts, topology and problems of OBJ, PLY and STL files.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
 use serde_json::Value;
 
-/// The outcome of one run of the binary.
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-impl Run {
-    #[track_caller]
-    fn ok(&self) -> &str {
-        assert_eq!(self.code, Some(0), "expected success\nstdout:\n{}\nstderr:\n{}", self.stdout, self.stderr);
-        &self.stdout
-    }
-
-    #[track_caller]
-    fn fails(&self) -> &str {
-        assert!(self.code.is_some_and(|c| c != 0), "expected failure\nstdout:\n{}", self.stdout);
-        assert!(self.stdout.is_empty(), "partial output on failure:\n{}", self.stdout);
-        &self.stderr
-    }
-
-    #[track_caller]
-    fn json(&self) -> Value {
-        serde_json::from_str(self.ok()).unwrap_or_else(|e| panic!("bad JSON ({e}):\n{}", self.stdout))
-    }
-}
+mod common;
+use common::{Run, course_mesh, splinekit};
 
 fn info(file: &Path, json: bool) -> Run {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_splinekit"));
-    cmd.arg("info").arg(file);
+    let mut args = vec![std::ffi::OsStr::new("info"), file.as_os_str()];
     if json {
-        cmd.arg("--json");
+        args.push("--json".as_ref());
     }
-    let out = cmd.output().expect("running splinekit");
-    Run {
-        code: out.status.code(),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
-
-/// A course mesh, from the io crate's test copies or the shared data folder.
-fn course_mesh(name: &str) -> PathBuf {
-    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let candidates = [
-        crate_dir.join("../splinekit-io/tests/data/obj"),
-        crate_dir.join("../../../shared/data/obj"),
-        crate_dir.join("../../shared/data/obj"),
-    ];
-    candidates
-        .iter()
-        .map(|d| d.join(name))
-        .find(|p| p.is_file())
-        .unwrap_or_else(|| panic!("no {name} in any of {candidates:?}"))
+    splinekit(&args)
 }
 
 fn ints(v: &Value) -> Vec<i64> {
@@ -219,8 +173,8 @@ fn malformed_and_unreadable_files_fail_with_a_position() {
 
 #[test]
 fn help_documents_meshes_and_json_fields() {
-    let out = Command::new(env!("CARGO_BIN_EXE_splinekit")).args(["info", "--help"]).output().unwrap();
-    let help = String::from_utf8(out.stdout).unwrap();
+    let run = splinekit(&["info", "--help"]);
+    let help = run.ok();
     for needle in ["mesh file (.obj, .ply, .stl)", "euler_characteristic", "nonmanifold_edges", "boundary_loops"] {
         assert!(help.contains(needle), "{needle:?} missing in\n{help}");
     }

@@ -2,45 +2,15 @@
 //! (a clear message, a non-zero exit, no output file).
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use serde_json::Value;
 
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
+mod common;
+use common::{course_mesh, splinekit};
 
-fn splinekit(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_splinekit")).args(args).output().expect("running splinekit");
-    Run {
-        code: out.status.code(),
-        stdout: String::from_utf8(out.stdout).expect("UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("UTF-8"),
-    }
-}
-
-impl Run {
-    #[track_caller]
-    fn ok(&self) -> &str {
-        assert_eq!(self.code, Some(0), "stdout:\n{}\nstderr:\n{}", self.stdout, self.stderr);
-        &self.stdout
-    }
-
-    #[track_caller]
-    fn fails(&self) -> &str {
-        assert!(self.code.is_some_and(|c| c != 0), "expected failure\nstdout:\n{}", self.stdout);
-        assert!(self.stdout.is_empty());
-        &self.stderr
-    }
-}
-
-/// The course meshes as shipped (HTML lines included): the io crate's test copies.
+/// A course mesh as shipped (HTML lines included).
 fn shared(name: &str) -> String {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../splinekit-io/tests/data/obj").join(name);
-    assert!(p.exists(), "{} missing", p.display());
-    p.to_string_lossy().into_owned()
+    course_mesh(name).to_string_lossy().into_owned()
 }
 
 fn temp_dir(name: &str) -> PathBuf {

@@ -8,44 +8,12 @@
 use std::ffi::OsStr;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+
+mod common;
+use common::{Run, splinekit};
 
 // ---------------------------------------------------------------------------------------
-// Harness (as in cli.rs)
-
-/// The outcome of one run of the binary.
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-impl Run {
-    /// Asserts success and returns stdout.
-    #[track_caller]
-    fn ok(&self) -> &str {
-        assert_eq!(self.code, Some(0), "expected success\nstdout:\n{}\nstderr:\n{}", self.stdout, self.stderr);
-        &self.stdout
-    }
-
-    /// Asserts exit status 1 with nothing on stdout, and returns stderr.
-    #[track_caller]
-    fn fails(&self) -> &str {
-        assert_eq!(self.code, Some(1), "expected failure\nstdout:\n{}\nstderr:\n{}", self.stdout, self.stderr);
-        assert!(self.stdout.is_empty(), "partial output on failure:\n{}", self.stdout);
-        assert!(self.stderr.starts_with("error: "), "{}", self.stderr);
-        &self.stderr
-    }
-}
-
-fn splinekit<S: AsRef<OsStr>>(args: &[S]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_splinekit")).args(args).output().expect("running splinekit");
-    Run {
-        code: out.status.code(),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
+// Harness (shared: tests/common)
 
 /// Runs `splinekit sweep FILE -o DIR` with more arguments.
 fn sweep(file: &Path, dir: &Path, rest: &[&str]) -> Run {
@@ -200,7 +168,7 @@ fn obj_without_a_spline_header_is_a_clear_error() {
     let plain = dir.path().join("cube.obj");
     fs::write(&plain, "# Blender v2.79 OBJ File\no Cube\nv 1 1 1\nv 0 1 1\nv 0 0 1\nf 1 2 3\n").unwrap();
     let out = dir.path().join("out");
-    let stderr = sweep(&plain, &out, &[]).fails().to_string();
+    let stderr = sweep(&plain, &out, &[]).fails_with_error().to_string();
     assert!(stderr.contains("cube.obj: no spline header found"), "{stderr}");
     assert!(stderr.contains("# Configs: closed, epsilon, isBSpline, Scale, sliceTolerance"), "{stderr}");
     assert!(stderr.contains("Swept-along"), "{stderr}");
@@ -216,7 +184,7 @@ fn broken_header_and_bad_splines_name_the_file() {
 
     let bad = dir.path().join("bad.obj");
     fs::write(&bad, text.replacen("# 0.809017 -0.58778524", "# 0.809017 -0.58x", 1)).unwrap();
-    let stderr = sweep(&bad, &out, &[]).fails().to_string();
+    let stderr = sweep(&bad, &out, &[]).fails_with_error().to_string();
     assert!(
         stderr.contains(
             "bad.obj:10:12: found \"-0.58x\", expected a number (y coordinate of cross-section control point 3)"
@@ -229,12 +197,12 @@ fn broken_header_and_bad_splines_name_the_file() {
     let short: String = text[..i].to_string() + "# Swept-along Spline control points:\n# 0.0 1.0\n# 1.0 0.0\nv 0 0 0\n";
     let few = dir.path().join("few.obj");
     fs::write(&few, short).unwrap();
-    let stderr = sweep(&few, &out, &[]).fails().to_string();
+    let stderr = sweep(&few, &out, &[]).fails_with_error().to_string();
     assert!(stderr.contains("few.obj"), "{stderr}");
     assert!(stderr.contains("swept-along spline: b-spline needs at least 3 control points, got 2"), "{stderr}");
 
     let missing = dir.path().join("missing.obj");
-    assert!(sweep(&missing, &out, &[]).fails().contains("missing.obj"));
+    assert!(sweep(&missing, &out, &[]).fails_with_error().contains("missing.obj"));
     assert!(entries(&out).is_empty(), "nothing written");
 }
 
@@ -251,13 +219,13 @@ fn swp_only_flags_are_refused_and_the_input_is_never_overwritten() {
         (&["--frames", "rmf"][..], "--frames"),
         (&["--frames", "sequential"][..], "--frames"),
     ] {
-        let stderr = sweep(&input, &out, flags).fails().to_string();
+        let stderr = sweep(&input, &out, flags).fails_with_error().to_string();
         assert!(stderr.contains(&format!("{name} does not apply to")), "{stderr}");
     }
     assert!(entries(&out).is_empty());
     // writing next to the input, in the input's format, would replace it: refused
     let before = fs::read(&input).unwrap();
-    let stderr = sweep(&input, dir.path(), &[]).fails().to_string();
+    let stderr = sweep(&input, dir.path(), &[]).fails_with_error().to_string();
     assert!(stderr.contains("would overwrite the input file"), "{stderr}");
     assert!(fs::read(&input).unwrap() == before);
     // another format next to it is fine; --no-caps is accepted (rebuilt sweeps have no caps)

@@ -39,21 +39,7 @@ impl Circle {
 }
 
 impl<P: Vector> ParamCurve<P> for Circle {
-    fn num_segments(&self) -> usize {
-        1
-    }
-    fn eval(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 0))
-    }
-    fn deriv(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 1))
-    }
-    fn deriv2(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 2))
-    }
-    fn deriv3(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 3))
-    }
+    one_segment_from_at!();
     /// Exact: `2πr·(u1 − u0)`, error 0.
     fn arclen_range(&self, u0: f64, u1: f64, _accuracy: f64) -> ArclenEstimate {
         ArclenEstimate { length: TAU * self.radius * (u1 - u0), error: 0.0 }

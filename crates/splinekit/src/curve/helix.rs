@@ -196,21 +196,7 @@ fn hits(a: f64, b: f64, phase: f64) -> bool {
 }
 
 impl<P: Vector> ParamCurve<P> for Helix {
-    fn num_segments(&self) -> usize {
-        1
-    }
-    fn eval(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 0))
-    }
-    fn deriv(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 1))
-    }
-    fn deriv2(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 2))
-    }
-    fn deriv3(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 3))
-    }
+    one_segment_from_at!();
     /// Exact: `2π·|turns|·√(r² + c²)·(u1 − u0)` (2D: `2π·|turns|·r·(u1 − u0)`), error 0.
     fn arclen_range(&self, u0: f64, u1: f64, _accuracy: f64) -> ArclenEstimate {
         let speed = self.omega().abs() * self.radius.hypot(self.rise_in::<P>());

@@ -7,6 +7,28 @@
 //! with local `t = u − k` (SPEC §1.1). Circles ([`Circle`]), helices ([`Helix`]) and the
 //! trefoil knot ([`Trefoil`]) are exact parametric curves of one segment, not cubics.
 
+/// The single-segment `ParamCurve` methods of an exact curve (circle, helix, trefoil) whose
+/// inherent `at(u, order)` gives the position (order 0) or a derivative (1–3) in 3D.
+macro_rules! one_segment_from_at {
+    () => {
+        fn num_segments(&self) -> usize {
+            1
+        }
+        fn eval(&self, u: f64) -> P {
+            P::from_dvec3(self.at(u, 0))
+        }
+        fn deriv(&self, u: f64) -> P {
+            P::from_dvec3(self.at(u, 1))
+        }
+        fn deriv2(&self, u: f64) -> P {
+            P::from_dvec3(self.at(u, 2))
+        }
+        fn deriv3(&self, u: f64) -> P {
+            P::from_dvec3(self.at(u, 3))
+        }
+    };
+}
+
 mod any;
 mod bezier;
 mod bspline;

@@ -328,21 +328,7 @@ fn gauss_legendre<F: Fn(f64) -> f64>(f: &F, c: f64, h: f64, m: usize) -> f64 {
 }
 
 impl<P: Vector> ParamCurve<P> for Trefoil {
-    fn num_segments(&self) -> usize {
-        1
-    }
-    fn eval(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 0))
-    }
-    fn deriv(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 1))
-    }
-    fn deriv2(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 2))
-    }
-    fn deriv3(&self, u: f64) -> P {
-        P::from_dvec3(self.at(u, 3))
-    }
+    one_segment_from_at!();
     /// Arc length to within `accuracy`, with a rigorous error bound as the estimate.
     ///
     /// In `θ = 6πu` the length is `(s/3)·∫g dθ` with `g` of period 2π (see the module docs).

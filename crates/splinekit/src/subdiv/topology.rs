@@ -100,7 +100,7 @@ impl Topology {
             return Err(TopologyError::Index { face: (c / 3) as u32, vertex: flat[c], count: num_vertices });
         }
         let offsets: Vec<u32> = (0..=triangles.len() as u32).map(|f| 3 * f).collect();
-        let adj = Adjacency::from_faces(&offsets, &flat, num_vertices);
+        let mut adj = Adjacency::from_faces(&offsets, &flat, num_vertices);
         if let Some(p) = adj.problems.first() {
             let (a, b, corners) = match p {
                 crate::mesh::EdgeProblem::NonManifold { a, b, corners } => (*a, *b, corners.clone()),
@@ -108,7 +108,10 @@ impl Topology {
             };
             return Err(TopologyError::Edge { a, b, faces: corners.iter().map(|c| c / 3).collect() });
         }
-        let topo = Self::from_twins(triangles, adj.twin.clone(), num_vertices);
+        // Adjacency numbers edges as `from_twins` does (in half-edge order, owned by their
+        // first half-edge): take its tables instead of numbering again.
+        let (edge_of, edge_owner) = (std::mem::take(&mut adj.edge_of), std::mem::take(&mut adj.edge_corner));
+        let topo = Self::with_starts(triangles, adj.twin.clone(), edge_of, edge_owner, num_vertices);
         // Every corner of a vertex must be reached by rotating from its start.
         for (v, &h) in topo.vertex_start.iter().enumerate() {
             let reached = if h == NONE { 0 } else { topo.fan(h).count() as u32 };
@@ -140,6 +143,17 @@ impl Topology {
                 }
             }
         }
+        Self::with_starts(triangles, twin, edge_of, edge_owner, num_vertices)
+    }
+
+    /// Tables from manifold twin and edge tables: starts prefer boundary half-edges.
+    fn with_starts(
+        triangles: &[[u32; 3]],
+        twin: Vec<u32>,
+        edge_of: Vec<u32>,
+        edge_owner: Vec<u32>,
+        num_vertices: usize,
+    ) -> Self {
         let mut vertex_start = vec![NONE; num_vertices];
         for (f, t) in triangles.iter().enumerate() {
             for i in 0..3 {
