@@ -251,6 +251,31 @@ fn distance_mode_tiny_huge_and_degenerate_curves() {
 }
 
 #[test]
+fn distance_mode_long_plans_coarse_cells_and_turnarounds() {
+    // The three shapes of the plan, measured: more chords than one pass of the table march
+    // (small tolerances), coarser cells for nearly straight curves and coarse tolerances, and
+    // cells next to turnarounds (zero speed), where Wang's bound takes over.
+    let mut state = 0xB16u64;
+    for _ in 0..6 {
+        let c = common::random_cubic(&mut state, 100.0);
+        let (n, _) = check_distance(&c, 1e-5);
+        assert!(n > 128, "{n}");
+    }
+    // nearly straight: far fewer chords than the 12 cells would take
+    let gentle = cubic2([(0.0, 0.0), (30.0, 1.0), (70.0, 1.0), (100.0, 0.0)]);
+    assert!(check_distance(&gentle, 0.1).0 < 12);
+    assert!(check_distance(&cubic2([(0.0, 0.0), (30.0, 0.0), (70.0, 0.5), (100.0, 0.0)]), 0.01).0 < 12);
+    // straight with varying speed (the no-overshoot condition limits the chords there)
+    check_distance(&cubic2([(0.0, 0.0), (0.1, 0.1), (2.0, 2.0), (3.0, 3.0)]), 1e-6);
+    // turnarounds: a line that doubles back, and folds, at small tolerances
+    for tol in [1e-2, 1e-4, 1e-6] {
+        check_distance(&cubic2([(0.0, 0.0), (3.0, 0.0), (-1.0, 0.0), (1.0, 0.0)]), tol);
+        check_distance(&cubic2([(0.0, 0.0), (100.0, 0.0), (100.0, 0.0), (0.0, 0.0)]), tol * 100.0);
+        check_distance(&cubic2(CUSP), tol);
+    }
+}
+
+#[test]
 fn distance_mode_invalid_tolerance_means_default() {
     let curve = chain(cubic2(FOLD_BACK));
     let default = flatten_params(&curve, Tessellation::Distance { tolerance: DEFAULT_TOLERANCE });
@@ -306,12 +331,15 @@ fn distance_mode_uses_far_fewer_points_than_uniform_steps() {
 
 #[test]
 fn measurement_detects_a_missing_vertex() {
-    // The test is sharp: drop the vertex nearest the fold-back's tip and the measured
-    // distance jumps far above the tolerance.
+    // The test is sharp: drop the vertices nearest the fold-back's tip (t = ½; the curve is
+    // symmetric about it, so one on each side) and the measured distance jumps far above the
+    // tolerance.
     let curve = chain(cubic2(FOLD_BACK));
     let mut u = flatten_params(&curve, Tessellation::Distance { tolerance: 0.01 });
-    let tip = u.iter().enumerate().min_by(|a, b| (a.1 - 0.5).abs().total_cmp(&(b.1 - 0.5).abs())).unwrap().0;
-    u.remove(tip);
+    let before = u.len();
+    let left = u.iter().rposition(|&t| t <= 0.5).unwrap();
+    u.drain(left..=left + 1);
+    assert!(before - u.len() == 2 && u.iter().all(|&t| (t - 0.5).abs() > 0.01));
     assert!(hausdorff_lower_bound(&curve, &u, 6000) > 0.02);
 }
 
