@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
-# The project's test command (the README's second quick-start command): checks that the
-# benchmarks build, then runs every test of the workspace, doc tests included.
+# The project's test command (the README's second quick-start command): installs the system
+# packages the editor's headless UI tests need (Mesa's software Vulkan driver), checks that
+# the benchmarks build, then runs every test of the workspace, doc tests included.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+bash scripts/install-test-deps.sh
+# winit warns without a runtime directory
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
 cargo bench --workspace --locked --no-run
 cargo test --workspace --locked

@@ -7,6 +7,7 @@
 mod alloc;
 mod arclen_cmd;
 mod curve_cmd;
+mod edit_cmd;
 mod info_cmd;
 mod mesh_info;
 mod output;
@@ -37,7 +38,8 @@ static ALLOCATOR: alloc::HugePageAlloc = alloc::HugePageAlloc;
     splinekit arclen scene.swp --method adaptive --at-s 0.417 --spacing 0.5 --json\n  \
     splinekit curve scene.swp --curve 1 --steps 50 --format json\n  \
     splinekit sweep wineglass.swp -o out --format glb\n  \
-    splinekit info wineglass.swp\n\n\
+    splinekit info wineglass.swp\n  \
+    splinekit edit wineglass.swp\n\n\
     Run `splinekit <COMMAND> --help` for the flags of each command.")]
 struct Cli {
     #[command(subcommand)]
@@ -51,6 +53,7 @@ enum Command {
     Sweep(sweep_cmd::SweepArgs),
     Info(info_cmd::InfoArgs),
     Subdivide(subdivide_cmd::SubdivideArgs),
+    Edit(edit_cmd::EditArgs),
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
@@ -62,6 +65,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Sweep(args) => sweep_cmd::run(&args, &mut out)?,
         Command::Info(args) => info_cmd::run(&args, &mut out)?,
         Command::Subdivide(args) => subdivide_cmd::run(&args, &mut out)?,
+        Command::Edit(args) => edit_cmd::run(&args)?,
     }
     out.flush()?;
     Ok(())

@@ -1,1 +1,633 @@
-//! placeholder
+//! The splinekit editor (`splinekit edit [FILE]`): 2D curve editing and the surfaces swept
+//! from the curves, or a loaded mesh with Loop subdivision.
+//!
+//! The window has a file bar (path field: load SWP, OBJ, PLY, STL; save SWP; export the
+//! surface as OBJ, glb, PLY or STL), a left panel (curves, kind, closed, plane, what to show),
+//! the 2D curve view in the middle, a right panel with the surface or mesh and its
+//! subdivision, and a status line for messages and errors. An error never changes the
+//! document.
+//!
+//! Keyboard (when no text field has focus): `r` preset scene, `s` cycle the spline kind, `c`
+//! clear the curve, `a` arc-length markers, `l` control polygon, `w` wireframe, `n` normals,
+//! `f` fit the view, `h` or `?` help, Delete the selected point, Ctrl+Z undo,
+//! Ctrl+Shift+Z (or Ctrl+Y) redo.
+
+pub mod doc;
+pub mod view2d;
+
+use std::path::{Path, PathBuf};
+
+use eframe::egui::{self, Key, Modifiers};
+use splinekit::subdiv::{LoopOptions, LoopPyramid};
+use splinekit::{PolyMesh, TriMesh};
+use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
+use splinekit_io::surface::SurfaceOptions;
+
+pub use doc::Document;
+pub use view2d::{Plane, View2d};
+
+/// The keyboard shortcuts, as the help panel lists them.
+pub const SHORTCUTS: [(&str, &str); 13] = [
+    ("Shift+click", "add a point"),
+    ("click on the polygon", "insert a point there"),
+    ("drag a point", "move it (drag the background to pan, scroll to zoom)"),
+    ("Delete", "delete the selected point (or right-click it)"),
+    ("Ctrl+Z / Ctrl+Shift+Z", "undo / redo"),
+    ("r", "preset scene (SPEC §1.4)"),
+    ("s", "cycle the spline kind"),
+    ("c", "clear the curve"),
+    ("a", "arc-length markers"),
+    ("l", "control polygon"),
+    ("w", "wireframe (3D view)"),
+    ("n", "normals"),
+    ("f", "fit the view"),
+];
+
+/// A loaded mesh and its Loop subdivision levels.
+pub struct MeshState {
+    /// Where it came from.
+    pub name: String,
+    /// The subdivision levels (level 0 is the loaded mesh).
+    pub pyramid: Result<LoopPyramid, String>,
+    /// The loaded mesh (triangles or polygons).
+    pub base: PolyMesh,
+    /// The level shown.
+    pub level: usize,
+}
+
+impl MeshState {
+    /// The number of faces of the level shown.
+    #[must_use]
+    pub fn faces(&self) -> usize {
+        match &self.pyramid {
+            Ok(p) => p.level(self.level).num_triangles(),
+            Err(_) => self.base.num_faces(),
+        }
+    }
+
+    /// The number of vertices of the level shown.
+    #[must_use]
+    pub fn vertices(&self) -> usize {
+        match &self.pyramid {
+            Ok(p) => p.level(self.level).num_vertices(),
+            Err(_) => self.base.positions.len(),
+        }
+    }
+}
+
+/// What the surface panel shows for the document's surfaces.
+#[derive(Clone, Debug, Default)]
+struct SurfaceSummary {
+    revision: Option<u64>,
+    lines: Vec<String>,
+    triangles: usize,
+}
+
+/// The editor application.
+pub struct EditorApp {
+    /// The document.
+    pub doc: Document,
+    /// The 2D view.
+    pub view: View2d,
+    /// A loaded mesh (shown instead of the document's surfaces).
+    pub mesh: Option<MeshState>,
+    /// Colour the subdivision levels.
+    pub color_by_level: bool,
+    /// Wireframe in the 3D view (`w`).
+    pub wireframe: bool,
+    /// The last message (errors start with "Error").
+    pub status: String,
+    /// The path field of the file bar.
+    pub path_field: String,
+    /// Show the help window.
+    pub show_help: bool,
+    /// Show the arc-length table window.
+    pub show_table: bool,
+    surfaces: SurfaceSummary,
+}
+
+impl Default for EditorApp {
+    fn default() -> Self {
+        Self {
+            doc: Document::new(),
+            view: View2d::default(),
+            mesh: None,
+            color_by_level: false,
+            wireframe: false,
+            status: "Shift+click to add points; press h for help".to_owned(),
+            path_field: String::new(),
+            show_help: false,
+            show_table: false,
+            surfaces: SurfaceSummary::default(),
+        }
+    }
+}
+
+impl EditorApp {
+    /// A new editor; opens `file` if given (an error goes to the status line).
+    #[must_use]
+    pub fn new(file: Option<&Path>) -> Self {
+        let mut app = Self::default();
+        if let Some(file) = file {
+            app.path_field = file.display().to_string();
+            app.open(file);
+        }
+        app
+    }
+
+    /// Opens an SWP file (as the document) or a mesh (OBJ, PLY, STL; an OBJ with a spline
+    /// header is rebuilt from its spline). On error the status line says why and nothing
+    /// changes.
+    pub fn open(&mut self, path: &Path) {
+        let is_swp = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("swp"));
+        if is_swp {
+            match Document::read(path) {
+                Ok(doc) => {
+                    self.doc = doc;
+                    self.surfaces = SurfaceSummary::default();
+                    self.mesh = None;
+                    self.view.fit_pending = true;
+                    self.view.selected = None;
+                    self.status = format!("Loaded {}", path.display());
+                }
+                Err(e) => self.status = format!("Error: {e}"),
+            }
+            return;
+        }
+        match load_mesh(path) {
+            Ok(mesh) => {
+                let pyramid = LoopPyramid::new(&mesh, self.loop_options()).map_err(|e| e.to_string());
+                self.status = format!(
+                    "Loaded {}: {} vertices, {} triangles",
+                    path.display(),
+                    mesh.positions.len(),
+                    mesh.num_faces()
+                );
+                if let Err(e) = &pyramid {
+                    self.status.push_str(&format!(" (cannot subdivide: {e})"));
+                }
+                self.mesh = Some(MeshState { name: path.display().to_string(), pyramid, base: mesh, level: 0 });
+            }
+            Err(e) => self.status = format!("Error: {e}"),
+        }
+    }
+
+    fn loop_options(&self) -> LoopOptions {
+        LoopOptions { color_by_level: self.color_by_level, ..LoopOptions::default() }
+    }
+
+    /// Refines the loaded mesh one level (kept levels are reused when coarsening).
+    pub fn refine(&mut self) {
+        let Some(m) = &mut self.mesh else { return };
+        let Ok(p) = &mut m.pyramid else { return };
+        if m.level + 1 > p.finest().depth() {
+            p.refine();
+        }
+        m.level = (m.level + 1).min(p.finest().depth());
+        self.status = format!("Level {}: {} faces", m.level, p.level(m.level).num_triangles());
+    }
+
+    /// Shows the next coarser level of the loaded mesh.
+    pub fn coarsen(&mut self) {
+        if let Some(m) = &mut self.mesh
+            && m.level > 0
+        {
+            m.level -= 1;
+            self.status = format!("Level {}: {} faces", m.level, m.faces());
+        }
+    }
+
+    /// Saves the document as SWP to `path` (through a temporary file).
+    pub fn save_swp(&mut self, path: &Path) {
+        let text = self.doc.to_swp_string();
+        let result = splinekit_io::atomic::write_file(path, |w| -> std::io::Result<()> {
+            use std::io::Write;
+            w.write_all(text.as_bytes())
+        });
+        match result {
+            Ok(()) => {
+                self.doc.path = Some(path.to_path_buf());
+                self.status = format!("Saved {}", path.display());
+            }
+            Err(e) => self.status = format!("Error: cannot write {}: {e}", path.display()),
+        }
+    }
+
+    /// Exports the shown surface (the loaded mesh's level, or the document's first surface)
+    /// in the format of `path`'s extension (obj, glb, ply, stl).
+    pub fn export(&mut self, path: &Path) {
+        let Some(format) = MeshFormat::from_path(path) else {
+            self.status = format!("Error: {}: unknown extension (expected .obj, .glb, .ply or .stl)", path.display());
+            return;
+        };
+        let mesh = match self.shown_mesh() {
+            Ok(m) => m,
+            Err(e) => {
+                self.status = format!("Error: {e}");
+                return;
+            }
+        };
+        match splinekit_io::mesh::save(&mesh, path, format) {
+            Ok(()) => self.status = format!("Exported {} ({} triangles)", path.display(), mesh.num_triangles()),
+            Err(e) => self.status = format!("Error: {e}"),
+        }
+    }
+
+    /// The mesh of the 3D view: the loaded mesh's level, or the document's surfaces merged.
+    ///
+    /// # Errors
+    ///
+    /// Why there is none (no surface in the document, or a surface that cannot be built).
+    pub fn shown_mesh(&self) -> Result<TriMesh, String> {
+        if let Some(m) = &self.mesh {
+            return Ok(match &m.pyramid {
+                Ok(p) => p.level(m.level).clone().into_tri_mesh(),
+                Err(_) => m.base.to_tri_mesh(),
+            });
+        }
+        if self.doc.swp.surfaces.is_empty() {
+            return Err("the document has no surface (add srev or gcyl to the SWP file)".to_owned());
+        }
+        let mut all = TriMesh::default();
+        for i in 0..self.doc.swp.surfaces.len() {
+            let mesh = self.doc.swp.surface_mesh(i, &SurfaceOptions::default()).map_err(|e| e.to_string())?;
+            append(&mut all, &mesh);
+        }
+        Ok(all)
+    }
+
+    /// The triangle count of the document's surfaces (0 if there are none or they fail).
+    #[must_use]
+    pub fn surface_triangles(&mut self) -> usize {
+        self.update_surfaces();
+        self.surfaces.triangles
+    }
+
+    fn update_surfaces(&mut self) {
+        if self.surfaces.revision == Some(self.doc.revision()) && self.surfaces.revision.is_some() {
+            return;
+        }
+        let mut lines = Vec::new();
+        let mut triangles = 0;
+        for (i, s) in self.doc.swp.surfaces.iter().enumerate() {
+            let name = s.display_name(i);
+            match self.doc.swp.surface_mesh(i, &SurfaceOptions::default()) {
+                Ok(m) => {
+                    triangles += m.num_triangles();
+                    lines.push(format!("{name}: {} vertices, {} triangles", m.num_vertices(), m.num_triangles()));
+                }
+                Err(e) => lines.push(format!("{name}: {e}")),
+            }
+        }
+        self.surfaces = SurfaceSummary { revision: Some(self.doc.revision()), lines, triangles };
+    }
+
+    fn keyboard(&mut self, ctx: &egui::Context) {
+        if ctx.egui_wants_keyboard_input() {
+            return;
+        }
+        let pressed = |key: Key| ctx.input_mut(|i| i.consume_key(Modifiers::NONE, key));
+        if ctx.input_mut(|i| i.consume_key(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z))
+            || ctx.input_mut(|i| i.consume_key(Modifiers::COMMAND, Key::Y))
+        {
+            self.redo();
+        }
+        if ctx.input_mut(|i| i.consume_key(Modifiers::COMMAND, Key::Z)) {
+            self.undo();
+        }
+        if pressed(Key::R) {
+            self.preset();
+        }
+        if pressed(Key::S) {
+            self.doc.cycle_kind();
+        }
+        if pressed(Key::C) {
+            self.doc.clear();
+            self.view.selected = None;
+        }
+        if pressed(Key::A) {
+            self.view.show.markers ^= true;
+        }
+        if pressed(Key::L) {
+            self.view.show.polygon ^= true;
+        }
+        if pressed(Key::W) {
+            self.wireframe ^= true;
+        }
+        if pressed(Key::N) {
+            self.view.show.normals ^= true;
+        }
+        if pressed(Key::F) {
+            self.view.fit_pending = true;
+        }
+        if pressed(Key::H) || ctx.input(|i| i.events.iter().any(|e| matches!(e, egui::Event::Text(t) if t == "?"))) {
+            self.show_help ^= true;
+        }
+        if (pressed(Key::Delete) || pressed(Key::Backspace))
+            && let Some(i) = self.view.selected.take()
+        {
+            self.doc.delete_point(i);
+        }
+    }
+
+    /// Loads the preset scene (SPEC §1.4) and frames it.
+    pub fn preset(&mut self) {
+        self.doc.preset();
+        self.mesh = None;
+        self.view.plane = Plane::Xy;
+        self.view.fit_pending = true;
+        self.view.selected = None;
+        self.status = "Preset scene: open uniform Catmull-Rom, 8 points (SPEC §1.4)".to_owned();
+    }
+
+    /// Undoes the last edit.
+    pub fn undo(&mut self) {
+        if !self.doc.undo() {
+            self.status = "Nothing to undo".to_owned();
+        }
+        self.view.selected = None;
+    }
+
+    /// Redoes the last undone edit.
+    pub fn redo(&mut self) {
+        if !self.doc.redo() {
+            self.status = "Nothing to redo".to_owned();
+        }
+        self.view.selected = None;
+    }
+
+    fn file_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            ui.label("File:");
+            ui.add(egui::TextEdit::singleline(&mut self.path_field).desired_width(320.0).hint_text("path/to/file.swp"));
+            let path = PathBuf::from(self.path_field.trim());
+            let empty = self.path_field.trim().is_empty();
+            if ui.add_enabled(!empty, egui::Button::new("Open")).clicked() {
+                self.open(&path);
+            }
+            if ui.add_enabled(!empty, egui::Button::new("Save SWP")).clicked() {
+                self.save_swp(&path);
+            }
+            if ui.add_enabled(!empty, egui::Button::new("Export mesh")).clicked() {
+                self.export(&path);
+            }
+            ui.separator();
+            if ui.add_enabled(self.doc.can_undo(), egui::Button::new("Undo")).clicked() {
+                self.undo();
+            }
+            if ui.add_enabled(self.doc.can_redo(), egui::Button::new("Redo")).clicked() {
+                self.redo();
+            }
+            if ui.button("Preset").clicked() {
+                self.preset();
+            }
+            if ui.button("Help").clicked() {
+                self.show_help ^= true;
+            }
+        });
+    }
+
+    fn left_panel(&mut self, ui: &mut egui::Ui) {
+        ui.heading("Curves");
+        let names: Vec<String> = self
+            .doc
+            .swp
+            .curves
+            .iter()
+            .enumerate()
+            .map(|(i, c)| format!("{} ({}, {} points)", c.display_name(i), doc::kind_name(c.kind), point_count(c)))
+            .collect();
+        for (i, name) in names.iter().enumerate() {
+            if ui.selectable_label(i == self.doc.active, name).clicked() {
+                self.doc.select_curve(i);
+                self.view.selected = None;
+                self.view.fit_pending = true;
+            }
+        }
+        if ui.button("Add curve").clicked() {
+            self.doc.add_curve();
+        }
+        ui.separator();
+        if let Some(curve) = self.doc.curve() {
+            let (kind, closed) = (curve.kind, curve.closed);
+            egui::ComboBox::from_label("Kind").selected_text(doc::kind_name(kind)).show_ui(ui, |ui| {
+                for (k, name) in doc::KINDS {
+                    if ui.selectable_label(k == kind, name).clicked() {
+                        self.doc.set_kind(k);
+                    }
+                }
+            });
+            let mut c = closed;
+            if ui.checkbox(&mut c, "Closed").changed() {
+                self.doc.set_closed(c);
+            }
+            if !self.doc.is_2d() {
+                ui.horizontal(|ui| {
+                    ui.label("Plane");
+                    for plane in [Plane::Xy, Plane::Yz, Plane::Zx] {
+                        if ui.selectable_label(self.view.plane == plane, plane.name()).clicked() {
+                            self.view.plane = plane;
+                            self.view.fit_pending = true;
+                        }
+                    }
+                });
+            }
+            if ui.button("Clear curve").clicked() {
+                self.doc.clear();
+            }
+        }
+        ui.separator();
+        ui.heading("Show");
+        let show = &mut self.view.show;
+        ui.checkbox(&mut show.polygon, "Control polygon");
+        ui.checkbox(&mut show.markers, "Arc-length markers");
+        ui.add(egui::Slider::new(&mut show.marker_spacing, 0.001..=10.0).logarithmic(true).text("spacing"));
+        ui.checkbox(&mut show.normals, "Tangents and normals");
+        ui.checkbox(&mut show.frames, "Frames (T, N, B)");
+        ui.checkbox(&mut show.comb, "Curvature comb");
+        ui.add(egui::Slider::new(&mut show.comb_scale, 0.001..=10.0).logarithmic(true).text("comb scale"));
+        ui.checkbox(&mut self.show_table, "Arc-length table");
+        if ui.button("Fit view").clicked() {
+            self.view.fit_pending = true;
+        }
+    }
+
+    fn right_panel(&mut self, ui: &mut egui::Ui) {
+        ui.heading("Surface");
+        if let Some(m) = &self.mesh {
+            ui.label(format!("Mesh {}", m.name));
+            ui.label(format!("Level {}: {} vertices", m.level, m.vertices()));
+            ui.label(format!("Faces: {}", m.faces()));
+            let can_refine = m.pyramid.is_ok();
+            ui.horizontal(|ui| {
+                if ui.add_enabled(can_refine, egui::Button::new("Refine subdivision")).clicked() {
+                    self.refine();
+                }
+                if ui.button("Coarsen subdivision").clicked() {
+                    self.coarsen();
+                }
+            });
+            let options = LoopOptions { color_by_level: !self.color_by_level, ..LoopOptions::default() };
+            if ui.checkbox(&mut self.color_by_level, "Colour by level").changed()
+                && let Some(m) = &mut self.mesh
+            {
+                let level = m.level;
+                m.pyramid = LoopPyramid::new(&m.base, options).map_err(|e| e.to_string());
+                if let Ok(p) = &mut m.pyramid {
+                    p.refine_to(level, |_| {});
+                }
+            }
+            if ui.button("Close mesh").clicked() {
+                self.mesh = None;
+            }
+        } else {
+            self.update_surfaces();
+            if self.surfaces.lines.is_empty() {
+                ui.label("No surface in the document");
+            }
+            for line in &self.surfaces.lines {
+                ui.label(line);
+            }
+            ui.label(format!("Triangles: {}", self.surfaces.triangles));
+        }
+        ui.checkbox(&mut self.wireframe, "Wireframe");
+    }
+
+    fn windows(&mut self, ctx: &egui::Context) {
+        let mut open = self.show_help;
+        egui::Window::new("Help").open(&mut open).show(ctx, |ui| {
+            egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
+                for (key, what) in SHORTCUTS {
+                    ui.monospace(key);
+                    ui.label(what);
+                    ui.end_row();
+                }
+            });
+        });
+        self.show_help = open;
+        let mut open = self.show_table;
+        egui::Window::new("Arc-length table").open(&mut open).show(ctx, |ui| match self.doc.spline() {
+            Ok(c) => {
+                let chord = splinekit::arclen::ArclenTable::chord(&c, 5);
+                let gauss = splinekit::arclen::ArclenTable::gauss3(&c, 5);
+                let exact = splinekit::arclen::arclen_relative(&c, 1e-12);
+                ui.label(format!(
+                    "chord {:.5}   Gauss {:.5}   true {:.5}",
+                    chord.length(),
+                    gauss.length(),
+                    exact.length
+                ));
+                egui::ScrollArea::vertical().max_height(300.0).show(ui, |ui| {
+                    egui::Grid::new("arclen").striped(true).show(ui, |ui| {
+                        ui.strong("u");
+                        ui.strong("s (chord)");
+                        ui.strong("s (Gauss)");
+                        ui.end_row();
+                        for ((u, s), (_, g)) in chord.iter_rows().zip(gauss.iter_rows()) {
+                            ui.monospace(format!("{u:.1}"));
+                            ui.monospace(format!("{s:.5}"));
+                            ui.monospace(format!("{g:.5}"));
+                            ui.end_row();
+                        }
+                    });
+                });
+            }
+            Err(e) => {
+                ui.label(format!("No curve: {e}"));
+            }
+        });
+        self.show_table = open;
+    }
+
+    /// The whole user interface (one frame).
+    pub fn ui(&mut self, ui: &mut egui::Ui) {
+        let ctx = ui.ctx().clone();
+        self.keyboard(&ctx);
+        egui::Panel::top("file bar").show(ui, |ui| self.file_bar(ui));
+        // one line, so the views keep their size whatever it says
+        egui::Panel::bottom("status").show(ui, |ui| {
+            ui.horizontal(|ui| {
+                let error = self.status.starts_with("Error");
+                let text = egui::RichText::new(&self.status);
+                ui.label(if error { text.color(egui::Color32::from_rgb(200, 30, 30)) } else { text });
+                if let Err(e) = self.doc.spline()
+                    && !self.doc.points().is_empty()
+                {
+                    ui.separator();
+                    ui.label(format!("Curve: {e}"));
+                }
+            });
+        });
+        egui::Panel::left("curves").show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| self.left_panel(ui));
+        });
+        egui::Panel::right("surface").min_size(220.0).show(ui, |ui| self.right_panel(ui));
+        egui::CentralPanel::default().show(ui, |ui| {
+            self.view.ui(ui, &mut self.doc);
+        });
+        self.windows(&ctx);
+    }
+}
+
+impl eframe::App for EditorApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        EditorApp::ui(self, ui);
+    }
+}
+
+/// The number of editable points of a curve (0 for circles and the like).
+fn point_count(c: &splinekit_io::SwpCurve) -> usize {
+    match &c.geometry {
+        splinekit_io::SwpGeometry::Points(p) | splinekit_io::SwpGeometry::Hermite { points: p, .. } => p.len(),
+        _ => 0,
+    }
+}
+
+/// Appends `b` to `a` (per-vertex attributes kept only if both have them).
+fn append(a: &mut TriMesh, b: &TriMesh) {
+    let offset = a.positions.len() as u32;
+    let keep = |x: usize, y: usize| (x == a.positions.len() || a.positions.is_empty()) && y == b.positions.len();
+    let (normals, uvs, colors) =
+        (keep(a.normals.len(), b.normals.len()), keep(a.uvs.len(), b.uvs.len()), keep(a.colors.len(), b.colors.len()));
+    a.positions.extend_from_slice(&b.positions);
+    if normals {
+        a.normals.extend_from_slice(&b.normals)
+    } else {
+        a.normals.clear()
+    }
+    if uvs {
+        a.uvs.extend_from_slice(&b.uvs)
+    } else {
+        a.uvs.clear()
+    }
+    if colors {
+        a.colors.extend_from_slice(&b.colors)
+    } else {
+        a.colors.clear()
+    }
+    a.triangles.extend(b.triangles.iter().map(|t| t.map(|i| i + offset)));
+}
+
+/// Reads a mesh file; an OBJ with a spline header is rebuilt from its spline.
+fn load_mesh(path: &Path) -> Result<PolyMesh, String> {
+    let is_obj = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    if is_obj && let Ok(Some(header)) = SplineHeader::read(path) {
+        let mesh = header.rebuild(&RebuildOptions::DEFAULT).map_err(|e| format!("{}: {e}", path.display()))?;
+        return Ok(PolyMesh::from(&mesh));
+    }
+    splinekit_io::load_mesh(path).map(|m| m.mesh).map_err(|e| e.to_string())
+}
+
+/// Opens the editor window (blocks until it is closed).
+///
+/// # Errors
+///
+/// When the window or its renderer cannot be created (for example, no display).
+pub fn run(file: Option<PathBuf>) -> anyhow::Result<()> {
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default().with_inner_size([1280.0, 800.0]).with_title("splinekit"),
+        ..Default::default()
+    };
+    eframe::run_native("splinekit", options, Box::new(move |_cc| Ok(Box::new(EditorApp::new(file.as_deref())))))
+        .map_err(|e| anyhow::anyhow!("cannot open the editor window: {e}"))
+}

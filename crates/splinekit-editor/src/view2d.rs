@@ -1,0 +1,440 @@
+//! The 2D curve view: draws the active curve and edits its points.
+//!
+//! Screen and model are linked by a plane (xy, yz or zx) and a similarity: a model point `p`
+//! in plane coordinates `q` appears at `centre_of_view + (q − center)·scale`, y up. Every
+//! control point is a widget labelled `P0`, `P1`, … (for accessibility and tests).
+
+use eframe::egui::{self, Color32, Pos2, Rect, Sense, Shape, Stroke, Vec2, WidgetInfo};
+use glam::{DVec2, DVec3};
+use splinekit::arclen::ArclenIndex;
+use splinekit::flatten::{Tessellation, flatten_any};
+use splinekit::frame::{self, FrameOptions};
+use splinekit::{AnyCurve, ParamCurve};
+
+use crate::doc::Document;
+
+/// Radius (points) within which a click or drag picks a control point or a polygon edge.
+pub const PICK_RADIUS: f32 = 7.0;
+
+/// Colours of consecutive curve segments.
+pub const SEGMENT_COLORS: [Color32; 6] = [
+    Color32::from_rgb(230, 90, 60),
+    Color32::from_rgb(60, 170, 90),
+    Color32::from_rgb(70, 120, 230),
+    Color32::from_rgb(210, 160, 40),
+    Color32::from_rgb(170, 80, 200),
+    Color32::from_rgb(40, 180, 190),
+];
+
+/// The plane in which a 3D curve is edited.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Plane {
+    /// x right, y up.
+    Xy,
+    /// y right, z up.
+    Yz,
+    /// z right, x up.
+    Zx,
+}
+
+impl Plane {
+    /// The point's coordinates in the plane.
+    #[must_use]
+    pub fn project(self, p: DVec3) -> DVec2 {
+        match self {
+            Self::Xy => DVec2::new(p.x, p.y),
+            Self::Yz => DVec2::new(p.y, p.z),
+            Self::Zx => DVec2::new(p.z, p.x),
+        }
+    }
+
+    /// `p` with its two in-plane coordinates replaced by `q` (the third kept).
+    #[must_use]
+    pub fn replace(self, p: DVec3, q: DVec2) -> DVec3 {
+        match self {
+            Self::Xy => DVec3::new(q.x, q.y, p.z),
+            Self::Yz => DVec3::new(p.x, q.x, q.y),
+            Self::Zx => DVec3::new(q.y, p.y, q.x),
+        }
+    }
+
+    /// The name shown in the plane switch.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Xy => "xy",
+            Self::Yz => "yz",
+            Self::Zx => "zx",
+        }
+    }
+}
+
+/// What the view shows (the toggles of the side panel and the keyboard).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Show {
+    /// The control polygon (`l`).
+    pub polygon: bool,
+    /// Markers equally spaced by arc length (`a`).
+    pub markers: bool,
+    /// Spacing of the markers, in model units.
+    pub marker_spacing: f64,
+    /// Tangents and normals (`n`): T blue, N red.
+    pub normals: bool,
+    /// Whole frames: T, N, B in blue, red, green.
+    pub frames: bool,
+    /// The curvature comb.
+    pub comb: bool,
+    /// Length of a comb tooth per unit of curvature, in model units.
+    pub comb_scale: f64,
+}
+
+impl Default for Show {
+    fn default() -> Self {
+        Self {
+            polygon: true,
+            markers: false,
+            marker_spacing: 0.1,
+            normals: false,
+            frames: false,
+            comb: false,
+            comb_scale: 0.05,
+        }
+    }
+}
+
+/// An ongoing drag of a control point.
+#[derive(Clone, Copy, Debug)]
+struct Drag {
+    index: usize,
+    start_model: DVec2,
+    start_pointer: Pos2,
+}
+
+/// The state of the 2D view.
+#[derive(Clone, Debug)]
+pub struct View2d {
+    /// The editing plane (2D curves always use xy).
+    pub plane: Plane,
+    /// The model point (plane coordinates) at the centre of the view.
+    pub center: DVec2,
+    /// Screen points per model unit.
+    pub scale: f64,
+    /// What is drawn.
+    pub show: Show,
+    /// The selected control point.
+    pub selected: Option<usize>,
+    /// Fit the view to the curve at the next frame.
+    pub fit_pending: bool,
+    drag: Option<Drag>,
+    /// The screen rectangle of the last frame.
+    rect: Rect,
+}
+
+impl Default for View2d {
+    fn default() -> Self {
+        Self {
+            plane: Plane::Xy,
+            center: DVec2::ZERO,
+            scale: 100.0,
+            show: Show::default(),
+            selected: None,
+            fit_pending: true,
+            drag: None,
+            rect: Rect::from_min_size(Pos2::ZERO, Vec2::splat(1.0)),
+        }
+    }
+}
+
+impl View2d {
+    /// Screen position of plane coordinates `q`.
+    #[must_use]
+    pub fn to_screen(&self, q: DVec2) -> Pos2 {
+        let c = self.rect.center();
+        let d = (q - self.center) * self.scale;
+        Pos2::new(c.x + d.x as f32, c.y - d.y as f32)
+    }
+
+    /// Plane coordinates of screen position `s`.
+    #[must_use]
+    pub fn to_model(&self, s: Pos2) -> DVec2 {
+        let c = self.rect.center();
+        self.center + DVec2::new(f64::from(s.x - c.x), -f64::from(s.y - c.y)) / self.scale
+    }
+
+    /// The plane used for `doc`'s active curve.
+    fn plane_for(&self, doc: &Document) -> Plane {
+        if doc.is_2d() { Plane::Xy } else { self.plane }
+    }
+
+    /// Frames the active curve's points and curve (with a margin).
+    pub fn fit(&mut self, doc: &Document) {
+        let plane = self.plane_for(doc);
+        let mut pts: Vec<DVec2> = doc.points().iter().map(|&p| plane.project(p)).collect();
+        if let Ok(c) = doc.spline() {
+            let n = c.num_segments().max(1) * 16;
+            pts.extend((0..=n).map(|i| plane.project(c.eval(c.num_segments() as f64 * i as f64 / n as f64))));
+        }
+        if pts.is_empty() {
+            self.center = DVec2::ZERO;
+            self.scale = f64::from(self.rect.width().min(self.rect.height())) / 4.0;
+            return;
+        }
+        let (lo, hi) = pts.iter().fold((pts[0], pts[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        let size = (hi - lo).max(DVec2::splat(1e-9));
+        self.center = (lo + hi) / 2.0;
+        let fit = (f64::from(self.rect.width()) / size.x).min(f64::from(self.rect.height()) / size.y) * 0.8;
+        self.scale = if fit.is_finite() && fit > 0.0 { fit.min(1e9) } else { 100.0 };
+    }
+
+    /// Draws the view into the remaining space of `ui` and applies the user's edits to `doc`.
+    pub fn ui(&mut self, ui: &mut egui::Ui, doc: &mut Document) -> egui::Response {
+        let (rect, background) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
+        self.rect = rect;
+        if self.fit_pending && rect.width() > 1.0 && rect.height() > 1.0 {
+            self.fit(doc);
+            self.fit_pending = false;
+        }
+        let painter = ui.painter_at(rect);
+        painter.rect_filled(rect, 0.0, Color32::from_gray(250));
+        self.draw_axes(&painter, doc);
+        let plane = self.plane_for(doc);
+        let curve = doc.spline().ok();
+        if let Some(c) = &curve {
+            self.draw_curve(&painter, c, plane);
+        }
+        let points: Vec<Pos2> = doc.points().iter().map(|&p| self.to_screen(plane.project(p))).collect();
+        if self.show.polygon && points.len() > 1 {
+            let closed = doc.curve().is_some_and(|c| c.closed);
+            let mut line = points.clone();
+            if closed {
+                line.push(points[0]);
+            }
+            painter.add(Shape::dashed_line(&line, Stroke::new(1.0, Color32::from_gray(140)), 6.0, 4.0));
+        }
+
+        // control points: widgets on top of the background, so they win the pointer
+        let id = ui.scope_id().with("control points").with(doc.active);
+        let mut delete = None;
+        for (i, &pos) in points.iter().enumerate() {
+            let r = Rect::from_center_size(pos, Vec2::splat(2.0 * PICK_RADIUS));
+            let response = ui.interact(r, id.with(i), Sense::click_and_drag());
+            response.widget_info(|| WidgetInfo::labeled(egui::Role::Button, true, format!("P{i}")));
+            if response.drag_started()
+                && let Some(pointer) = response.interact_pointer_pos()
+            {
+                doc.begin_move();
+                // from where the button went down, not where the drag was recognised
+                let origin = ui.input(|inp| inp.pointer.press_origin()).unwrap_or(pointer);
+                self.drag = Some(Drag { index: i, start_model: plane.project(doc.points()[i]), start_pointer: origin });
+                self.selected = Some(i);
+            }
+            if response.dragged()
+                && let (Some(drag), Some(pointer)) = (self.drag, response.interact_pointer_pos())
+                && drag.index == i
+            {
+                let d = pointer - drag.start_pointer;
+                let q = drag.start_model + DVec2::new(f64::from(d.x), -f64::from(d.y)) / self.scale;
+                let p = plane.replace(doc.points()[i], q);
+                doc.set_point(i, p);
+            }
+            if response.drag_stopped() {
+                self.drag = None;
+            }
+            if response.clicked() {
+                self.selected = Some(i);
+            }
+            response.context_menu(|ui| {
+                if ui.button("Delete point").clicked() {
+                    delete = Some(i);
+                    ui.close();
+                }
+            });
+            let selected = self.selected == Some(i);
+            let fill = if selected { Color32::from_rgb(255, 200, 0) } else { Color32::WHITE };
+            painter.circle(pos, 5.0, fill, Stroke::new(1.5, Color32::BLACK));
+            painter.text(
+                pos + Vec2::new(7.0, -7.0),
+                egui::Align2::LEFT_BOTTOM,
+                format!("P{i}"),
+                egui::FontId::proportional(11.0),
+                Color32::from_gray(60),
+            );
+        }
+        if let Some(i) = delete {
+            doc.delete_point(i);
+            self.selected = None;
+        }
+
+        // the background: shift-click adds, a click on a polygon edge inserts, drag pans,
+        // scroll zooms about the pointer
+        if background.clicked()
+            && let Some(pointer) = background.interact_pointer_pos()
+        {
+            let shift = ui.input(|i| i.modifiers.shift);
+            let base = doc.points().last().copied().unwrap_or(DVec3::ZERO);
+            let model = plane.replace(base, self.to_model(pointer));
+            if shift {
+                doc.add_point(model);
+                self.selected = Some(doc.points().len() - 1);
+            } else if let Some(edge) = self.edge_near(doc, &points, pointer) {
+                let (a, b) = (doc.points()[edge], doc.points()[(edge + 1) % points.len()]);
+                // the third coordinate: interpolated along the edge
+                let t = closest_param(points[edge], points[(edge + 1) % points.len()], pointer);
+                let p = plane.replace(a.lerp(b, t), self.to_model(pointer));
+                doc.insert_point(edge + 1, p);
+                self.selected = Some(edge + 1);
+            } else {
+                self.selected = None;
+            }
+        }
+        if background.dragged() {
+            let d = background.drag_delta();
+            self.center -= DVec2::new(f64::from(d.x), -f64::from(d.y)) / self.scale;
+        }
+        if background.hovered() {
+            let scroll = ui.input(|i| i.smooth_scroll_delta.y + (i.zoom_delta() - 1.0) * 200.0);
+            if scroll != 0.0
+                && let Some(pointer) = ui.input(|i| i.pointer.hover_pos())
+            {
+                let before = self.to_model(pointer);
+                self.scale = (self.scale * (f64::from(scroll) / 200.0).exp()).clamp(1e-6, 1e12);
+                let after = self.to_model(pointer);
+                self.center += before - after;
+            }
+        }
+        background
+    }
+
+    /// The polygon edge (index of its first point) within [`PICK_RADIUS`] of `pointer`, the
+    /// closing edge of a closed curve included.
+    fn edge_near(&self, doc: &Document, points: &[Pos2], pointer: Pos2) -> Option<usize> {
+        let n = points.len();
+        if n < 2 {
+            return None;
+        }
+        let closed = doc.curve().is_some_and(|c| c.closed) && n > 2;
+        let edges = if closed { n } else { n - 1 };
+        (0..edges)
+            .map(|e| {
+                let (a, b) = (points[e], points[(e + 1) % n]);
+                let t = closest_param(a, b, pointer);
+                (e, (a + (b - a) * t as f32).distance(pointer))
+            })
+            .filter(|&(_, d)| d <= PICK_RADIUS)
+            .min_by(|x, y| x.1.total_cmp(&y.1))
+            .map(|(e, _)| e)
+    }
+
+    fn draw_axes(&self, painter: &egui::Painter, doc: &Document) {
+        let plane = self.plane_for(doc);
+        let o = self.to_screen(DVec2::ZERO);
+        let r = self.rect;
+        let axis = Stroke::new(1.0, Color32::from_gray(205));
+        painter.line_segment([Pos2::new(r.left(), o.y), Pos2::new(r.right(), o.y)], axis);
+        painter.line_segment([Pos2::new(o.x, r.top()), Pos2::new(o.x, r.bottom())], axis);
+        let name = plane.name();
+        painter.text(
+            r.left_bottom() + Vec2::new(6.0, -6.0),
+            egui::Align2::LEFT_BOTTOM,
+            format!("plane {name}"),
+            egui::FontId::proportional(11.0),
+            Color32::from_gray(120),
+        );
+    }
+
+    fn draw_curve(&self, painter: &egui::Painter, c: &AnyCurve<DVec3>, plane: Plane) {
+        let tolerance = 0.2 / self.scale;
+        let params = flatten_any(c, Tessellation::Distance { tolerance });
+        let segments = c.num_segments().max(1);
+        // one polyline per segment, in that segment's colour
+        let mut start = 0;
+        while start + 1 < params.len() {
+            let seg = (params[start] as usize).min(segments - 1);
+            let mut end = start + 1;
+            while end + 1 < params.len() && params[end] < (seg + 1) as f64 {
+                end += 1;
+            }
+            let line: Vec<Pos2> =
+                params[start..=end].iter().map(|&u| self.to_screen(plane.project(c.eval(u)))).collect();
+            painter.add(Shape::line(line, Stroke::new(2.5, SEGMENT_COLORS[seg % SEGMENT_COLORS.len()])));
+            start = end;
+        }
+        let len = 28.0 / self.scale;
+        if self.show.normals || self.show.frames {
+            let n = segments * 8;
+            let us: Vec<f64> = (0..=n).map(|i| segments as f64 * i as f64 / n as f64).collect();
+            let frames = frame::frames(c, &us, &FrameOptions::default());
+            for (&u, f) in us.iter().zip(&frames) {
+                let p = c.eval(u);
+                let mut arrows = vec![(f.t, Color32::from_rgb(40, 80, 230)), (f.n, Color32::from_rgb(220, 40, 40))];
+                if self.show.frames {
+                    arrows.push((f.b, Color32::from_rgb(30, 160, 60)));
+                }
+                for (v, color) in arrows {
+                    let a = self.to_screen(plane.project(p));
+                    let b = self.to_screen(plane.project(p + v * len));
+                    painter.arrow(a, b - a, Stroke::new(1.5, color));
+                }
+            }
+        }
+        if self.show.comb {
+            let n = segments * 24;
+            let mut tips = Vec::with_capacity(n + 1);
+            for i in 0..=n {
+                let u = segments as f64 * i as f64 / n as f64;
+                let s = frame::CurveSample::at(c, u);
+                // the tooth points away from the centre of curvature
+                let tip = s.position - s.curvature * self.show.comb_scale;
+                let (a, b) = (self.to_screen(plane.project(s.position)), self.to_screen(plane.project(tip)));
+                painter.line_segment([a, b], Stroke::new(1.0, Color32::from_rgb(150, 110, 200)));
+                tips.push(b);
+            }
+            painter.add(Shape::line(tips, Stroke::new(1.0, Color32::from_rgb(120, 80, 180))));
+        }
+        if self.show.markers {
+            let index = ArclenIndex::new(c, 1e-9);
+            let spacing = self.show.marker_spacing.max(index.length() / 5000.0).max(1e-12);
+            let count = (index.length() / spacing).floor() as usize;
+            for k in 0..=count {
+                let u = index.u_at(c, k as f64 * spacing);
+                let p = self.to_screen(plane.project(c.eval(u)));
+                painter.circle(p, 3.0, Color32::from_rgb(20, 20, 20), Stroke::new(1.0, Color32::WHITE));
+            }
+        }
+    }
+}
+
+/// The parameter in `[0, 1]` of the point of segment `ab` closest to `p`.
+fn closest_param(a: Pos2, b: Pos2, p: Pos2) -> f64 {
+    let e = b - a;
+    let l2 = e.length_sq();
+    if l2 > 0.0 { f64::from(((p - a).dot(e) / l2).clamp(0.0, 1.0)) } else { 0.0 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn planes_project_and_replace() {
+        let p = DVec3::new(1.0, 2.0, 3.0);
+        for plane in [Plane::Xy, Plane::Yz, Plane::Zx] {
+            let q = plane.project(p);
+            assert_eq!(plane.replace(p, q), p);
+            let moved = plane.replace(p, q + DVec2::new(10.0, 20.0));
+            assert_eq!(plane.project(moved), q + DVec2::new(10.0, 20.0));
+            // the third coordinate stays
+            assert_eq!((moved - p).length_squared(), 500.0);
+        }
+    }
+
+    #[test]
+    fn screen_and_model_are_inverse() {
+        let mut v = View2d { center: DVec2::new(1.0, -2.0), scale: 37.5, ..View2d::default() };
+        v.rect = Rect::from_min_size(Pos2::new(10.0, 20.0), Vec2::new(400.0, 300.0));
+        let q = DVec2::new(1.5, -1.0);
+        let s = v.to_screen(q);
+        assert!((v.to_model(s) - q).length() < 1e-5);
+        assert!(s.y < v.rect.center().y, "y is up");
+    }
+}
