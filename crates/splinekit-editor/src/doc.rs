@@ -6,6 +6,7 @@
 
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::DVec3;
 use splinekit::{AnyCurve, ParamCurve};
@@ -46,8 +47,15 @@ pub struct Document {
     pub path: Option<PathBuf>,
     undo: Vec<(SwpDocument, usize)>,
     redo: Vec<(SwpDocument, usize)>,
-    /// Bumped on every change, so views know when to rebuild what they derive from it.
+    /// Changes on every change, so views know when to rebuild what they derive from it.
     revision: u64,
+}
+
+/// A revision number never handed out before (in this process), so a cache keyed by it
+/// cannot mistake one document for another.
+fn next_revision() -> u64 {
+    static NEXT: AtomicU64 = AtomicU64::new(1);
+    NEXT.fetch_add(1, Ordering::Relaxed)
 }
 
 impl Default for Document {
@@ -68,7 +76,7 @@ impl Document {
     /// A document for `swp` (loaded from `path`, if given).
     #[must_use]
     pub fn from_swp(swp: SwpDocument, path: Option<PathBuf>) -> Self {
-        Self { swp, active: 0, path, undo: Vec::new(), redo: Vec::new(), revision: 0 }
+        Self { swp, active: 0, path, undo: Vec::new(), redo: Vec::new(), revision: next_revision() }
     }
 
     /// Reads an SWP file.
@@ -81,7 +89,7 @@ impl Document {
         Ok(Self::from_swp(swp, Some(path.to_path_buf())))
     }
 
-    /// A number that changes whenever the document does.
+    /// A number that changes whenever the document does, and differs between documents.
     #[must_use]
     pub fn revision(&self) -> u64 {
         self.revision
@@ -127,7 +135,7 @@ impl Document {
             self.undo.remove(0);
         }
         self.redo.clear();
-        self.revision += 1;
+        self.revision = next_revision();
     }
 
     /// Undoes the last edit; `false` if there is none.
@@ -135,7 +143,7 @@ impl Document {
         let Some((swp, active)) = self.undo.pop() else { return false };
         self.redo.push((std::mem::replace(&mut self.swp, swp), self.active));
         self.active = active;
-        self.revision += 1;
+        self.revision = next_revision();
         true
     }
 
@@ -144,7 +152,7 @@ impl Document {
         let Some((swp, active)) = self.redo.pop() else { return false };
         self.undo.push((std::mem::replace(&mut self.swp, swp), self.active));
         self.active = active;
-        self.revision += 1;
+        self.revision = next_revision();
         true
     }
 
@@ -217,7 +225,7 @@ impl Document {
             && let Some(q) = points.get_mut(i)
         {
             *q = if flat { DVec3::new(p.x, p.y, 0.0) } else { p };
-            self.revision += 1;
+            self.revision = next_revision();
         }
     }
 
@@ -324,7 +332,7 @@ impl Document {
     pub fn select_curve(&mut self, i: usize) {
         if i < self.swp.curves.len() && i != self.active {
             self.active = i;
-            self.revision += 1;
+            self.revision = next_revision();
         }
     }
 

@@ -144,7 +144,6 @@ impl EditorApp {
             match Document::read(path) {
                 Ok(doc) => {
                     self.doc = doc;
-                    self.surfaces = SurfaceSummary::default();
                     self.mesh = None;
                     self.view.fit_pending = true;
                     self.view.selected = None;
@@ -185,6 +184,16 @@ impl EditorApp {
         }
         m.level = (m.level + 1).min(p.finest().depth());
         self.status = format!("Level {}: {} faces", m.level, p.level(m.level).num_triangles());
+    }
+
+    /// Rebuilds the loaded mesh's levels with the current colour setting, keeping the level shown.
+    fn recolor(&mut self) {
+        let options = self.loop_options();
+        let Some(m) = &mut self.mesh else { return };
+        m.pyramid = LoopPyramid::new(&m.base, options).map_err(|e| e.to_string());
+        if let Ok(p) = &mut m.pyramid {
+            p.refine_to(m.level, |_| {});
+        }
     }
 
     /// Shows the next coarser level of the loaded mesh.
@@ -264,7 +273,7 @@ impl EditorApp {
     }
 
     fn update_surfaces(&mut self) {
-        if self.surfaces.revision == Some(self.doc.revision()) && self.surfaces.revision.is_some() {
+        if self.surfaces.revision == Some(self.doc.revision()) {
             return;
         }
         let mut lines = Vec::new();
@@ -467,15 +476,8 @@ impl EditorApp {
                     self.coarsen();
                 }
             });
-            let options = LoopOptions { color_by_level: !self.color_by_level, ..LoopOptions::default() };
-            if ui.checkbox(&mut self.color_by_level, "Colour by level").changed()
-                && let Some(m) = &mut self.mesh
-            {
-                let level = m.level;
-                m.pyramid = LoopPyramid::new(&m.base, options).map_err(|e| e.to_string());
-                if let Ok(p) = &mut m.pyramid {
-                    p.refine_to(level, |_| {});
-                }
+            if ui.checkbox(&mut self.color_by_level, "Colour by level").changed() {
+                self.recolor();
             }
             if ui.button("Close mesh").clicked() {
                 self.mesh = None;
