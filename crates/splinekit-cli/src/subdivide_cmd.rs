@@ -210,11 +210,14 @@ fn subdivide(
     progress: Option<&indicatif::ProgressBar>,
 ) -> Result<(LoopLevel, Duration), SubdivError> {
     let start = Instant::now();
-    let finest = LoopPyramid::new(mesh, options)?.into_refined(levels as usize, |_| {
-        if let Some(p) = progress {
-            p.inc(1);
-        }
-    });
+    // Buffers freed during the run serve its later allocations (see `alloc`).
+    let finest = crate::alloc::recycling(|| {
+        Ok::<_, SubdivError>(LoopPyramid::new(mesh, options)?.into_refined(levels as usize, |_| {
+            if let Some(p) = progress {
+                p.inc(1);
+            }
+        }))
+    })?;
     Ok((finest, start.elapsed()))
 }
 

@@ -375,3 +375,45 @@ fn colour_by_level_marks_where_vertices_were_born() {
     let tri = fine.into_tri_mesh();
     assert_eq!(tri.colors.len(), tri.positions.len());
 }
+
+/// The one-shot path (`into_refined`, which makes each level from the tables two levels up
+/// and stores tables only every other level) equals the pyramid, level by level, to the bit:
+/// positions, colours and triangles, closed and open, every weight and boundary rule.
+#[test]
+fn one_shot_equals_the_pyramid_to_the_bit() {
+    let mut meshes = vec![icosahedron(), grid(6, 5, true), grid(5, 4, false)];
+    // Corners: a single-face corner vertex at each end of a strip.
+    meshes.push(PolyMesh::from_triangles(
+        vec![DVec3::ZERO, DVec3::X, DVec3::new(0.2, 1.0, 0.1), DVec3::new(1.3, 0.9, -0.2), DVec3::new(2.0, 0.1, 0.3)],
+        &[[0, 1, 2], [1, 3, 2], [1, 4, 3]],
+    ));
+    for mut mesh in meshes {
+        mesh.colors = mesh.positions.iter().map(|p| DVec3::new(p.x.sin(), p.y.cos(), p.z * p.x)).collect();
+        for weights in [LoopWeights::Loop, LoopWeights::Warren] {
+            for boundary in [BoundaryRule::Smooth, BoundaryRule::Corners] {
+                for color_by_level in [false, true] {
+                    let o = LoopOptions { weights, boundary, color_by_level };
+                    let mut pyramid = LoopPyramid::new(&mesh, o).unwrap();
+                    pyramid.refine_to(4, |_| {});
+                    for levels in 0..=4 {
+                        let mut seen = Vec::new();
+                        let fine = LoopPyramid::new(&mesh, o).unwrap().into_refined(levels, |k| seen.push(k));
+                        assert_eq!(seen, (1..=levels).collect::<Vec<_>>());
+                        let want = pyramid.level(levels);
+                        assert_eq!(fine.depth(), levels);
+                        assert_eq!(fine.triangles, want.triangles, "{o:?}, {levels} levels");
+                        assert_eq!(fine.positions, want.positions, "{o:?}, {levels} levels");
+                        assert_eq!(fine.colors, want.colors, "{o:?}, {levels} levels");
+                    }
+                }
+            }
+        }
+    }
+    // From a pyramid that already has levels, into_refined goes on from its finest.
+    let mesh = grid(5, 4, false);
+    let mut p = LoopPyramid::new(&mesh, LoopOptions::default()).unwrap();
+    p.refine();
+    let fine = p.clone().into_refined(3, |_| {});
+    p.refine_to(4, |_| {});
+    assert_eq!((fine.depth(), &fine.positions, &fine.triangles), (4, &p.finest().positions, &p.finest().triangles));
+}

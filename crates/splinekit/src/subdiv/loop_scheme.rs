@@ -31,14 +31,18 @@
 //! level's adjacency follows in closed form ([`topology`](super::topology)), and each pass is
 //! a parallel map (rayon) over vertices, edges or faces writing its own output slot, so
 //! results do not depend on the number of threads. Per-vertex and per-edge code does not
-//! allocate.
+//! allocate. A one-shot subdivision ([`LoopPyramid::into_refined`], [`loop_subdivide`]) goes
+//! further: it makes each level from the tables of the level two above it (`grandchild`), so
+//! tables and triangles are made only up to two levels above the finest, and the finest
+//! level's triangles and values are written straight from them.
 
 use core::ops::{Add, Mul};
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use super::topology::{MIN_LEN, Topology, TopologyError};
+use super::grandchild::{grandchild_triangles, grandchild_values};
+use super::topology::{MIN_LEN, Table, Topology, TopologyError, child_level, next, prev};
 use std::collections::HashMap;
 
 use crate::mesh::{FaceVarying, NONE, PolyMesh, TriMesh};
@@ -119,10 +123,10 @@ impl<T: Copy + Default + Send + Sync + Add<Output = T> + Mul<f64, Output = T>> A
 
 /// The subdivision weights, with β tabulated for small valences.
 #[derive(Clone, Debug)]
-struct Rules {
+pub(super) struct Rules {
     beta: [f64; 16],
     warren: bool,
-    corners: bool,
+    pub(super) corners: bool,
 }
 
 impl Rules {
@@ -146,7 +150,7 @@ impl Rules {
     }
 
     #[inline]
-    fn beta(&self, n: u32) -> f64 {
+    pub(super) fn beta(&self, n: u32) -> f64 {
         match self.beta.get(n as usize) {
             Some(&b) => b,
             None => Self::compute_beta(self.warren, n),
@@ -154,40 +158,44 @@ impl Rules {
     }
 }
 
-#[inline]
-fn next(i: u32) -> u32 {
-    if i == 2 { 0 } else { i + 1 }
-}
-
-#[inline]
-fn prev(i: u32) -> u32 {
-    if i == 0 { 2 } else { i - 1 }
-}
-
 /// The new value of even vertex `v`.
 #[inline]
-fn even<T: Attribute>(tris: &[[u32; 3]], topo: &Topology, p: &[T], v: usize, rules: &Rules) -> T {
-    let start = topo.vertex_start[v];
+fn even<T: Attribute>(topo: &Table<'_>, p: &[T], v: u32, rules: &Rules) -> T {
+    let out = |h: u32| p[topo.tri(h / 3)[next(h % 3) as usize] as usize];
+    let inc = |h: u32| p[topo.tri(h / 3)[(h % 3) as usize] as usize];
+    even_ring(topo, p[v as usize], v, rules, out, inc)
+}
+
+/// The new value of even vertex `v`, whose value is `pv`, walking its ring in `topo`: `out(h)`
+/// is the ring value across the half-edge `h` leaving `v`, `inc(h)` the one across the
+/// half-edge `h` coming into `v` (they differ only where the ring is not made of `topo`'s own
+/// vertices, as in the grandchild pass, which reads the midpoints of `topo`'s edges).
+#[inline]
+pub(super) fn even_ring<T: Attribute>(
+    topo: &Table<'_>,
+    pv: T,
+    v: u32,
+    rules: &Rules,
+    out: impl Fn(u32) -> T,
+    inc: impl Fn(u32) -> T,
+) -> T {
+    let start = topo.vertex_start(v);
     if start == NONE {
-        return p[v];
+        return pv;
     }
     let mut h = start;
     let mut n = 0u32;
     let mut sum = T::default();
     loop {
-        let t = &tris[(h / 3) as usize];
-        let i = h % 3;
-        sum = sum + p[t[next(i) as usize] as usize];
+        sum = sum + out(h);
         n += 1;
-        let tw = topo.twin[(h - i + prev(i)) as usize];
+        let pr = h - h % 3 + prev(h % 3);
+        let tw = topo.twin(pr);
         if tw == NONE {
             if rules.corners && n == 1 {
-                return p[v];
+                return pv;
             }
-            let s = &tris[(start / 3) as usize];
-            let a = p[s[next(start % 3) as usize] as usize];
-            let b = p[t[prev(i) as usize] as usize];
-            return p[v] * 0.75 + (a + b) * 0.125;
+            return pv * 0.75 + (out(start) + inc(pr)) * 0.125;
         }
         if tw == start {
             break;
@@ -195,34 +203,34 @@ fn even<T: Attribute>(tris: &[[u32; 3]], topo: &Topology, p: &[T], v: usize, rul
         h = tw;
     }
     let beta = rules.beta(n);
-    p[v] * (1.0 - f64::from(n) * beta) + sum * beta
+    pv * (1.0 - f64::from(n) * beta) + sum * beta
 }
 
 /// The value of the odd vertex on edge `e`.
 #[inline]
-fn odd<T: Attribute>(tris: &[[u32; 3]], topo: &Topology, p: &[T], e: usize) -> T {
-    let h = topo.edge_owner[e];
+fn odd<T: Attribute>(topo: &Table<'_>, p: &[T], e: u32) -> T {
+    let h = topo.edge_owner(e);
     let i = h % 3;
-    let t = &tris[(h / 3) as usize];
+    let t = topo.tri(h / 3);
     let a = p[t[i as usize] as usize];
     let b = p[t[next(i) as usize] as usize];
-    let tw = topo.twin[h as usize];
+    let tw = topo.twin(h);
     if tw == NONE {
         return (a + b) * 0.5;
     }
     let c = p[t[prev(i) as usize] as usize];
-    let d = p[tris[(tw / 3) as usize][prev(tw % 3) as usize] as usize];
+    let d = p[topo.tri(tw / 3)[prev(tw % 3) as usize] as usize];
     (a + b) * 0.375 + (c + d) * 0.125
 }
 
 /// One level of values: the parent's evens, then one odd value per parent edge.
-fn refine_values<T: Attribute>(tris: &[[u32; 3]], topo: &Topology, p: &[T], rules: &Rules) -> Vec<T> {
-    let nv = topo.num_vertices();
+fn refine_values<T: Attribute>(topo: &Table<'_>, p: &[T], rules: &Rules) -> Vec<T> {
+    let nv = topo.num_vertices() as u32;
     let mut out = Vec::new();
-    (0..nv + topo.num_edges())
+    (0..nv + topo.num_edges() as u32)
         .into_par_iter()
         .with_min_len(MIN_LEN)
-        .map(|k| if k < nv { even(tris, topo, p, k, rules) } else { odd(tris, topo, p, k - nv) })
+        .map(|k| if k < nv { even(topo, p, k, rules) } else { odd(topo, p, k - nv) })
         .collect_into_vec(&mut out);
     out
 }
@@ -308,7 +316,7 @@ impl<T: Attribute> Channel<T> {
 
     fn refine(&mut self, rules: &Rules, with_topology: bool) -> Self {
         let topo = self.topology.as_ref().expect("a level is refined only with its topology");
-        let values = refine_values(&self.triangles, topo, &self.values, rules);
+        let values = refine_values(&Table { triangles: &self.triangles, topology: topo }, &self.values, rules);
         let (triangles, topology) = topo.refine(&self.triangles, with_topology);
         Self { triangles, topology, values }
     }
@@ -534,7 +542,8 @@ impl LoopPyramid {
             let (parent, rest) = self.levels.split_at_mut(k);
             let parent = &parent[k - 1];
             let topo = parent.topology.as_ref().expect("ensured");
-            rest[0].positions = refine_values(&parent.triangles, topo, &parent.positions, &self.rules);
+            rest[0].positions =
+                refine_values(&Table { triangles: &parent.triangles, topology: topo }, &parent.positions, &self.rules);
         }
         Ok(())
     }
@@ -559,7 +568,8 @@ impl LoopPyramid {
         let level = self.levels.last_mut().expect("a pyramid has a base level");
         let depth = level.depth + 1;
         let topo = level.topology.as_ref().expect("ensured");
-        let positions = refine_values(&level.triangles, topo, &level.positions, rules);
+        let table = Table { triangles: &level.triangles, topology: topo };
+        let positions = refine_values(&table, &level.positions, rules);
         let colors = if self.options.color_by_level {
             let mut c = level.colors.clone();
             c.resize(positions.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
@@ -567,7 +577,7 @@ impl LoopPyramid {
         } else if level.colors.is_empty() {
             Vec::new()
         } else {
-            refine_values(&level.triangles, topo, &level.colors, rules)
+            refine_values(&table, &level.colors, rules)
         };
         let (triangles, topology) = topo.refine(&level.triangles, with_topology);
         let normals = level.normals.as_mut().map(|c| c.refine(rules, with_topology));
@@ -577,17 +587,107 @@ impl LoopPyramid {
 }
 
 impl LoopPyramid {
-    /// Refines to `levels` levels below the base like [`Self::refine_to`], dropping every
-    /// level as soon as its child is made, and returns the finest: the least memory for a
-    /// one-shot subdivision (at most one parent level besides the output).
+    /// Refines `levels` levels below the finest level like [`Self::refine_to`] and returns
+    /// the new finest level (the same to the bit), dropping every level as soon as it is no
+    /// longer read: the least time and memory for a one-shot subdivision. Without normals and
+    /// UVs, each level's values are made from the tables of the level two above it, so only
+    /// levels up to `levels − 2` below get tables and triangles, and besides the output at
+    /// most the values of its parent and the tables of its grandparent are alive.
     #[must_use]
     pub fn into_refined(mut self, levels: usize, mut progress: impl FnMut(usize)) -> LoopLevel {
-        for k in 1..=levels {
-            self.refine_step(k < levels);
-            self.levels.remove(0);
+        let last = self.levels.len() - 1;
+        if levels < 2 || self.levels[last].normals.is_some() || self.levels[last].uvs.is_some() {
+            for k in 1..=levels {
+                self.refine_step(k < levels);
+                self.levels.remove(0);
+                progress(k);
+            }
+            return self.into_finest();
+        }
+        // Without face-varying channels: each level's values are made two steps below a level
+        // with stored tables (the grandchild passes), so only the levels up to `levels − 2`
+        // get tables and triangles; the finest level's triangles come from level `levels − 2`.
+        self.ensure_topology(last);
+        let mut level = self.levels.pop().expect("a pyramid has a base level");
+        self.levels.clear();
+        let topo = level.topology.as_ref().expect("ensured");
+        let (mut positions, mut colors) =
+            self.child_values(&Table { triangles: &level.triangles, topology: topo }, &level);
+        (level.positions, level.colors) = (Vec::new(), Vec::new());
+        progress(1);
+        let d0 = level.depth;
+        for k in 2..=levels {
+            // `level` is level k − 2, `positions` and `colors` level k − 1's.
+            let topo = level.topology.as_ref().expect("stored");
+            let table = Table { triangles: &level.triangles, topology: topo };
+            let (fine, fine_colors) = self.grandchild_values(&table, &positions, colors, d0 + k);
+            if k == levels {
+                drop(positions);
+                let triangles = grandchild_triangles(&table);
+                progress(k);
+                return LoopLevel {
+                    triangles,
+                    positions: fine,
+                    colors: fine_colors,
+                    depth: d0 + k,
+                    topology: None,
+                    normals: None,
+                    uvs: None,
+                };
+            }
+            let (triangles, topology) = child_level(&table);
+            let topology = Some(topology);
+            level = LoopLevel {
+                triangles,
+                positions: Vec::new(),
+                colors: Vec::new(),
+                depth: d0 + k - 1,
+                topology,
+                normals: None,
+                uvs: None,
+            };
+            (positions, colors) = (fine, fine_colors);
             progress(k);
         }
-        self.into_finest()
+        unreachable!("the loop returns at k = levels ≥ 2")
+    }
+
+    /// The positions and colours two steps below `s`, from those one step below, making
+    /// level `depth`.
+    fn grandchild_values(
+        &self,
+        s: &Table<'_>,
+        positions: &[DVec3],
+        colors: Vec<DVec3>,
+        depth: usize,
+    ) -> (Vec<DVec3>, Vec<DVec3>) {
+        let fine = grandchild_values(s, positions, &self.rules);
+        let fine_colors = if self.options.color_by_level {
+            let mut c = colors;
+            c.resize(fine.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
+            c
+        } else if colors.is_empty() {
+            colors
+        } else {
+            grandchild_values(s, &colors, &self.rules)
+        };
+        (fine, fine_colors)
+    }
+
+    /// The positions and colours of the child of `level`, whose topology `topo` is.
+    fn child_values(&self, topo: &Table<'_>, level: &LoopLevel) -> (Vec<DVec3>, Vec<DVec3>) {
+        let positions = refine_values(topo, &level.positions, &self.rules);
+        let colors = if self.options.color_by_level {
+            let mut c = Vec::with_capacity(positions.len());
+            c.extend_from_slice(&level.colors);
+            c.resize(positions.len(), LEVEL_COLORS[(level.depth + 1) % LEVEL_COLORS.len()]);
+            c
+        } else if level.colors.is_empty() {
+            Vec::new()
+        } else {
+            refine_values(topo, &level.colors, &self.rules)
+        };
+        (positions, colors)
     }
 }
 

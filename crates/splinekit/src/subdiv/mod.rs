@@ -14,6 +14,8 @@
 //! # Ok::<(), splinekit::subdiv::SubdivError>(())
 //! ```
 
+mod grandchild;
+mod groups;
 mod loop_scheme;
 pub mod topology;
 

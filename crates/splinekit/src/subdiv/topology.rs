@@ -10,9 +10,13 @@
 //! a closed-form function of the parent's tables at the same index: half-edge `h_i`'s two
 //! halves are edge 0 of `c_i` and edge 2 of `c_{i+1}`; their twins are the other halves of
 //! `twin(h_i)`; parent edge `e` becomes child edges `2e` (the owner's first half) and `2e + 1`;
-//! the interior edge between `c_i` and `c_3` is `2E + 3f + i`. So no hashing or searching
+//! the interior edge between `c_i` and `c_3` is `2E + 3f + i`. At every level an edge is
+//! owned by its first half-edge (`h` owns its edge iff it has no twin or `h < twin(h)`), which
+//! the passes use instead of looking the owner up. So no hashing or searching
 //! happens after the base level, and every pass is a parallel map over faces, edges or
 //! vertices.
+
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
@@ -67,13 +71,15 @@ pub enum TopologyError {
     },
 }
 
+/// The next corner of a triangle.
 #[inline]
-fn next(i: u32) -> u32 {
+pub(super) fn next(i: u32) -> u32 {
     if i == 2 { 0 } else { i + 1 }
 }
 
+/// The previous corner of a triangle.
 #[inline]
-fn prev(i: u32) -> u32 {
+pub(super) fn prev(i: u32) -> u32 {
     if i == 0 { 2 } else { i - 1 }
 }
 
@@ -95,6 +101,113 @@ impl Topology {
     /// # Errors
     /// The first non-manifold or inconsistently oriented edge, or non-manifold vertex.
     pub fn build(triangles: &[[u32; 3]], num_vertices: usize) -> Result<Self, TopologyError> {
+        match Self::build_manifold(triangles, num_vertices) {
+            Some(topo) => Ok(topo),
+            None => Self::build_checked(triangles, num_vertices),
+        }
+    }
+
+    /// [`Self::build`] for meshes without problems: `None` at the first sign of one (a
+    /// vertex out of range, a degenerate, non-manifold or inconsistently oriented edge, a
+    /// vertex whose corners are not one fan), so that [`Self::build_checked`] names it. The
+    /// tables are the same as `build_checked`'s: edges numbered in half-edge order and owned by
+    /// their first half-edge, starts on the last boundary half-edge leaving the vertex, else
+    /// its first half-edge.
+    fn build_manifold(triangles: &[[u32; 3]], nv: usize) -> Option<Self> {
+        let nh = 3 * triangles.len();
+        if nh >= NONE as usize || nv >= NONE as usize {
+            return None;
+        }
+        let problem = AtomicBool::new(false);
+        let fail = || {
+            problem.store(true, Ordering::Relaxed);
+            NONE
+        };
+        // The half-edges leaving each vertex, in half-edge order.
+        let mut offsets = vec![0u32; nv + 1];
+        for t in triangles {
+            for &v in t {
+                *offsets.get_mut(v as usize + 1)? += 1;
+            }
+        }
+        for v in 0..nv {
+            offsets[v + 1] += offsets[v];
+        }
+        let mut fill = offsets[..nv].to_vec();
+        // (half-edge, its head) pairs.
+        let mut leaving = vec![[0u32; 2]; nh];
+        for (f, t) in triangles.iter().enumerate() {
+            for (i, &v) in t.iter().enumerate() {
+                let k = &mut fill[v as usize];
+                leaving[*k as usize] = [(3 * f + i) as u32, t[next(i as u32) as usize]];
+                *k += 1;
+            }
+        }
+        drop(fill);
+        let out = |v: u32| &leaving[offsets[v as usize] as usize..offsets[v as usize + 1] as usize];
+        let mut twin = Vec::new();
+        (0..nh as u32)
+            .into_par_iter()
+            .with_min_len(MIN_LEN)
+            .map(|h| {
+                let t = &triangles[(h / 3) as usize];
+                let (a, b) = (t[(h % 3) as usize], t[next(h % 3) as usize]);
+                let mut found = out(b).iter().filter(|&&[_, hc]| hc == a);
+                match (found.next(), found.next()) {
+                    _ if a == b || out(a).iter().any(|&[c, hc]| hc == b && c != h) => fail(),
+                    (None, _) => NONE,
+                    (Some(&[c, _]), None) => c,
+                    (Some(_), Some(_)) => fail(),
+                }
+            })
+            .collect_into_vec(&mut twin);
+        if problem.load(Ordering::Relaxed) {
+            return None;
+        }
+        let mut edge_of = vec![0u32; nh];
+        let mut edge_owner = Vec::with_capacity(nh / 2 + 1);
+        for h in 0..nh {
+            let t = twin[h];
+            edge_of[h] = if t == NONE || h < t as usize {
+                edge_owner.push(h as u32);
+                (edge_owner.len() - 1) as u32
+            } else {
+                edge_of[t as usize]
+            };
+        }
+        let mut vertex_start = Vec::new();
+        (0..nv as u32)
+            .into_par_iter()
+            .with_min_len(MIN_LEN)
+            .map(|v| {
+                let corners = out(v);
+                let Some(&[first, _]) = corners.first() else { return NONE };
+                let start = corners.iter().rev().map(|&[h, _]| h).find(|&h| twin[h as usize] == NONE).unwrap_or(first);
+                // Every corner must be reached by rotating from the start.
+                let mut h = start;
+                let mut n = 1;
+                loop {
+                    let t = twin[(h - h % 3 + prev(h % 3)) as usize];
+                    if t == NONE || t == start {
+                        break;
+                    }
+                    h = t;
+                    n += 1;
+                    if n > corners.len() {
+                        return fail();
+                    }
+                }
+                if n == corners.len() { start } else { fail() }
+            })
+            .collect_into_vec(&mut vertex_start);
+        if problem.load(Ordering::Relaxed) {
+            return None;
+        }
+        Some(Self { twin, edge_of, edge_owner, vertex_start })
+    }
+
+    /// [`Self::build`] through the mesh [`Adjacency`], which names every problem.
+    fn build_checked(triangles: &[[u32; 3]], num_vertices: usize) -> Result<Self, TopologyError> {
         let flat: Vec<u32> = triangles.iter().flatten().copied().collect();
         if let Some(c) = flat.iter().position(|&v| v as usize >= num_vertices) {
             return Err(TopologyError::Index { face: (c / 3) as u32, vertex: flat[c], count: num_vertices });
@@ -190,78 +303,179 @@ impl Topology {
     /// The child level's triangles, and its tables when `with_topology` (they are needed only
     /// to refine further).
     pub(crate) fn refine(&self, triangles: &[[u32; 3]], with_topology: bool) -> (Vec<[u32; 3]>, Option<Self>) {
-        let nv = self.num_vertices() as u32;
-        let ne = self.num_edges();
-        let mut child = vec![[0u32; 3]; 4 * triangles.len()];
-        child.par_chunks_mut(4).with_min_len(MIN_LEN).zip(triangles.par_iter()).enumerate().for_each(
-            |(f, (out, t))| {
-                let e = &self.edge_of[3 * f..3 * f + 3];
-                let m = [nv + e[0], nv + e[1], nv + e[2]];
-                out[0] = [t[0], m[0], m[2]];
-                out[1] = [t[1], m[1], m[0]];
-                out[2] = [t[2], m[2], m[1]];
-                out[3] = m;
-            },
-        );
-        if !with_topology {
-            return (child, None);
+        let level = Table { triangles, topology: self };
+        if with_topology {
+            let (child, topology) = child_level(&level);
+            (child, Some(topology))
+        } else {
+            (child_triangles(&level), None)
         }
-        let nh = 3 * triangles.len();
-        let mut twin = vec![0u32; 4 * nh];
-        let mut edge_of = vec![0u32; 4 * nh];
-        let owner_of = |h: usize| self.edge_owner[self.edge_of[h] as usize] == h as u32;
-        twin.par_chunks_mut(12).zip(edge_of.par_chunks_mut(12)).with_min_len(MIN_LEN).enumerate().for_each(
-            |(f, (tw, eo))| {
-                let base = 4 * 3 * f as u32;
-                let hh = |c: u32, k: u32| base + 3 * c + k;
-                for i in 0..3u32 {
-                    let h = 3 * f + i as usize;
-                    let (first, second) = ((3 * i) as usize, (3 * next(i) + 2) as usize);
-                    let t = self.twin[h];
-                    if t == NONE {
-                        tw[first] = NONE;
-                        tw[second] = NONE;
-                    } else {
-                        let (g, j) = (t / 3, t % 3);
-                        tw[first] = 12 * g + 3 * next(j) + 2;
-                        tw[second] = 12 * g + 3 * j;
-                    }
-                    let e = 2 * self.edge_of[h];
-                    let own = owner_of(h) as u32;
-                    eo[first] = e + 1 - own;
-                    eo[second] = e + own;
-                    // Interior edge between c_i (edge 1) and c_3 (edge i + 2).
-                    let (a, b) = ((3 * i + 1) as usize, (9 + prev(i)) as usize);
-                    tw[a] = hh(3, prev(i));
-                    tw[b] = hh(i, 1);
-                    let interior = (2 * ne + 3 * f) as u32 + i;
-                    eo[a] = interior;
-                    eo[b] = interior;
-                }
-            },
-        );
-        let mut edge_owner = vec![0u32; 2 * ne + nh];
-        let (split, interior) = edge_owner.split_at_mut(2 * ne);
-        split.par_chunks_mut(2).with_min_len(MIN_LEN).zip(self.edge_owner.par_iter()).for_each(|(o, &h)| {
-            let (f, i) = (h / 3, h % 3);
-            o[0] = 12 * f + 3 * i;
-            o[1] = 12 * f + 3 * next(i) + 2;
-        });
-        interior.par_chunks_mut(3).with_min_len(MIN_LEN).enumerate().for_each(|(f, o)| {
+    }
+}
+
+/// One level's triangles and tables, read by the passes that make the next levels.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Table<'a> {
+    /// The triangles.
+    pub triangles: &'a [[u32; 3]],
+    /// The tables.
+    pub topology: &'a Topology,
+}
+
+impl Table<'_> {
+    /// Number of vertices.
+    #[inline]
+    pub(crate) fn num_vertices(&self) -> usize {
+        self.topology.vertex_start.len()
+    }
+    /// Number of edges.
+    #[inline]
+    pub(crate) fn num_edges(&self) -> usize {
+        self.topology.edge_owner.len()
+    }
+    /// Number of triangles.
+    #[inline]
+    pub(crate) fn num_faces(&self) -> usize {
+        self.triangles.len()
+    }
+    /// Triangle `f`.
+    #[inline]
+    pub(crate) fn tri(&self, f: u32) -> [u32; 3] {
+        self.triangles[f as usize]
+    }
+    /// The twin of half-edge `h`, or [`NONE`].
+    #[inline]
+    pub(crate) fn twin(&self, h: u32) -> u32 {
+        self.topology.twin[h as usize]
+    }
+    /// The edge of half-edge `h`.
+    #[inline]
+    pub(crate) fn edge_of(&self, h: u32) -> u32 {
+        self.topology.edge_of[h as usize]
+    }
+    /// The owner half-edge of edge `e` (its first half-edge).
+    #[inline]
+    pub(crate) fn edge_owner(&self, e: u32) -> u32 {
+        self.topology.edge_owner[e as usize]
+    }
+    /// The start half-edge of vertex `v`, or [`NONE`].
+    #[inline]
+    pub(crate) fn vertex_start(&self, v: u32) -> u32 {
+        self.topology.vertex_start[v as usize]
+    }
+    /// The edges of the half-edges of triangle `f`.
+    #[inline]
+    pub(crate) fn face_edges(&self, f: u32) -> [u32; 3] {
+        let e = &self.topology.edge_of[3 * f as usize..3 * f as usize + 3];
+        [e[0], e[1], e[2]]
+    }
+    /// The twins of the half-edges of triangle `f`.
+    #[inline]
+    pub(crate) fn face_twins(&self, f: u32) -> [u32; 3] {
+        let t = &self.topology.twin[3 * f as usize..3 * f as usize + 3];
+        [t[0], t[1], t[2]]
+    }
+}
+
+/// The triangles of the child level of `level`: triangle `f` becomes `4f .. 4f + 4`.
+pub(crate) fn child_triangles(level: &Table<'_>) -> Vec<[u32; 3]> {
+    let nv = level.num_vertices() as u32;
+    let mut child = vec![[0u32; 3]; 4 * level.num_faces()];
+    child.par_chunks_mut(4).with_min_len(MIN_LEN).enumerate().for_each(|(f, out)| {
+        let f = f as u32;
+        let t = level.tri(f);
+        let m = [nv + level.edge_of(3 * f), nv + level.edge_of(3 * f + 1), nv + level.edge_of(3 * f + 2)];
+        out[0] = [t[0], m[0], m[2]];
+        out[1] = [t[1], m[1], m[0]];
+        out[2] = [t[2], m[2], m[1]];
+        out[3] = m;
+    });
+    child
+}
+
+/// The triangles and stored tables of the child level of `level` (three parallel passes: over
+/// faces, edges and vertices).
+pub(crate) fn child_level(level: &Table<'_>) -> (Vec<[u32; 3]>, Topology) {
+    let nv = level.num_vertices();
+    let ne = level.num_edges();
+    let nh = 3 * level.num_faces();
+    let mut triangles = vec![[0u32; 3]; 4 * level.num_faces()];
+    let mut twin = vec![0u32; 4 * nh];
+    let mut edge_of = vec![0u32; 4 * nh];
+    triangles
+        .par_chunks_mut(4)
+        .zip(twin.par_chunks_mut(12))
+        .zip(edge_of.par_chunks_mut(12))
+        .with_min_len(MIN_LEN)
+        .enumerate()
+        .for_each(|(f, ((out, tw), eo))| {
+            let t = level.tri(f as u32);
+            let ef = level.face_edges(f as u32);
+            let m = ef.map(|e| nv as u32 + e);
+            out[0] = [t[0], m[0], m[2]];
+            out[1] = [t[1], m[1], m[0]];
+            out[2] = [t[2], m[2], m[1]];
+            out[3] = m;
+            let base = 4 * 3 * f as u32;
+            let hh = |c: u32, k: u32| base + 3 * c + k;
             for i in 0..3u32 {
-                o[i as usize] = 12 * f as u32 + 3 * i + 1;
+                let h = 3 * f as u32 + i;
+                let (first, second) = ((3 * i) as usize, (3 * next(i) + 2) as usize);
+                let t = level.twin(h);
+                if t == NONE {
+                    tw[first] = NONE;
+                    tw[second] = NONE;
+                } else {
+                    let (g, j) = (t / 3, t % 3);
+                    tw[first] = 12 * g + 3 * next(j) + 2;
+                    tw[second] = 12 * g + 3 * j;
+                }
+                let e = 2 * ef[i as usize];
+                let own = u32::from(t == NONE || h < t);
+                eo[first] = e + 1 - own;
+                eo[second] = e + own;
+                // Interior edge between c_i (edge 1) and c_3 (edge i + 2).
+                let (a, b) = ((3 * i + 1) as usize, (9 + prev(i)) as usize);
+                tw[a] = hh(3, prev(i));
+                tw[b] = hh(i, 1);
+                let interior = (2 * ne + 3 * f) as u32 + i;
+                eo[a] = interior;
+                eo[b] = interior;
             }
         });
-        let mut vertex_start = vec![0u32; nv as usize + ne];
-        let (even, odd) = vertex_start.split_at_mut(nv as usize);
-        even.par_iter_mut().with_min_len(MIN_LEN).zip(self.vertex_start.par_iter()).for_each(|(s, &h)| {
-            *s = if h == NONE { NONE } else { 12 * (h / 3) + 3 * (h % 3) };
-        });
-        odd.par_iter_mut().with_min_len(MIN_LEN).zip(self.edge_owner.par_iter()).for_each(|(s, &h)| {
-            *s = 12 * (h / 3) + 3 * next(h % 3) + 2;
-        });
-        (child, Some(Self { twin, edge_of, edge_owner, vertex_start }))
-    }
+    // Split edges 2e, 2e + 1 (the owner's halves), then the interior edges 3f + i.
+    let mut edge_owner = Vec::new();
+    (0..(2 * ne + nh) as u32)
+        .into_par_iter()
+        .with_min_len(MIN_LEN)
+        .map(|e| {
+            if e < 2 * ne as u32 {
+                let h = level.edge_owner(e / 2);
+                let (f, i) = (h / 3, h % 3);
+                if e % 2 == 0 { 12 * f + 3 * i } else { 12 * f + 3 * next(i) + 2 }
+            } else {
+                let r = e - 2 * ne as u32;
+                12 * (r / 3) + 3 * (r % 3) + 1
+            }
+        })
+        .collect_into_vec(&mut edge_owner);
+    // Even vertices start on the first half of their start; odd ones on the second half of
+    // their edge's owner (a boundary half-edge on a boundary edge).
+    let mut vertex_start = Vec::new();
+    (0..(nv + ne) as u32)
+        .into_par_iter()
+        .with_min_len(MIN_LEN)
+        .map(|v| {
+            if v < nv as u32 {
+                let h = level.vertex_start(v);
+                if h == NONE { NONE } else { 12 * (h / 3) + 3 * (h % 3) }
+            } else {
+                let h = level.edge_owner(v - nv as u32);
+                12 * (h / 3) + 3 * next(h % 3) + 2
+            }
+        })
+        .collect_into_vec(&mut vertex_start);
+    (triangles, Topology { twin, edge_of, edge_owner, vertex_start })
 }
 
 #[cfg(test)]
@@ -281,12 +495,16 @@ mod tests {
             let (child, t) = topo.refine(&tris, true);
             let t = t.unwrap();
             let rebuilt = Topology::build(&child, t.num_vertices()).unwrap();
+            // The fast build gives the tables the checked one does.
+            assert_eq!(Some(&rebuilt), Topology::build_manifold(&child, t.num_vertices()).as_ref());
+            assert_eq!(rebuilt, Topology::build_checked(&child, t.num_vertices()).unwrap());
             assert_eq!(t.twin, rebuilt.twin);
             assert_eq!(t.num_edges(), rebuilt.num_edges());
             for h in 0..t.twin.len() {
                 let e = t.edge_of[h] as usize;
                 let o = t.edge_owner[e] as usize;
                 assert!(o == h || t.twin[h] as usize == o, "owner of the edge of {h}");
+                assert_eq!(o == h, t.twin[h] == NONE || h < t.twin[h] as usize, "first half-edge owns {e}");
             }
             for (v, &s) in t.vertex_start.iter().enumerate() {
                 assert_eq!(child[(s / 3) as usize][(s % 3) as usize] as usize, v);
