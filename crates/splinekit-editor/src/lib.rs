@@ -3,28 +3,36 @@
 //!
 //! The window has a file bar (path field: load SWP, OBJ, PLY, STL; save SWP; export the
 //! surface as OBJ, glb, PLY or STL), a left panel (curves, kind, closed, plane, what to show),
-//! the 2D curve view in the middle, a right panel with the surface or mesh and its
-//! subdivision, and a status line for messages and errors. An error never changes the
-//! document.
+//! the 2D curve view in the middle, a right panel with the surface or mesh, its subdivision
+//! and the 3D view ([`View3d`]), and a status line for messages and errors. An error never
+//! changes the document.
+//!
+//! The 3D view shows the document's surfaces, swept again whenever the document changes (so
+//! they follow a dragged point live), or the loaded mesh at the subdivision level shown. The
+//! control points of an active 3D curve are handles there too, dragged in the plane parallel
+//! to the screen.
 //!
 //! Keyboard (when no text field has focus): `r` preset scene, `s` cycle the spline kind, `c`
-//! clear the curve, `a` arc-length markers, `l` control polygon, `w` wireframe, `n` normals,
-//! `f` fit the view, `h` or `?` help, Delete the selected point, Ctrl+Z undo,
-//! Ctrl+Shift+Z (or Ctrl+Y) redo.
+//! clear the curve, `a` arc-length markers, `l` control polygon, `w` wireframe, `n` normals
+//! (curve and surface), `f` fit both views, `h` or `?` help, Delete the selected point,
+//! Ctrl+Z undo, Ctrl+Shift+Z (or Ctrl+Y) redo.
 
 pub mod doc;
 pub mod view2d;
+pub mod view3d;
 
 use std::path::{Path, PathBuf};
 
 use eframe::egui::{self, Key, Modifiers};
 use splinekit::subdiv::{LoopOptions, LoopPyramid};
 use splinekit::{PolyMesh, TriMesh};
+use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
 use splinekit_io::surface::SurfaceOptions;
 
 pub use doc::Document;
 pub use view2d::{Plane, View2d};
+pub use view3d::{View3d, View3dSettings};
 
 /// The keyboard shortcuts, as the help panel lists them.
 pub const SHORTCUTS: [(&str, &str); 13] = [
@@ -39,8 +47,8 @@ pub const SHORTCUTS: [(&str, &str); 13] = [
     ("a", "arc-length markers"),
     ("l", "control polygon"),
     ("w", "wireframe (3D view)"),
-    ("n", "normals"),
-    ("f", "fit the view"),
+    ("n", "normals (curve and surface)"),
+    ("f", "fit both views"),
 ];
 
 /// A loaded mesh and its Loop subdivision levels.
@@ -75,12 +83,47 @@ impl MeshState {
     }
 }
 
-/// What the surface panel shows for the document's surfaces.
+/// The document's surfaces as the editor shows them: all of them in one mesh, and a line
+/// per surface for the surface panel.
 #[derive(Clone, Debug, Default)]
-struct SurfaceSummary {
-    revision: Option<u64>,
-    lines: Vec<String>,
-    triangles: usize,
+pub struct SweptSurfaces {
+    /// Every surface that could be swept, merged (triangles of later surfaces after those
+    /// of earlier ones).
+    pub mesh: TriMesh,
+    /// Per surface: its name and counts, or why it cannot be swept.
+    pub lines: Vec<String>,
+    /// Why surfaces cannot be swept (each also in `lines`).
+    pub errors: Vec<String>,
+}
+
+impl SweptSurfaces {
+    /// Sweeps every surface of `swp` with the default options (the path the editor takes on
+    /// every change of the document, e.g. every frame of a drag).
+    #[must_use]
+    pub fn sweep(swp: &SwpDocument) -> Self {
+        let mut out = Self::default();
+        for (i, s) in swp.surfaces.iter().enumerate() {
+            let name = s.display_name(i);
+            match swp.surface_mesh(i, &SurfaceOptions::default()) {
+                Ok(m) => {
+                    out.lines.push(format!("{name}: {} vertices, {} triangles", m.num_vertices(), m.num_triangles()));
+                    append(&mut out.mesh, &m);
+                }
+                Err(e) => {
+                    out.lines.push(format!("{name}: {e}"));
+                    out.errors.push(format!("{name}: {e}"));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// What the 3D view was last given: the document's revision, or the loaded mesh's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Shown {
+    Document(u64),
+    Mesh { generation: u64, level: usize },
 }
 
 /// The editor application.
@@ -93,8 +136,8 @@ pub struct EditorApp {
     pub mesh: Option<MeshState>,
     /// Colour the subdivision levels.
     pub color_by_level: bool,
-    /// Wireframe in the 3D view (`w`).
-    pub wireframe: bool,
+    /// The 3D view (its settings: wireframe, normals, …).
+    pub view3d: View3d,
     /// The last message (errors start with "Error").
     pub status: String,
     /// The path field of the file bar.
@@ -103,7 +146,12 @@ pub struct EditorApp {
     pub show_help: bool,
     /// Show the arc-length table window.
     pub show_table: bool,
-    surfaces: SurfaceSummary,
+    /// The document's surfaces, swept at `surfaces_revision`.
+    surfaces: SweptSurfaces,
+    surfaces_revision: Option<u64>,
+    /// Bumped whenever the loaded mesh or its levels change.
+    mesh_generation: u64,
+    shown: Option<Shown>,
 }
 
 impl Default for EditorApp {
@@ -113,12 +161,15 @@ impl Default for EditorApp {
             view: View2d::default(),
             mesh: None,
             color_by_level: false,
-            wireframe: false,
+            view3d: View3d::new(),
             status: "Shift+click to add points; press h for help".to_owned(),
             path_field: String::new(),
             show_help: false,
             show_table: false,
-            surfaces: SurfaceSummary::default(),
+            surfaces: SweptSurfaces::default(),
+            surfaces_revision: None,
+            mesh_generation: 0,
+            shown: None,
         }
     }
 }
@@ -144,8 +195,9 @@ impl EditorApp {
             match Document::read(path) {
                 Ok(doc) => {
                     self.doc = doc;
-                    self.mesh = None;
+                    self.set_mesh_state(None);
                     self.view.fit_pending = true;
+                    self.view3d.fit_on_next_mesh();
                     self.view.selected = None;
                     self.status = format!("Loaded {}", path.display());
                 }
@@ -165,10 +217,22 @@ impl EditorApp {
                 if let Err(e) = &pyramid {
                     self.status.push_str(&format!(" (cannot subdivide: {e})"));
                 }
-                self.mesh = Some(MeshState { name: path.display().to_string(), pyramid, base: mesh, level: 0 });
+                self.set_mesh_state(Some(MeshState {
+                    name: path.display().to_string(),
+                    pyramid,
+                    base: mesh,
+                    level: 0,
+                }));
+                self.view3d.fit_on_next_mesh();
             }
             Err(e) => self.status = format!("Error: {e}"),
         }
+    }
+
+    /// Replaces the loaded mesh (`None`: show the document's surfaces again).
+    fn set_mesh_state(&mut self, mesh: Option<MeshState>) {
+        self.mesh = mesh;
+        self.mesh_generation += 1;
     }
 
     fn loop_options(&self) -> LoopOptions {
@@ -194,6 +258,7 @@ impl EditorApp {
         if let Ok(p) = &mut m.pyramid {
             p.refine_to(m.level, |_| {});
         }
+        self.mesh_generation += 1;
     }
 
     /// Shows the next coarser level of the loaded mesh.
@@ -257,38 +322,52 @@ impl EditorApp {
         if self.doc.swp.surfaces.is_empty() {
             return Err("the document has no surface (add srev or gcyl to the SWP file)".to_owned());
         }
-        let mut all = TriMesh::default();
-        for i in 0..self.doc.swp.surfaces.len() {
-            let mesh = self.doc.swp.surface_mesh(i, &SurfaceOptions::default()).map_err(|e| e.to_string())?;
-            append(&mut all, &mesh);
+        let swept = SweptSurfaces::sweep(&self.doc.swp);
+        match swept.errors.first() {
+            Some(e) => Err(e.clone()),
+            None => Ok(swept.mesh),
         }
-        Ok(all)
+    }
+
+    /// Gives the 3D view the loaded mesh's level, or the document's surfaces, if they changed
+    /// since it was last given them.
+    fn update_view3d(&mut self) {
+        let shown = match &self.mesh {
+            Some(m) => Shown::Mesh { generation: self.mesh_generation, level: m.level },
+            None => Shown::Document(self.doc.revision()),
+        };
+        if self.shown == Some(shown) {
+            return;
+        }
+        self.shown = Some(shown);
+        match &self.mesh {
+            Some(m) => {
+                let mesh = match &m.pyramid {
+                    Ok(p) => p.level(m.level).clone().into_tri_mesh(),
+                    Err(_) => m.base.to_tri_mesh(),
+                };
+                self.view3d.set_mesh(&mesh);
+            }
+            None => {
+                self.update_surfaces();
+                self.view3d.set_mesh(&self.surfaces.mesh);
+            }
+        }
     }
 
     /// The triangle count of the document's surfaces (0 if there are none or they fail).
     #[must_use]
     pub fn surface_triangles(&mut self) -> usize {
         self.update_surfaces();
-        self.surfaces.triangles
+        self.surfaces.mesh.num_triangles()
     }
 
     fn update_surfaces(&mut self) {
-        if self.surfaces.revision == Some(self.doc.revision()) {
+        if self.surfaces_revision == Some(self.doc.revision()) {
             return;
         }
-        let mut lines = Vec::new();
-        let mut triangles = 0;
-        for (i, s) in self.doc.swp.surfaces.iter().enumerate() {
-            let name = s.display_name(i);
-            match self.doc.swp.surface_mesh(i, &SurfaceOptions::default()) {
-                Ok(m) => {
-                    triangles += m.num_triangles();
-                    lines.push(format!("{name}: {} vertices, {} triangles", m.num_vertices(), m.num_triangles()));
-                }
-                Err(e) => lines.push(format!("{name}: {e}")),
-            }
-        }
-        self.surfaces = SurfaceSummary { revision: Some(self.doc.revision()), lines, triangles };
+        self.surfaces = SweptSurfaces::sweep(&self.doc.swp);
+        self.surfaces_revision = Some(self.doc.revision());
     }
 
     fn keyboard(&mut self, ctx: &egui::Context) {
@@ -321,13 +400,16 @@ impl EditorApp {
             self.view.show.polygon ^= true;
         }
         if pressed(Key::W) {
-            self.wireframe ^= true;
+            self.view3d.settings.wireframe ^= true;
         }
         if pressed(Key::N) {
-            self.view.show.normals ^= true;
+            let on = !self.view3d.settings.normals;
+            self.view3d.settings.normals = on;
+            self.view.show.normals = on;
         }
         if pressed(Key::F) {
             self.view.fit_pending = true;
+            self.view3d.fit();
         }
         if pressed(Key::H) || ctx.input(|i| i.events.iter().any(|e| matches!(e, egui::Event::Text(t) if t == "?"))) {
             self.show_help ^= true;
@@ -342,7 +424,8 @@ impl EditorApp {
     /// Loads the preset scene (SPEC §1.4) and frames it.
     pub fn preset(&mut self) {
         self.doc.preset();
-        self.mesh = None;
+        self.set_mesh_state(None);
+        self.view3d.fit_on_next_mesh();
         self.view.plane = Plane::Xy;
         self.view.fit_pending = true;
         self.view.selected = None;
@@ -461,7 +544,7 @@ impl EditorApp {
         }
     }
 
-    fn right_panel(&mut self, ui: &mut egui::Ui) {
+    fn right_panel(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame) {
         ui.heading("Surface");
         if let Some(m) = &self.mesh {
             ui.label(format!("Mesh {}", m.name));
@@ -480,7 +563,8 @@ impl EditorApp {
                 self.recolor();
             }
             if ui.button("Close mesh").clicked() {
-                self.mesh = None;
+                self.set_mesh_state(None);
+                self.view3d.fit_on_next_mesh();
             }
         } else {
             self.update_surfaces();
@@ -490,9 +574,28 @@ impl EditorApp {
             for line in &self.surfaces.lines {
                 ui.label(line);
             }
-            ui.label(format!("Triangles: {}", self.surfaces.triangles));
+            ui.label(format!("Triangles: {}", self.surfaces.mesh.num_triangles()));
         }
-        ui.checkbox(&mut self.wireframe, "Wireframe");
+        egui::CollapsingHeader::new("3D display").default_open(true).show(ui, |ui| {
+            ui.horizontal_wrapped(|ui| self.view3d.settings.ui(ui));
+        });
+        ui.separator();
+        self.update_view3d();
+        // the control points of a 3D curve, dragged in the 3D view
+        let (handles, curve) = if self.mesh.is_none() && !self.doc.is_2d() {
+            let curve = self.doc.spline().map_or_else(|_| Vec::new(), |c| sample_curve(&c));
+            (self.doc.points().to_vec(), curve)
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        let (_, drag) = self.view3d.ui_with_handles(ui, frame, &handles, &curve);
+        if let Some(d) = drag {
+            if d.started {
+                self.doc.begin_move();
+            }
+            self.doc.set_point(d.index, d.position);
+            self.view.selected = Some(d.index);
+        }
     }
 
     fn windows(&mut self, ctx: &egui::Context) {
@@ -541,8 +644,9 @@ impl EditorApp {
         self.show_table = open;
     }
 
-    /// The whole user interface (one frame).
-    pub fn ui(&mut self, ui: &mut egui::Ui) {
+    /// The whole user interface (one frame); the 3D view renders with `frame`'s wgpu
+    /// renderer.
+    pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame) {
         let ctx = ui.ctx().clone();
         self.keyboard(&ctx);
         egui::Panel::top("file bar").show(ui, |ui| self.file_bar(ui));
@@ -563,7 +667,10 @@ impl EditorApp {
         egui::Panel::left("curves").show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| self.left_panel(ui));
         });
-        egui::Panel::right("surface").min_size(220.0).show(ui, |ui| self.right_panel(ui));
+        let half = 0.45 * ui.available_width();
+        egui::Panel::right("surface").default_size(half).min_size(220.0).resizable(true).show(ui, |ui| {
+            self.right_panel(ui, frame);
+        });
         egui::CentralPanel::default().show(ui, |ui| {
             self.view.ui(ui, &mut self.doc);
         });
@@ -572,8 +679,8 @@ impl EditorApp {
 }
 
 impl eframe::App for EditorApp {
-    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
-        EditorApp::ui(self, ui);
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        EditorApp::ui(self, ui, frame);
     }
 }
 
@@ -583,6 +690,14 @@ fn point_count(c: &splinekit_io::SwpCurve) -> usize {
         splinekit_io::SwpGeometry::Points(p) | splinekit_io::SwpGeometry::Hermite { points: p, .. } => p.len(),
         _ => 0,
     }
+}
+
+/// Points along `c`, 32 per segment, for the 3D view's overlay.
+fn sample_curve(c: &splinekit::AnyCurve<glam::DVec3>) -> Vec<glam::DVec3> {
+    use splinekit::ParamCurve as _;
+    let segments = c.num_segments();
+    let n = 32 * segments;
+    (0..=n).map(|i| c.eval(segments as f64 * i as f64 / n.max(1) as f64)).collect()
 }
 
 /// Appends `b` to `a` (per-vertex attributes kept only if both have them).

@@ -127,7 +127,8 @@ pub struct View2d {
     pub fit_pending: bool,
     drag: Option<Drag>,
     /// The screen rectangle of the last frame.
-    rect: Rect,
+    /// Where the view was last drawn (screen points).
+    pub rect: Rect,
 }
 
 impl Default for View2d {

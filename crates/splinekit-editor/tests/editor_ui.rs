@@ -25,6 +25,13 @@ fn harness(app: EditorApp) -> Harness<'static, EditorApp> {
 }
 
 /// An editor with a Bézier curve of four points.
+/// A fresh directory under the system's temporary directory.
+fn tempfile_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("splinekit-editor-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 fn four_points() -> Harness<'static, EditorApp> {
     let mut app = EditorApp::new(None);
     for (x, y) in [(0.0, 0.0), (1.0, 2.0), (3.0, 2.0), (4.0, 0.0)] {
@@ -87,7 +94,14 @@ fn dragging_p2_moves_the_model_exactly_as_dragged() {
 fn shift_click_adds_and_a_click_on_the_polygon_inserts() {
     let mut h = harness(EditorApp::new(None));
     assert!(h.query_by_label("P0").is_none());
-    let clicks = [Pos2::new(500.0, 400.0), Pos2::new(600.0, 300.0), Pos2::new(700.0, 300.0), Pos2::new(800.0, 400.0)];
+    // in the 2D view, whatever the panels around it take
+    let c = h.state().view.rect.center();
+    let clicks = [
+        c + Vec2::new(-120.0, 50.0),
+        c + Vec2::new(-40.0, -50.0),
+        c + Vec2::new(40.0, -50.0),
+        c + Vec2::new(120.0, 50.0),
+    ];
     for &p in &clicks {
         click_at(&mut h, p, Modifiers::SHIFT);
     }
@@ -109,7 +123,7 @@ fn shift_click_adds_and_a_click_on_the_polygon_inserts() {
     let m: DVec2 = app.view.to_model(mid + Vec2::new(2.0, 2.0));
     assert!((app.doc.points()[1].truncate() - m).length() < 1e-9);
     // a click far from the polygon adds nothing
-    click_at(&mut h, Pos2::new(520.0, 150.0), Modifiers::NONE);
+    click_at(&mut h, c + Vec2::new(0.0, -200.0), Modifiers::NONE);
     assert_eq!(h.state().doc.points().len(), 5);
 }
 
@@ -231,6 +245,8 @@ fn every_bundled_swp_file_loads_and_shows_its_triangle_count() {
         let triangles: usize =
             (0..doc.surfaces.len()).map(|i| doc.surface_mesh(i, &Default::default()).unwrap().num_triangles()).sum();
         h.get_by_label(&format!("Triangles: {triangles}"));
+        // the 3D view shows every triangle that has finite corners
+        assert_eq!(h.state().view3d.num_triangles(), triangles, "{file}");
         if file == "srev/wineglass.swp" {
             h.snapshot("wineglass_loaded");
         }
@@ -286,9 +302,95 @@ fn refine_a_loaded_icosahedron_to_level_two() {
     h.get_by_label("Refine subdivision").click();
     h.run();
     h.get_by_label("Faces: 320");
+    assert_eq!(h.state().view3d.num_triangles(), 320);
     h.get_by_label("Coarsen subdivision").click();
     h.run();
     h.get_by_label("Faces: 80");
+    assert_eq!(h.state().view3d.num_triangles(), 80);
+    // colour by level gives the 3D view per-vertex colours; closing shows the document again
+    h.get_by_label("Colour by level").click();
+    h.run();
+    assert_eq!(h.state().view3d.num_triangles(), 80);
+    h.get_by_label("Close mesh").click();
+    h.run();
+    assert_eq!(h.state().view3d.num_triangles(), 0);
+}
+
+/// The wineglass with its profile active: dragging a profile point re-sweeps the surface in
+/// the 3D view on every frame of the drag.
+#[test]
+fn the_surface_follows_a_dragged_point_live() {
+    let mut h = harness(EditorApp::new(Some(&data("swp/srev/wineglass.swp"))));
+    let g0 = h.state().view3d.generation();
+    let from = center(&h, "P5");
+    h.hover_at(from);
+    h.run();
+    h.drag_at(from);
+    h.run();
+    let mut last = h.state().view3d.generation();
+    for k in 1..=3 {
+        h.hover_at(from + Vec2::new(12.0 * k as f32, 0.0));
+        h.run();
+        let g = h.state().view3d.generation();
+        assert!(g > last, "frame {k} of the drag: the 3D view was not given the new surface");
+        last = g;
+        // what the 3D view shows is the document's surface as it is now
+        let swept = splinekit_editor::SweptSurfaces::sweep(&h.state().doc.swp);
+        assert!(swept.errors.is_empty());
+        assert_eq!(h.state().view3d.num_triangles(), swept.mesh.num_triangles());
+        assert_eq!(h.state().view3d.bounds(), splinekit_editor::view3d::bounds(&swept.mesh));
+    }
+    h.drop_at(from + Vec2::new(36.0, 0.0));
+    h.run();
+    assert!(last > g0);
+}
+
+/// A 3D curve's control points are handles in the 3D view, dragged in the plane parallel to
+/// the screen: the point's projection follows the pointer exactly and its depth stays.
+#[test]
+fn dragging_a_3d_point_in_the_3d_view_follows_the_pointer() {
+    let dir = tempfile_dir("drag3d");
+    let path = dir.join("helixish.swp");
+    std::fs::write(&path, "bsp3 path 10 5\n[0 0 0]\n[1 0 1]\n[2 1 0]\n[3 0 1]\n[4 1 1]\n").unwrap();
+    let mut h = harness(EditorApp::new(Some(&path)));
+    assert!(h.state().status.starts_with("Loaded"), "{}", h.state().status);
+    let before = h.state().doc.points()[2];
+    let camera = *h.state().view3d.camera();
+    let from = center(&h, "3D P2");
+    let view = h.get_by_label("3D view").rect();
+    let delta = Vec2::new(25.0, -15.0);
+    drag(&mut h, from, delta);
+    let after = h.state().doc.points()[2];
+    assert_eq!(*h.state().view3d.camera(), camera, "a handle drag does not move the camera");
+    let (p0, p1) = (camera.project(before, view).unwrap(), camera.project(after, view).unwrap());
+    assert!(((p1 - p0) - delta).length() < 1e-3, "moved on screen by {:?}, dragged {delta:?}", p1 - p0);
+    assert!((camera.depth(after) - camera.depth(before)).abs() < 1e-9 * (1.0 + camera.depth(before)));
+    assert!((after - before).length() > 1e-3);
+    // the other points stayed, and the drag is one undo step
+    assert_eq!(h.state().doc.points()[1], DVec3::new(1.0, 0.0, 1.0));
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    assert_eq!(h.state().doc.points()[2], before);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn w_and_n_switch_the_3d_overlays_and_f_fits() {
+    let mut h = harness(EditorApp::new(Some(&data("swp/srev/wineglass.swp"))));
+    let fitted = *h.state().view3d.camera();
+    h.key_press(egui::Key::W);
+    h.run();
+    assert!(h.state().view3d.settings.wireframe);
+    h.key_press(egui::Key::N);
+    h.run();
+    assert!(h.state().view3d.settings.normals && h.state().view.show.normals);
+    h.key_press(egui::Key::N);
+    h.run();
+    assert!(!h.state().view3d.settings.normals && !h.state().view.show.normals);
+    h.state_mut().view3d.camera_mut().distance *= 5.0;
+    h.key_press(egui::Key::F);
+    h.run();
+    assert!((h.state().view3d.camera().distance - fitted.distance).abs() < 1e-9 * fitted.distance);
 }
 
 #[test]
