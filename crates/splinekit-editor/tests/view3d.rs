@@ -48,7 +48,7 @@ fn harness(mesh: &TriMesh, settings_panel: bool) -> Harness<'static, TestApp> {
 /// The bundled icosahedron (the course's file, HTML lines and all), on the unit sphere:
 /// outward, counter-clockwise seen from outside.
 fn icosahedron() -> TriMesh {
-    let loaded = splinekit_io::load_mesh(&data("obj/icosahedron.obj")).expect("bundled icosahedron");
+    let loaded = splinekit_io::load_mesh(data("obj/icosahedron.obj")).expect("bundled icosahedron");
     let mut mesh = loaded.mesh.to_tri_mesh();
     for p in &mut mesh.positions {
         *p = p.normalize();
