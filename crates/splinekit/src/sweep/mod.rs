@@ -229,6 +229,9 @@ pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result
     let vs = profile.normalized_lengths();
 
     let mut mesh = TriMesh::default();
+    mesh.positions.reserve(copies * p);
+    mesh.normals.reserve(copies * p);
+    mesh.triangles.reserve(2 * steps * p);
     // index[j][i]: vertex of profile point i in copy j
     let mut index = vec![0u32; copies * p];
     let mut pole = vec![u32::MAX; p];
@@ -300,6 +303,8 @@ pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepO
 
     let mut mesh = TriMesh::default();
     mesh.positions.reserve(p * s);
+    mesh.normals.reserve(p * s);
+    mesh.triangles.reserve(2 * p * s);
     let scaled = !path.scales.is_empty();
     for (k, ((f, v), u)) in path.frames.iter().zip(&path.positions).zip(&us).take(s).enumerate() {
         let sc = if scaled { path.scales[k] } else { DVec2::ONE };
@@ -449,30 +454,28 @@ fn push_quad(mesh: &mut TriMesh, [a, b, c, d]: [u32; 4], welded: bool) {
 
 /// Flips the mesh if its face normals point, on balance, against `outward(position, index)`
 /// summed over each triangle's corners, then aligns the vertex normals with the faces.
+///
+/// One pass: the agreement of vertex and face normals is summed with the faces as they are,
+/// and a flip of the faces negates every term exactly (swapping two corners negates the cross
+/// product bit for bit), so it is the same sum, negated, as after the flip.
 fn orient(mesh: &mut TriMesh, outward: impl Fn(DVec3, usize) -> DVec3) {
-    let flux: f64 = (0..mesh.triangles.len())
-        .map(|i| {
-            let out: DVec3 = mesh.triangles[i].iter().map(|&v| outward(mesh.positions[v as usize], v as usize)).sum();
-            mesh.face_normal(i).dot(out)
-        })
-        .sum();
+    let mut flux = 0.0;
+    let mut agreement = 0.0;
+    for (i, t) in mesh.triangles.iter().enumerate() {
+        let face = mesh.face_normal(i);
+        let out: DVec3 = t.iter().map(|&v| outward(mesh.positions[v as usize], v as usize)).sum();
+        flux += face.dot(out);
+        for &v in t {
+            agreement += face.dot(mesh.normals[v as usize]);
+        }
+    }
     if flux < 0.0 {
         for t in &mut mesh.triangles {
             t.swap(1, 2);
         }
+        agreement = -agreement;
     }
-    align_normals(mesh);
-}
-
-/// Negates the vertex normals if they disagree, on balance, with the faces around them.
-fn align_normals(mesh: &mut TriMesh) {
-    let mut agreement = 0.0;
-    for i in 0..mesh.triangles.len() {
-        let fnorm = mesh.face_normal(i);
-        for &v in &mesh.triangles[i] {
-            agreement += fnorm.dot(mesh.normals[v as usize]);
-        }
-    }
+    // the vertex normals disagree, on balance, with the faces around them
     if agreement < 0.0 {
         for n in &mut mesh.normals {
             *n = -*n;
@@ -482,9 +485,23 @@ fn align_normals(mesh: &mut TriMesh) {
 
 /// Pole vertices get the area-weighted normal of their faces (along the axis).
 fn fix_pole_normals(mesh: &mut TriMesh, pole: &[u32]) {
-    let sums = mesh.vertex_normal_sums();
+    // the face normals summed at the poles only, in triangle order (as `vertex_normal_sums`)
+    let mut sums = vec![None; mesh.positions.len()];
     for &v in pole.iter().filter(|&&v| v != u32::MAX) {
-        if let Some(n) = sums[v as usize].try_normalize() {
+        sums[v as usize] = Some(DVec3::ZERO);
+    }
+    for (i, t) in mesh.triangles.iter().enumerate() {
+        if t.iter().any(|&v| sums[v as usize].is_some()) {
+            let face = mesh.face_normal(i);
+            for &v in t {
+                if let Some(sum) = &mut sums[v as usize] {
+                    *sum += face;
+                }
+            }
+        }
+    }
+    for &v in pole.iter().filter(|&&v| v != u32::MAX) {
+        if let Some(n) = sums[v as usize].and_then(DVec3::try_normalize) {
             mesh.normals[v as usize] = n;
         }
     }
