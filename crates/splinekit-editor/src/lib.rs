@@ -1,6 +1,8 @@
 //! The splinekit editor (`splinekit edit [FILE]`): 2D curve editing and the surfaces swept
 //! from the curves, or a loaded mesh with Loop subdivision.
 //!
+//! Files open from the command line, the path field, or by dropping them on the window.
+//!
 //! The window has a file bar (path field: load SWP, OBJ, PLY, STL; save SWP; export the
 //! surface as OBJ, glb, PLY or STL), a left panel (curves, kind, closed, plane, what to show),
 //! the 2D curve view in the middle, a right panel with the surface or mesh, its subdivision
@@ -649,6 +651,12 @@ impl EditorApp {
     pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame) {
         let ctx = ui.ctx().clone();
         self.keyboard(&ctx);
+        // a file dropped on the window opens like one typed in the path field
+        let dropped = ctx.input(|i| i.raw.dropped_files.first().map(|f| f.path().to_path_buf()));
+        if let Some(path) = dropped {
+            self.path_field = path.display().to_string();
+            self.open(&path);
+        }
         egui::Panel::top("file bar").show(ui, |ui| self.file_bar(ui));
         // one line, so the views keep their size whatever it says
         egui::Panel::bottom("status").show(ui, |ui| {

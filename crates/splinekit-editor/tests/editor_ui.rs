@@ -375,6 +375,29 @@ fn dragging_a_3d_point_in_the_3d_view_follows_the_pointer() {
 }
 
 #[test]
+fn a_dropped_file_opens() {
+    let mut h = harness(EditorApp::new(None));
+    let path = data("obj/icosahedron.obj");
+    /// A file dropped on the window (what winit gives eframe).
+    #[derive(Debug)]
+    struct Dropped(PathBuf);
+    impl egui::DroppedFile for Dropped {
+        fn path(&self) -> &std::path::Path {
+            &self.0
+        }
+        fn bytes(&self) -> Result<Vec<u8>, String> {
+            std::fs::read(&self.0).map_err(|e| e.to_string())
+        }
+    }
+    h.input_mut().dropped_files.push(std::sync::Arc::new(Dropped(path.clone())));
+    h.run();
+    assert!(h.state().status.starts_with("Loaded"), "{}", h.state().status);
+    h.get_by_label("Faces: 20");
+    assert_eq!(h.state().view3d.num_triangles(), 20);
+    assert_eq!(h.state().path_field, path.display().to_string());
+}
+
+#[test]
 fn w_and_n_switch_the_3d_overlays_and_f_fits() {
     let mut h = harness(EditorApp::new(Some(&data("swp/srev/wineglass.swp"))));
     let fitted = *h.state().view3d.camera();
