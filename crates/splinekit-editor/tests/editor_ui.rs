@@ -382,7 +382,7 @@ fn a_dropped_file_opens() {
     #[derive(Debug)]
     struct Dropped(PathBuf);
     impl egui::DroppedFile for Dropped {
-        fn path(&self) -> &std::path::Path {
+        fn path(&self) -> &Path {
             &self.0
         }
         fn bytes(&self) -> Result<Vec<u8>, String> {
