@@ -1,4 +1,5 @@
-//! `splinekit subdivide`: Loop subdivision of a triangle mesh file.
+//! `splinekit subdivide`: Loop subdivision of a triangle mesh file, Catmull-Clark of a
+//! polygon mesh file.
 
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
@@ -7,12 +8,16 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, anyhow, bail};
 use clap::ValueEnum;
 use splinekit::PolyMesh;
-use splinekit::subdiv::{BoundaryRule, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError};
-use splinekit_io::mesh::{MeshFormat, load_mesh, save};
+use splinekit::subdiv::{
+    BoundaryRule, CatmullClarkOptions, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
+    catmull_clark_subdivide,
+};
+use splinekit_io::mesh::{MeshFormat, load_mesh, save, save_poly};
 
 use crate::output::JsonNum;
 
-/// Subdivide a triangle mesh (OBJ, PLY or STL) with Loop's scheme.
+/// Subdivide a mesh (OBJ, PLY or STL): Loop's scheme for triangle meshes (default), or
+/// Catmull-Clark for any polygon mesh (`--scheme catmull-clark`).
 ///
 /// Each level splits every triangle into four (SPEC §3.2); a closed mesh with V vertices,
 /// E edges and F faces becomes V+E, 2E+3F, 4F. Weights: Loop's original β(n) (default; what
@@ -20,6 +25,11 @@ use crate::output::JsonNum;
 /// Boundaries follow the crease rules (boundary curves are cubic B-splines); `--boundary
 /// corners` keeps vertices with a single face fixed. Colours, normals and UVs are carried
 /// with the same weights, UV seams kept apart.
+///
+/// Catmull-Clark (OpenSubdiv's catmark weights) turns every n-gon into n quads: V+E+F
+/// vertices and one quad per corner; boundaries are creases, `--boundary corners` keeps
+/// single-face corners fixed; colours are carried (normals and UVs are not; `--weights` is
+/// Loop's only). OBJ output keeps the quads, the other formats get two triangles per quad.
 ///
 /// Writes the result by the extension of OUT (.obj, .ply, .stl, .glb) through a temporary
 /// file, so an error never leaves a partial file; without -o nothing is written (use it to
@@ -86,6 +96,8 @@ pub struct SubdivideArgs {
 pub enum Scheme {
     /// Loop (triangle meshes)
     Loop,
+    /// Catmull-Clark (any polygon mesh; the result is all quads)
+    CatmullClark,
 }
 
 /// Even-vertex weights.
@@ -134,6 +146,9 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         }
         mesh = split;
     }
+    if args.scheme == Scheme::CatmullClark {
+        return run_catmull_clark(args, &mesh, format, out);
+    }
     let options = LoopOptions {
         weights: match args.weights {
             Weights::Loop => LoopWeights::Loop,
@@ -145,14 +160,7 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         },
         color_by_level: args.color_by_level,
     };
-    let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = args.threads {
-        if n == 0 {
-            bail!("--threads must be at least 1");
-        }
-        builder = builder.num_threads(n);
-    }
-    let pool = builder.build().context("cannot start the worker threads")?;
+    let pool = thread_pool(args)?;
     let threads = pool.current_num_threads();
 
     let show_progress = !args.json && std::io::stderr().is_terminal();
@@ -185,13 +193,37 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         let tri = finest.into_tri_mesh();
         save(&tri, path, format)?;
     }
+    report(args, out, (vertices, faces, "triangles"), seconds, threads)
+}
+
+/// The worker threads of `--threads`.
+fn thread_pool(args: &SubdivideArgs) -> anyhow::Result<rayon::ThreadPool> {
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = args.threads {
+        if n == 0 {
+            bail!("--threads must be at least 1");
+        }
+        builder = builder.num_threads(n);
+    }
+    builder.build().context("cannot start the worker threads")
+}
+
+/// Prints the counts and the time (one JSON object with --json).
+fn report(
+    args: &SubdivideArgs,
+    out: &mut impl Write,
+    (vertices, faces, noun): (usize, usize, &str),
+    seconds: f64,
+    threads: usize,
+) -> anyhow::Result<()> {
     if args.json {
         writeln!(out, "{{\"vertices\": {vertices}, \"faces\": {faces}, \"seconds\": {}}}", JsonNum(seconds))?;
     } else {
         let target = args.output.as_ref().map_or_else(|| String::from("(not written)"), |p| p.display().to_string());
+        let scheme = if args.scheme == Scheme::Loop { "Loop" } else { "Catmull-Clark" };
         writeln!(
             out,
-            "{target}: {vertices} vertices, {faces} triangles after {} level{} of Loop subdivision in {seconds:.3} s \
+            "{target}: {vertices} vertices, {faces} {noun} after {} level{} of {scheme} subdivision in {seconds:.3} s \
              ({threads} thread{}{})",
             args.levels,
             if args.levels == 1 { "" } else { "s" },
@@ -200,6 +232,45 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         )?;
     }
     Ok(())
+}
+
+/// `--scheme catmull-clark`: time `--repeat` runs, write the last.
+fn run_catmull_clark(
+    args: &SubdivideArgs,
+    mesh: &PolyMesh,
+    format: Option<MeshFormat>,
+    out: &mut impl Write,
+) -> anyhow::Result<()> {
+    let options = CatmullClarkOptions {
+        boundary: match args.boundary {
+            Boundary::Smooth => BoundaryRule::Smooth,
+            Boundary::Corners => BoundaryRule::Corners,
+        },
+        color_by_level: args.color_by_level,
+    };
+    let pool = thread_pool(args)?;
+    let mut times = Vec::with_capacity(args.repeat);
+    let mut result = None;
+    for _ in 0..args.repeat {
+        drop(result.take());
+        let start = Instant::now();
+        let fine = pool.install(|| catmull_clark_subdivide(mesh, args.levels as usize, &options)).map_err(|err| {
+            anyhow!(
+                "{}: {err}; run with --split-nonmanifold to split non-manifold edges and vertices and go on \
+                 (`splinekit info` lists every problem)",
+                args.input.display()
+            )
+        })?;
+        times.push(start.elapsed());
+        result = Some(fine);
+    }
+    let fine = result.expect("at least one run");
+    times.sort_unstable();
+    let seconds = times[times.len() / 2].as_secs_f64();
+    if let (Some(path), Some(format)) = (&args.output, format) {
+        save_poly(&fine, path, format)?;
+    }
+    report(args, out, (fine.num_vertices(), fine.num_faces(), "quads"), seconds, pool.current_num_threads())
 }
 
 /// One timed subdivision: the base level's adjacency and every level, no file I/O.

@@ -124,3 +124,39 @@ fn bad_input_fails_cleanly() {
     assert!(err.contains("unknown output format"), "{err}");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn catmull_clark_on_quads_and_a_mixed_mesh() {
+    let dir = temp_dir("catmull-clark");
+    // a cube of quads: V 8, E 12, F 6 → 26 vertices, 24 quads → 98, 96
+    let cube = dir.join("cube.obj");
+    std::fs::write(
+        &cube,
+        "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n\
+         f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n",
+    )
+    .unwrap();
+    let cube = cube.to_str().unwrap();
+    for (levels, v, f) in [(1, 26, 24), (2, 98, 96)] {
+        let run = splinekit(&["subdivide", cube, "-n", &levels.to_string(), "--scheme", "catmull-clark", "--json"]);
+        let json: Value = serde_json::from_str(run.ok()).unwrap();
+        assert_eq!((json["vertices"].as_u64(), json["faces"].as_u64()), (Some(v), Some(f)), "{json}");
+    }
+    // OBJ keeps the quads; a corner of the cube moves to 5/9 of itself after one level
+    let out = dir.join("cube1.obj");
+    let run = splinekit(&["subdivide", cube, "-n", "1", "--scheme", "catmull-clark", "-o", out.to_str().unwrap()]);
+    assert!(run.ok().contains("26 vertices, 24 quads after 1 level of Catmull-Clark"), "{}", run.stdout);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.lines().filter(|l| l.starts_with("f ")).all(|l| l.split_whitespace().count() == 5));
+    let first: Vec<f64> = text.lines().next().unwrap().split_whitespace().skip(1).map(|x| x.parse().unwrap()).collect();
+    for x in first {
+        assert!((x + 5.0 / 9.0).abs() < 1e-15, "{text}");
+    }
+    // the triangle icosahedron: 12 + 30 + 20 vertices, 60 quads; STL gets two triangles a quad
+    let stl = dir.join("ico.stl");
+    let ico = shared("icosahedron.obj");
+    let run = splinekit(&["subdivide", &ico, "-n", "1", "--scheme", "catmull-clark", "-o", stl.to_str().unwrap()]);
+    assert!(run.ok().contains("62 vertices, 60 quads"), "{}", run.stdout);
+    assert_eq!(std::fs::metadata(&stl).unwrap().len(), 84 + 50 * 120);
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -65,12 +65,12 @@ mod stl_read;
 use std::io::Write;
 use std::path::Path;
 
-use splinekit::TriMesh;
+use splinekit::{PolyMesh, TriMesh};
 
 pub use error::{MeshIoError, MeshIoErrorKind};
 pub use glb::write_glb;
 pub use load::{LoadedMesh, MAX_WARNINGS, ReadWarning, ReadWarningKind, load_mesh, read_mesh};
-pub use obj::write_obj;
+pub use obj::{write_obj, write_obj_poly};
 pub use obj_read::read_obj;
 pub use ply::write_ply;
 pub use ply_read::read_ply;
@@ -166,6 +166,22 @@ pub fn save(mesh: &TriMesh, path: impl AsRef<Path>, format: MeshFormat) -> Resul
     let path = path.as_ref();
     check(mesh).map_err(|e| e.with_origin(path))?;
     atomic::write_file(path, |w| write_mesh(mesh, w, format).map_err(|e| e.with_origin(path)))
+}
+
+/// Writes the polygon mesh `mesh` to the file at `path` in `format`, atomically (as
+/// [`save`]): OBJ keeps the polygons ([`write_obj_poly`]); the other formats get its fan
+/// triangulation ([`PolyMesh::to_tri_mesh`]).
+///
+/// # Errors
+///
+/// As [`save`].
+pub fn save_poly(mesh: &PolyMesh, path: impl AsRef<Path>, format: MeshFormat) -> Result<(), MeshIoError> {
+    let path = path.as_ref();
+    if format != MeshFormat::Obj {
+        return save(&mesh.to_tri_mesh(), path, format);
+    }
+    check(&mesh.to_tri_mesh()).map_err(|e| e.with_origin(path))?;
+    atomic::write_file(path, |w| write_obj_poly(mesh, w).map_err(|e| e.with_origin(path)))
 }
 
 /// Validates the mesh for writing.

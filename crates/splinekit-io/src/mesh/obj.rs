@@ -3,7 +3,7 @@
 use std::io::{BufWriter, Write};
 
 use glam::{DVec2, DVec3};
-use splinekit::TriMesh;
+use splinekit::{PolyMesh, TriMesh};
 
 use super::MeshIoError;
 
@@ -33,7 +33,7 @@ use super::MeshIoError;
 ///
 /// ```
 /// use glam::DVec3;
-/// use splinekit::TriMesh;
+/// use splinekit::{PolyMesh, TriMesh};
 ///
 /// let mesh = TriMesh {
 ///     positions: vec![DVec3::ZERO, DVec3::X, DVec3::new(0.0, 0.5, 0.0)],
@@ -49,6 +49,43 @@ pub fn write_obj<W: Write + ?Sized>(mesh: &TriMesh, out: &mut W) -> Result<(), M
     super::check(mesh)?;
     let mut w = BufWriter::with_capacity(super::BUFFER_SIZE, out);
     write_body(mesh, &mut w).map_err(MeshIoError::write)?;
+    w.flush().map_err(MeshIoError::write)
+}
+
+/// Writes a polygon mesh as Wavefront OBJ text: `v x y z` lines (`v x y z r g b` with one
+/// colour per vertex) and one `f` line per face with its corners (1-based), numbers as
+/// [`write_obj`]. Face-varying normals and UVs are not written.
+///
+/// # Errors
+///
+/// [`InvalidMesh`](super::MeshIoErrorKind::InvalidMesh) if the fan triangulation fails
+/// [`TriMesh::validate`] (nothing is written then), or an
+/// [`Io`](super::MeshIoErrorKind::Io) error from `out`.
+pub fn write_obj_poly<W: Write + ?Sized>(mesh: &PolyMesh, out: &mut W) -> Result<(), MeshIoError> {
+    // the checks of a triangle mesh, on the fan triangulation (same vertices and indices)
+    super::check(&mesh.to_tri_mesh())?;
+    let n = mesh.positions.len();
+    let mut w = BufWriter::with_capacity(super::BUFFER_SIZE, out);
+    let colors = mesh.colors.len() == n;
+    let body = |w: &mut BufWriter<&mut W>| -> std::io::Result<()> {
+        for (i, p) in mesh.positions.iter().enumerate() {
+            if colors {
+                let c = mesh.colors[i];
+                writeln!(w, "v {:?} {:?} {:?} {:?} {:?} {:?}", p.x, p.y, p.z, c.x, c.y, c.z)?;
+            } else {
+                write_vec3(w, "v", *p)?;
+            }
+        }
+        for face in mesh.faces() {
+            w.write_all(b"f")?;
+            for &v in face {
+                write!(w, " {}", u64::from(v) + 1)?;
+            }
+            w.write_all(b"\n")?;
+        }
+        Ok(())
+    };
+    body(&mut w).map_err(MeshIoError::write)?;
     w.flush().map_err(MeshIoError::write)
 }
 

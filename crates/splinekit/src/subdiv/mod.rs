@@ -1,4 +1,5 @@
-//! Subdivision surfaces: Loop subdivision of triangle meshes (SPEC §3.2).
+//! Subdivision surfaces: Loop subdivision of triangle meshes (SPEC §3.2) and Catmull-Clark
+//! subdivision of polygon meshes (SPEC §3.3).
 //!
 //! ```
 //! use glam::DVec3;
@@ -14,11 +15,13 @@
 //! # Ok::<(), splinekit::subdiv::SubdivError>(())
 //! ```
 
+mod catmull_clark;
 mod grandchild;
 mod groups;
 mod loop_scheme;
 pub mod topology;
 
+pub use catmull_clark::{CatmullClarkOptions, catmull_clark_subdivide};
 pub use loop_scheme::{
     Attribute, BoundaryRule, LEVEL_COLORS, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
     loop_subdivide,

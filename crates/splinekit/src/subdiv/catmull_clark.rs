@@ -1,0 +1,196 @@
+//! Catmull-Clark subdivision of polygon meshes (SPEC §3.3), with OpenSubdiv's `catmark`
+//! weights and boundary rules.
+//!
+//! One level turns every `n`-gon into `n` quads. The child's vertices are, in this order:
+//! - one **vertex point** per parent vertex `P` (the evens, same index):
+//!   interior, valence `n`: `((n − 2)·P + (Σ neighbours)/n + (Σ face points)/n) / n`;
+//!   boundary: `3/4·P + 1/8·(a + b)` with `a`, `b` its neighbours along the boundary (a
+//!   crease), or `P` itself for a corner with [`BoundaryRule::Corners`] (a boundary vertex
+//!   of one face: OpenSubdiv's `VTX_BOUNDARY_EDGE_AND_CORNER`); a vertex without faces stays;
+//! - one **edge point** per parent edge (numbered as [`Adjacency::edge_of`]):
+//!   `(v₀ + v₁ + f₀ + f₁)/4` with the two face points `f`, the midpoint on a boundary;
+//! - one **face point** per parent face: the average of its corners.
+//!
+//! Child face `k` of parent face `f` (its corners `c₀ … cₙ₋₁` counter-clockwise) is the quad
+//! `(vertex point cₖ, edge point cₖcₖ₊₁, face point f, edge point cₖ₋₁cₖ)`, counter-clockwise
+//! like its parent; the children of face 0 come first. Colours follow the same weights.
+//!
+//! The mesh must be manifold and consistently oriented (split non-manifold edges and
+//! vertices first, e.g. with [`crate::mesh::split_nonmanifold`]); the error names the first
+//! edge or vertex that is not. Face-varying normals and UVs are not carried (a subdivided
+//! surface's normals are computed from it).
+
+use rayon::prelude::*;
+
+use super::groups::groups;
+use super::loop_scheme::{Attribute, BoundaryRule, LEVEL_COLORS, SubdivError};
+use super::topology::{MIN_LEN, TopologyError};
+use crate::mesh::{Adjacency, EdgeProblem, NONE, PolyMesh};
+
+/// Options of Catmull-Clark subdivision.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct CatmullClarkOptions {
+    /// Boundary vertices: crease rule everywhere, or with one-face corners kept fixed.
+    pub boundary: BoundaryRule,
+    /// Colour the vertices by the level they were born at ([`LEVEL_COLORS`]).
+    pub color_by_level: bool,
+}
+
+/// Subdivides `mesh` `levels` times with Catmull-Clark's rules (see the [module
+/// docs](self)). Positions and per-vertex colours are carried; face-varying normals and UVs
+/// are dropped.
+///
+/// # Errors
+///
+/// [`SubdivError::Topology`] for an edge used by more than two faces or twice in the same
+/// direction, or a vertex whose faces form several fans.
+pub fn catmull_clark_subdivide(
+    mesh: &PolyMesh,
+    levels: usize,
+    options: &CatmullClarkOptions,
+) -> Result<PolyMesh, SubdivError> {
+    let mut level = PolyMesh {
+        positions: mesh.positions.clone(),
+        colors: mesh.colors.clone(),
+        face_offsets: mesh.face_offsets.clone(),
+        face_vertices: mesh.face_vertices.clone(),
+        normals: None,
+        uvs: None,
+    };
+    if options.color_by_level {
+        level.colors = vec![LEVEL_COLORS[0]; level.positions.len()];
+    }
+    for depth in 1..=levels {
+        let rings = Rings::new(&level)?;
+        let positions = rings.refine(&level.positions, options.boundary);
+        let colors = if options.color_by_level {
+            let mut c = level.colors.clone();
+            c.resize(positions.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
+            c
+        } else if level.colors.len() == level.positions.len() {
+            rings.refine(&level.colors, options.boundary)
+        } else {
+            Vec::new()
+        };
+        let (face_offsets, face_vertices) = rings.child_faces();
+        drop(rings);
+        level = PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs: None };
+    }
+    Ok(level)
+}
+
+/// What one level needs: the mesh's faces and their adjacency, checked to be manifold.
+struct Rings<'a> {
+    mesh: &'a PolyMesh,
+    adj: Adjacency,
+}
+
+impl<'a> Rings<'a> {
+    fn new(mesh: &'a PolyMesh) -> Result<Self, SubdivError> {
+        let adj = Adjacency::build(mesh);
+        if let Some(p) = adj.problems.first() {
+            let (a, b, corners) = match p {
+                EdgeProblem::NonManifold { a, b, corners } => (*a, *b, corners.clone()),
+                EdgeProblem::Inconsistent { a, b, corners } => (*a, *b, corners.to_vec()),
+            };
+            let faces = corners.iter().map(|&c| adj.face_of[c as usize]).collect();
+            return Err(TopologyError::Edge { a, b, faces }.into());
+        }
+        // a manifold vertex has at most one boundary half-edge leaving it
+        for v in 0..mesh.num_vertices() as u32 {
+            let open = adj.corners_of(v).iter().filter(|&&c| adj.twin[c as usize] == NONE).count();
+            if open > 1 {
+                return Err(TopologyError::Vertex { vertex: v, fans: open }.into());
+            }
+        }
+        Ok(Self { mesh, adj })
+    }
+
+    /// The corner before `c` in its face.
+    #[inline]
+    fn prev(&self, c: u32) -> u32 {
+        let f = self.adj.face_of[c as usize] as usize;
+        let start = self.mesh.face_offsets[f];
+        if c == start { self.mesh.face_offsets[f + 1] - 1 } else { c - 1 }
+    }
+
+    /// The child values: vertex points, edge points, face points.
+    fn refine<T: Attribute>(&self, p: &[T], boundary: BoundaryRule) -> Vec<T> {
+        let (nv, ne, nf) = (self.mesh.num_vertices(), self.adj.num_edges(), self.mesh.num_faces());
+        let face_point = |f: usize| {
+            let corners = self.mesh.face(f);
+            let sum = corners.iter().fold(T::default(), |s, &v| s + p[v as usize]);
+            sum * (1.0 / corners.len() as f64)
+        };
+        let faces: Vec<T> = (0..nf).into_par_iter().with_min_len(MIN_LEN).map(face_point).collect();
+        let mut out = Vec::with_capacity(nv + ne + nf);
+        let vertices = (0..nv).into_par_iter().with_min_len(MIN_LEN).map(|v| self.vertex_point(p, &faces, v, boundary));
+        let edges = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
+            let c = self.adj.edge_corner[e];
+            let (a, b) = (p[self.mesh.face_vertices[c as usize] as usize], p[self.adj.to[c as usize] as usize]);
+            let t = self.adj.twin[c as usize];
+            if t == NONE {
+                return (a + b) * 0.5;
+            }
+            let (f0, f1) = (faces[self.adj.face_of[c as usize] as usize], faces[self.adj.face_of[t as usize] as usize]);
+            (a + b + f0 + f1) * 0.25
+        });
+        vertices.chain(edges).collect_into_vec(&mut out);
+        out.extend_from_slice(&faces);
+        out
+    }
+
+    /// The vertex point of vertex `v`.
+    fn vertex_point<T: Attribute>(&self, p: &[T], faces: &[T], v: usize, boundary: BoundaryRule) -> T {
+        let pv = p[v];
+        let corners = self.adj.corners_of(v as u32);
+        if corners.is_empty() {
+            return pv;
+        }
+        // boundary: the half-edge leaving along the boundary, and the one arriving
+        let mut ends = [None, None];
+        for &c in corners {
+            if self.adj.twin[c as usize] == NONE {
+                ends[0] = Some(self.adj.to[c as usize]);
+            }
+            let pc = self.prev(c);
+            if self.adj.twin[pc as usize] == NONE {
+                ends[1] = Some(self.mesh.face_vertices[pc as usize]);
+            }
+        }
+        if let [Some(a), Some(b)] = ends {
+            if boundary == BoundaryRule::Corners && corners.len() == 1 {
+                return pv;
+            }
+            return pv * 0.75 + (p[a as usize] + p[b as usize]) * 0.125;
+        }
+        // interior: one leaving half-edge per edge and per face
+        let n = corners.len() as f64;
+        let mut ring = T::default();
+        let mut centres = T::default();
+        for &c in corners {
+            ring = ring + p[self.adj.to[c as usize] as usize];
+            centres = centres + faces[self.adj.face_of[c as usize] as usize];
+        }
+        pv * ((n - 2.0) / n) + (ring + centres) * (1.0 / (n * n))
+    }
+
+    /// The child faces (all quads): face offsets and corners.
+    fn child_faces(&self) -> (Vec<u32>, Vec<u32>) {
+        let (nv, ne) = (self.mesh.num_vertices() as u32, self.adj.num_edges() as u32);
+        let corners = self.mesh.face_vertices.len();
+        let offsets: Vec<u32> = (0..=corners as u32).map(|k| 4 * k).collect();
+        let mut quads = Vec::with_capacity(4 * corners);
+        groups(corners, |c| {
+            [
+                self.mesh.face_vertices[c as usize],
+                nv + self.adj.edge_of[c as usize],
+                nv + ne + self.adj.face_of[c as usize],
+                nv + self.adj.edge_of[self.prev(c) as usize],
+            ]
+        })
+        .with_min_len(MIN_LEN)
+        .collect_into_vec(&mut quads);
+        (offsets, quads)
+    }
+}

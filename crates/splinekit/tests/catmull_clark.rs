@@ -1,0 +1,314 @@
+//! Catmull-Clark subdivision: closed forms on the cube, counts and topology, a second naive
+//! implementation (hash maps, the textbook `(F + 2R + (n − 3)P)/n` form), affine invariance,
+//! boundary and corner rules, colours, and errors.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use glam::DVec3;
+use splinekit::PolyMesh;
+use splinekit::mesh::Adjacency;
+use splinekit::subdiv::{BoundaryRule, CatmullClarkOptions, SubdivError, catmull_clark_subdivide};
+
+fn poly(positions: Vec<DVec3>, faces: &[&[u32]]) -> PolyMesh {
+    let mut face_offsets = vec![0];
+    let mut face_vertices = Vec::new();
+    for f in faces {
+        face_vertices.extend_from_slice(f);
+        face_offsets.push(face_vertices.len() as u32);
+    }
+    PolyMesh { positions, face_offsets, face_vertices, ..PolyMesh::default() }
+}
+
+/// The cube `[−1, 1]³`, faces counter-clockwise from outside.
+fn cube() -> PolyMesh {
+    let p = (0..8).map(|i| {
+        DVec3::new(f64::from(i & 1) * 2.0 - 1.0, f64::from((i >> 1) & 1) * 2.0 - 1.0, f64::from(i >> 2) * 2.0 - 1.0)
+    });
+    poly(p.collect(), &[&[0, 2, 3, 1], &[4, 5, 7, 6], &[0, 1, 5, 4], &[2, 6, 7, 3], &[0, 4, 6, 2], &[1, 3, 7, 5]])
+}
+
+/// A closed mesh of triangles, quads and pentagons: a pentagonal prism with one side quad
+/// split into two triangles.
+fn prism() -> PolyMesh {
+    let mut p = Vec::new();
+    for z in [0.0, 1.3] {
+        for k in 0..5 {
+            let a = std::f64::consts::TAU * f64::from(k) / 5.0 + 0.1;
+            p.push(DVec3::new(a.cos(), a.sin(), z + 0.1 * f64::from(k)));
+        }
+    }
+    poly(
+        p,
+        &[
+            &[4, 3, 2, 1, 0],
+            &[5, 6, 7, 8, 9],
+            &[0, 1, 6, 5],
+            &[1, 2, 7],
+            &[1, 7, 6],
+            &[2, 3, 8, 7],
+            &[3, 4, 9, 8],
+            &[4, 0, 5, 9],
+        ],
+    )
+}
+
+/// An open `n × n` grid of quads over `[0, 1]²`, bumped in z.
+fn grid(n: u32) -> PolyMesh {
+    let id = |i: u32, j: u32| j * (n + 1) + i;
+    let mut p = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
+            p.push(DVec3::new(x, y, 0.2 * (2.0 * x + 1.0).sin() * (3.0 * y).cos()));
+        }
+    }
+    let faces: Vec<[u32; 4]> =
+        (0..n).flat_map(|j| (0..n).map(move |i| [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])).collect();
+    let refs: Vec<&[u32]> = faces.iter().map(|f| &f[..]).collect();
+    poly(p, &refs)
+}
+
+/// One level of Catmull-Clark, written independently: hash maps from undirected edges to
+/// faces, vertex points as `(F + 2R + (n − 3)·P)/n` (R: the average of the edge midpoints),
+/// and the same vertex numbering as the library (vertices, edges in order of first use by
+/// the corners, faces).
+fn naive(mesh: &PolyMesh, corners_fixed: bool) -> PolyMesh {
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    let mut edge_faces: BTreeMap<(u32, u32), Vec<usize>> = BTreeMap::new();
+    let mut edge_index: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+    let mut edges: Vec<(u32, u32)> = Vec::new();
+    for (f, face) in mesh.faces().enumerate() {
+        for k in 0..face.len() {
+            let e = key(face[k], face[(k + 1) % face.len()]);
+            edge_faces.entry(e).or_default().push(f);
+            edge_index.entry(e).or_insert_with(|| {
+                edges.push(e);
+                edges.len() - 1
+            });
+        }
+    }
+    let p = &mesh.positions;
+    let centre: Vec<DVec3> =
+        mesh.faces().map(|f| f.iter().map(|&v| p[v as usize]).sum::<DVec3>() / f.len() as f64).collect();
+    let edge_point: Vec<DVec3> = edges
+        .iter()
+        .map(|&(a, b)| {
+            let fs = &edge_faces[&(a, b)];
+            if fs.len() == 1 {
+                (p[a as usize] + p[b as usize]) / 2.0
+            } else {
+                (p[a as usize] + p[b as usize] + centre[fs[0]] + centre[fs[1]]) / 4.0
+            }
+        })
+        .collect();
+    let mut vertex_faces: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); p.len()];
+    let mut vertex_edges: Vec<BTreeSet<(u32, u32)>> = vec![BTreeSet::new(); p.len()];
+    for (f, face) in mesh.faces().enumerate() {
+        for k in 0..face.len() {
+            vertex_faces[face[k] as usize].insert(f);
+            let e = key(face[k], face[(k + 1) % face.len()]);
+            vertex_edges[e.0 as usize].insert(e);
+            vertex_edges[e.1 as usize].insert(e);
+        }
+    }
+    let mut positions = Vec::new();
+    for v in 0..p.len() {
+        let boundary: Vec<(u32, u32)> = vertex_edges[v].iter().copied().filter(|e| edge_faces[e].len() == 1).collect();
+        let pv = p[v];
+        positions.push(if vertex_faces[v].is_empty() {
+            pv
+        } else if !boundary.is_empty() {
+            if corners_fixed && vertex_faces[v].len() == 1 {
+                pv
+            } else {
+                let other = |e: (u32, u32)| p[(if e.0 as usize == v { e.1 } else { e.0 }) as usize];
+                0.75 * pv + 0.125 * (other(boundary[0]) + other(boundary[1]))
+            }
+        } else {
+            let n = vertex_faces[v].len() as f64;
+            let f = vertex_faces[v].iter().map(|&f| centre[f]).sum::<DVec3>() / n;
+            let r = vertex_edges[v].iter().map(|&(a, b)| (p[a as usize] + p[b as usize]) / 2.0).sum::<DVec3>() / n;
+            (f + 2.0 * r + (n - 3.0) * pv) / n
+        });
+    }
+    positions.extend_from_slice(&edge_point);
+    positions.extend_from_slice(&centre);
+    let (nv, ne) = (p.len() as u32, edges.len() as u32);
+    let mut quads: Vec<[u32; 4]> = Vec::new();
+    for (f, face) in mesh.faces().enumerate() {
+        let m = face.len();
+        for k in 0..m {
+            let (prev, v, next) = (face[(k + m - 1) % m], face[k], face[(k + 1) % m]);
+            quads.push([
+                v,
+                nv + edge_index[&key(v, next)] as u32,
+                nv + ne + f as u32,
+                nv + edge_index[&key(prev, v)] as u32,
+            ]);
+        }
+    }
+    let refs: Vec<&[u32]> = quads.iter().map(|q| &q[..]).collect();
+    poly(positions, &refs)
+}
+
+fn assert_close(a: &PolyMesh, b: &PolyMesh, tol: f64, what: &str) {
+    assert_eq!(a.face_offsets, b.face_offsets, "{what}: faces");
+    assert_eq!(a.face_vertices, b.face_vertices, "{what}: face corners");
+    assert_eq!(a.positions.len(), b.positions.len(), "{what}: vertices");
+    for (i, (p, q)) in a.positions.iter().zip(&b.positions).enumerate() {
+        assert!((*p - *q).length() <= tol, "{what}: vertex {i}: {p} vs {q}");
+    }
+}
+
+fn euler(mesh: &PolyMesh) -> i64 {
+    let adj = Adjacency::build(mesh);
+    mesh.num_vertices() as i64 - adj.num_edges() as i64 + mesh.num_faces() as i64
+}
+
+#[test]
+fn the_cube_by_hand() {
+    let fine = catmull_clark_subdivide(&cube(), 1, &CatmullClarkOptions::default()).unwrap();
+    assert_eq!((fine.num_vertices(), fine.num_faces()), (8 + 12 + 6, 24));
+    // a corner (valence 3): F = (1/3, 1/3, 1/3)·s, R = (2/3, 2/3, 2/3)·s → (F + 2R)/3 = 5/9·s
+    for (v, p) in cube().positions.iter().enumerate() {
+        assert!((fine.positions[v] - *p * (5.0 / 9.0)).length() < 1e-15, "corner {v}");
+    }
+    // an edge between corners p and q: (p + q + two face centres)/4 = 3/4 of the midpoint
+    let adj = Adjacency::build(&cube());
+    for e in 0..12 {
+        let c = adj.edge_corner[e] as usize;
+        let (p, q) = (cube().positions[cube().face_vertices[c] as usize], cube().positions[adj.to[c] as usize]);
+        assert!((fine.positions[8 + e] - 0.375 * (p + q)).length() < 1e-15, "edge {e}");
+    }
+    // face points: the face centres (±1 on one axis)
+    for f in 0..6 {
+        let p = fine.positions[20 + f];
+        assert!((p.abs().max_element() - 1.0).abs() < 1e-15 && (p.length() - 1.0).abs() < 1e-15, "face {f}: {p}");
+    }
+}
+
+#[test]
+fn agrees_with_the_naive_implementation() {
+    let meshes = [("cube", cube()), ("prism", prism()), ("grid", grid(4))];
+    for (name, mesh) in meshes {
+        for corners in [false, true] {
+            let options = CatmullClarkOptions {
+                boundary: if corners { BoundaryRule::Corners } else { BoundaryRule::Smooth },
+                ..CatmullClarkOptions::default()
+            };
+            let mut reference = mesh.clone();
+            for level in 1..=3 {
+                reference = naive(&reference, corners);
+                let ours = catmull_clark_subdivide(&mesh, level, &options).unwrap();
+                assert_close(&ours, &reference, 1e-13, &format!("{name}, level {level}, corners {corners}"));
+            }
+        }
+    }
+}
+
+#[test]
+fn counts_topology_and_orientation() {
+    for (name, mesh, boundary) in [("cube", cube(), false), ("prism", prism(), false), ("grid", grid(5), true)] {
+        let chi = euler(&mesh);
+        let mut level = mesh.clone();
+        for _ in 0..3 {
+            let adj = Adjacency::build(&level);
+            let (v, e, f, corners) =
+                (level.num_vertices(), adj.num_edges(), level.num_faces(), level.face_vertices.len());
+            let fine = catmull_clark_subdivide(&level, 1, &CatmullClarkOptions::default()).unwrap();
+            let fine_adj = Adjacency::build(&fine);
+            assert_eq!(fine.num_vertices(), v + e + f, "{name}: V + E + F");
+            assert_eq!(fine.num_faces(), corners, "{name}: one quad per corner");
+            assert!(fine.faces().all(|q| q.len() == 4), "{name}: all quads");
+            assert_eq!(fine_adj.num_edges(), 2 * e + corners, "{name}: 2E + corners");
+            assert!(fine_adj.problems.is_empty(), "{name}: consistently oriented and manifold");
+            assert_eq!(fine_adj.num_boundary_edges(), 2 * adj.num_boundary_edges(), "{name}: boundary");
+            assert_eq!(euler(&fine), chi, "{name}: Euler characteristic");
+            assert_eq!(fine_adj.num_boundary_edges() > 0, boundary);
+            level = fine;
+        }
+    }
+}
+
+#[test]
+fn affine_maps_commute_with_subdivision_and_flat_stays_flat() {
+    let mesh = prism();
+    let map =
+        |p: DVec3| DVec3::new(2.0 * p.x - 0.5 * p.y + 3.0, 0.3 * p.x + 1.5 * p.y - p.z, 0.7 * p.z + 0.2 * p.x - 4.0);
+    let mut moved = mesh.clone();
+    moved.positions = mesh.positions.iter().map(|&p| map(p)).collect();
+    let a = catmull_clark_subdivide(&mesh, 2, &CatmullClarkOptions::default()).unwrap();
+    let b = catmull_clark_subdivide(&moved, 2, &CatmullClarkOptions::default()).unwrap();
+    for (p, q) in a.positions.iter().zip(&b.positions) {
+        assert!((map(*p) - *q).length() < 1e-12, "{p} → {q}");
+    }
+    let mut flat = grid(4);
+    for p in &mut flat.positions {
+        p.z = 0.25 * p.x - 0.5 * p.y + 1.0;
+    }
+    let fine = catmull_clark_subdivide(&flat, 3, &CatmullClarkOptions::default()).unwrap();
+    for p in &fine.positions {
+        assert!((p.z - (0.25 * p.x - 0.5 * p.y + 1.0)).abs() < 1e-14, "{p} left the plane");
+    }
+}
+
+#[test]
+fn corners_stay_fixed_only_when_asked() {
+    let mesh = grid(3);
+    let corner = 0; // (0, 0): one face
+    let smooth = catmull_clark_subdivide(&mesh, 2, &CatmullClarkOptions::default()).unwrap();
+    let fixed = catmull_clark_subdivide(
+        &mesh,
+        2,
+        &CatmullClarkOptions { boundary: BoundaryRule::Corners, ..Default::default() },
+    )
+    .unwrap();
+    assert_eq!(fixed.positions[corner], mesh.positions[corner]);
+    assert!((smooth.positions[corner] - mesh.positions[corner]).length() > 1e-3);
+    // boundary curves are the cubic B-spline of the boundary polygon: the straight edge
+    // y = 0, z = 0.2·sin(2x + 1) stays in the plane y = 0
+    for (p, q) in smooth.positions.iter().zip(&fixed.positions) {
+        if p.y.abs() < 1e-15 {
+            assert!(q.y.abs() < 1e-15);
+        }
+    }
+}
+
+#[test]
+fn colours_follow_the_weights_or_mark_the_levels() {
+    let mut mesh = cube();
+    mesh.colors = mesh.positions.iter().map(|p| (*p + DVec3::ONE) * 0.5).collect();
+    let fine = catmull_clark_subdivide(&mesh, 2, &CatmullClarkOptions::default()).unwrap();
+    // the colours are an affine image of the positions, so they subdivide the same way
+    for (p, c) in fine.positions.iter().zip(&fine.colors) {
+        assert!(((*p + DVec3::ONE) * 0.5 - *c).length() < 1e-14);
+    }
+    let options = CatmullClarkOptions { color_by_level: true, ..CatmullClarkOptions::default() };
+    let marked = catmull_clark_subdivide(&mesh, 2, &options).unwrap();
+    let lc = splinekit::subdiv::LEVEL_COLORS;
+    assert_eq!(marked.colors.len(), marked.num_vertices());
+    assert!(marked.colors[..8].iter().all(|&c| c == lc[0]));
+    assert!(marked.colors[8..26].iter().all(|&c| c == lc[1]));
+    assert!(marked.colors[26..].iter().all(|&c| c == lc[2]));
+}
+
+#[test]
+fn non_manifold_input_is_an_error_that_names_it() {
+    // three quads on the edge 0–1
+    let p = (0..8).map(|i| DVec3::new(f64::from(i), f64::from(i * i % 5), 0.0)).collect();
+    let mesh = poly(p, &[&[0, 1, 2, 3], &[1, 0, 4, 5], &[0, 1, 6, 7]]);
+    match catmull_clark_subdivide(&mesh, 1, &CatmullClarkOptions::default()) {
+        Err(SubdivError::Topology(e)) => assert!(e.to_string().contains("edge 0–1"), "{e}"),
+        other => panic!("expected a topology error, got {other:?}"),
+    }
+    // two squares touching at vertex 0 only
+    let p = (0..7).map(|i| DVec3::new(f64::from(i), 0.0, f64::from(i % 2))).collect();
+    let bowtie = poly(p, &[&[0, 1, 2, 3], &[0, 4, 5, 6]]);
+    match catmull_clark_subdivide(&bowtie, 1, &CatmullClarkOptions::default()) {
+        Err(SubdivError::Topology(e)) => assert!(e.to_string().contains("vertex 0"), "{e}"),
+        other => panic!("expected a topology error, got {other:?}"),
+    }
+    // zero levels: the mesh itself
+    let same = catmull_clark_subdivide(&cube(), 0, &CatmullClarkOptions::default()).unwrap();
+    assert_eq!(same.positions, cube().positions);
+}
