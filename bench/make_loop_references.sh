@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the Loop subdivision reference data of crates/splinekit/tests/data/loop/
-# (read by crates/splinekit/tests/loop_reference.rs) with independent implementations:
+# (read by crates/splinekit/tests/subdivision_reference.rs) with independent implementations:
 #   OpenSubdiv 3.5 (Debian libosd-dev): Loop's beta, crease rules on the boundary;
 #   libigl 2.6.3 (PyPI libigl): Warren's beta, the same boundary rules;
 # and cross-checks them against CGAL 5.5 and OpenMesh 9.0 (not committed).

@@ -19,7 +19,8 @@ build() { # name header libs...
         echo "build.sh: $header missing, not building $name" >&2
         return 0
     fi
-    if [ "$out/$name" -nt "$here/$name.cpp" ] && [ "$out/$name" -nt "$here/common.hpp" ]; then
+    if [ "$out/$name" -nt "$here/$name.cpp" ] && [ "$out/$name" -nt "$here/common.hpp" ] \
+        && [ "$out/$name" -nt "$here/osd_common.hpp" ]; then
         return 0
     fi
     echo "build.sh: building $name" >&2
@@ -28,5 +29,6 @@ build() { # name header libs...
 }
 
 build osd_loop /usr/include/opensubdiv/far/primvarRefiner.h -losdCPU
+build osd_catmark /usr/include/opensubdiv/far/primvarRefiner.h -losdCPU
 build cgal_loop /usr/include/CGAL/subdivision_method_3.h -lgmp -lmpfr
 build openmesh_loop /usr/include/OpenMesh/Tools/Subdivider/Uniform/LoopT.hh -lOpenMeshCore

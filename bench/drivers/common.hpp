@@ -1,4 +1,4 @@
-// Shared helpers of the Loop drivers: a small OBJ reader/writer (v and f lines only), the
+// Shared helpers of the subdivision drivers: a small OBJ reader/writer (v and f lines only), the
 // command line, a clock and the JSON line. File I/O is never inside the timed region.
 #pragma once
 
@@ -12,13 +12,15 @@
 
 struct Tri {
     std::vector<double> xyz;  // 3 per vertex
-    std::vector<int> tri;     // 3 per face, 0-based
+    std::vector<int> tri;     // 3 per face (polygons: sizes[f] per face), 0-based
+    std::vector<int> sizes;   // polygon meshes only: corners per face
     int num_vertices() const { return int(xyz.size() / 3); }
-    int num_faces() const { return int(tri.size() / 3); }
+    int num_faces() const { return sizes.empty() ? int(tri.size() / 3) : int(sizes.size()); }
 };
 
 // Reads `v x y z` and `f a b c` (also a/b/c forms and negative indices); other lines are skipped.
-inline Tri read_obj(const char* path) {
+// With `polygons`, faces of any size (recorded in `sizes`); otherwise triangles only.
+inline Tri read_obj(const char* path, bool polygons = false) {
     FILE* f = std::fopen(path, "r");
     if (!f) {
         std::fprintf(stderr, "cannot open %s\n", path);
@@ -52,10 +54,11 @@ inline Tri read_obj(const char* path) {
                 s = end;
                 while (*s && *s != ' ' && *s != '\t' && *s != '\n' && *s != '\r') ++s;
             }
-            if (face.size() != 3) {
-                std::fprintf(stderr, "%s:%ld: not a triangle\n", path, lineno);
+            if (polygons ? face.size() < 3 : face.size() != 3) {
+                std::fprintf(stderr, "%s:%ld: %s\n", path, lineno, polygons ? "fewer than 3 corners" : "not a triangle");
                 std::exit(2);
             }
+            if (polygons) m.sizes.push_back(int(face.size()));
             m.tri.insert(m.tri.end(), face.begin(), face.end());
         }
     }
@@ -73,8 +76,17 @@ inline void write_obj(const char* path, const Tri& m, const std::string& comment
     std::fprintf(f, "# %s\n", comment.c_str());
     for (int v = 0; v < m.num_vertices(); ++v)
         std::fprintf(f, "v %.17g %.17g %.17g\n", m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]);
-    for (int t = 0; t < m.num_faces(); ++t)
-        std::fprintf(f, "f %d %d %d\n", m.tri[3 * t] + 1, m.tri[3 * t + 1] + 1, m.tri[3 * t + 2] + 1);
+    if (m.sizes.empty()) {
+        for (int t = 0; t < m.num_faces(); ++t)
+            std::fprintf(f, "f %d %d %d\n", m.tri[3 * t] + 1, m.tri[3 * t + 1] + 1, m.tri[3 * t + 2] + 1);
+    } else {
+        size_t c = 0;
+        for (int n : m.sizes) {
+            std::fprintf(f, "f");
+            for (int k = 0; k < n; ++k) std::fprintf(f, " %d", m.tri[c++] + 1);
+            std::fprintf(f, "\n");
+        }
+    }
     std::fclose(f);
 }
 

@@ -1,20 +1,28 @@
-//! Loop subdivision against independent implementations (issue #4): OpenSubdiv 3.5 (Loop's β,
-//! boundary crease rules with one-face corners smoothed or, with `VTX_BOUNDARY_EDGE_AND_CORNER`,
-//! fixed) and libigl 2.6.3 (Warren's β, the same crease rules), on the reference meshes in
-//! `tests/data/loop/` (made by `bench/make_loop_references.sh`; its README says how).
+//! Subdivision against independent implementations.
+//!
+//! - Loop (issue #4): OpenSubdiv 3.5 (Loop's β, boundary crease rules with one-face corners
+//!   smoothed or, with `VTX_BOUNDARY_EDGE_AND_CORNER`, fixed) and libigl 2.6.3 (Warren's β,
+//!   the same crease rules), on the reference meshes in `tests/data/loop/` (made by
+//!   `bench/make_loop_references.sh`; its README says how).
+//! - Catmull-Clark (issue #7): OpenSubdiv 3.5's `SCHEME_CATMARK` (the same two boundary
+//!   options) on a cube, a quad torus, a prism of pentagons, quads and triangles and an open
+//!   quad grid, in `tests/data/catmark/` (made by `bench/make_catmark_references.sh` with
+//!   `bench/drivers/osd_catmark.cpp`).
 //!
 //! Our vertex numbering differs from the peers', so meshes are compared as point sets plus
 //! topology: every vertex of ours is matched to the reference vertex nearest to it, the
-//! matching must be a bijection within [`MATCH_TOL`], and our triangles renumbered through it
-//! must be exactly the reference's triangles, with the same orientation (up to rotation of the
-//! three corners). The counts V+E, 2E+3F, 4F are checked on the inputs and on the reference files.
+//! matching must be a bijection within [`MATCH_TOL`], and our faces renumbered through it
+//! must be exactly the reference's faces, with the same orientation (up to rotation of the
+//! corners). The Loop counts V+E, 2E+3F, 4F are checked on the inputs and on the reference files.
 
 use std::collections::HashSet;
 use std::fmt::Write as _;
 
 use glam::DVec3;
 use splinekit::PolyMesh;
-use splinekit::subdiv::{BoundaryRule, LoopOptions, LoopWeights, loop_subdivide};
+use splinekit::subdiv::{
+    BoundaryRule, CatmullClarkOptions, LoopOptions, LoopWeights, catmull_clark_subdivide, loop_subdivide,
+};
 
 /// Largest distance allowed between a vertex of ours and its match in the reference, as a
 /// fraction of the diagonal of the reference's bounding box (the meshes are 0.15 to 3 units
@@ -27,18 +35,37 @@ const MATCH_TOL: f64 = 1e-12;
 const MESHES: [(&str, u32); 5] =
     [("icosahedron20", 2), ("icosphere80", 2), ("torus96", 2), ("grid32", 2), ("bunnybase883", 1)];
 
-/// A triangle mesh as read from an OBJ file.
+/// A polygon mesh as read from an OBJ file.
 struct Obj {
     positions: Vec<DVec3>,
+    faces: Vec<Vec<u32>>,
+    /// The faces as triangles, when they all are.
     triangles: Vec<[u32; 3]>,
 }
 
-/// Reads the `v` and `f` lines of `tests/data/loop/<file>` (1-based indices; `a/b/c` corners
-/// use `a`); every other line is ignored. The core crate has no I/O of its own.
+impl Obj {
+    fn to_poly(&self) -> PolyMesh {
+        let mut face_offsets = vec![0];
+        for f in &self.faces {
+            face_offsets.push(face_offsets.last().unwrap() + f.len() as u32);
+        }
+        PolyMesh {
+            positions: self.positions.clone(),
+            face_offsets,
+            face_vertices: self.faces.concat(),
+            ..PolyMesh::default()
+        }
+    }
+}
+
+/// Reads the `v` and `f` lines of `tests/data/loop/<file>` (`tests/data/<dir>/<file>` for a
+/// path `dir/file`; 1-based indices; `a/b/c` corners use `a`); every other line is ignored.
+/// The core crate has no I/O of its own.
 fn read_obj(file: &str) -> Obj {
-    let path = format!("{}/tests/data/loop/{file}", env!("CARGO_MANIFEST_DIR"));
+    let file = if file.contains('/') { file.to_owned() } else { format!("loop/{file}") };
+    let path = format!("{}/tests/data/{file}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("reading {path}: {e}"));
-    let mut obj = Obj { positions: Vec::new(), triangles: Vec::new() };
+    let mut obj = Obj { positions: Vec::new(), faces: Vec::new(), triangles: Vec::new() };
     for (n, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         let bad = || -> ! { panic!("{path}:{}: cannot read {line:?}", n + 1) };
@@ -61,16 +88,19 @@ fn read_obj(file: &str) -> Obj {
                             - 1
                     })
                     .collect();
-                if corners.len() != 3 {
+                if corners.len() < 3 {
                     bad();
                 }
-                obj.triangles.push([corners[0], corners[1], corners[2]]);
+                obj.faces.push(corners);
             }
             _ => {}
         }
     }
     let n = obj.positions.len() as u32;
-    assert!(obj.triangles.iter().flatten().all(|&v| v < n), "{path}: a face refers to a missing vertex");
+    assert!(obj.faces.iter().flatten().all(|&v| v < n), "{path}: a face refers to a missing vertex");
+    if obj.faces.iter().all(|f| f.len() == 3) {
+        obj.triangles = obj.faces.iter().map(|f| [f[0], f[1], f[2]]).collect();
+    }
     obj
 }
 
@@ -84,15 +114,10 @@ fn options(weights: LoopWeights, boundary: BoundaryRule) -> LoopOptions {
     LoopOptions { weights, boundary, ..LoopOptions::default() }
 }
 
-/// The triangle rotated so that its smallest index comes first (orientation kept).
-fn canonical([a, b, c]: [u32; 3]) -> [u32; 3] {
-    if a <= b && a <= c {
-        [a, b, c]
-    } else if b <= a && b <= c {
-        [b, c, a]
-    } else {
-        [c, a, b]
-    }
+/// The face rotated so that its smallest index comes first (orientation kept).
+fn canonical(face: &[u32]) -> Vec<u32> {
+    let k = (0..face.len()).min_by_key(|&k| face[k]).unwrap_or(0);
+    face[k..].iter().chain(&face[..k]).copied().collect()
 }
 
 /// Number of distinct undirected edges.
@@ -154,11 +179,8 @@ impl<'a> NearestByX<'a> {
 
 /// Compares our output with a reference mesh as described in the module docs.
 fn compare(ours: &PolyMesh, reference: &Obj) -> Result<(), String> {
-    let Some(triangles) = ours.triangles() else {
-        return Err("our output has faces that are not triangles".into());
-    };
-    let counts = (ours.num_vertices(), triangles.len());
-    let expected = (reference.positions.len(), reference.triangles.len());
+    let counts = (ours.num_vertices(), ours.num_faces());
+    let expected = (reference.positions.len(), reference.faces.len());
     if counts != expected {
         return Err(format!("(vertices, faces) = {counts:?}, the reference has {expected:?}"));
     }
@@ -197,21 +219,23 @@ fn compare(ours: &PolyMesh, reference: &Obj) -> Result<(), String> {
         owner[j as usize] = i;
     }
 
-    // Triangles, renumbered into the reference's vertex numbers.
-    let theirs: HashSet<[u32; 3]> = reference.triangles.iter().map(|&t| canonical(t)).collect();
-    if theirs.len() != reference.triangles.len() {
-        return Err("the reference has duplicate triangles".into());
+    // Faces, renumbered into the reference's vertex numbers.
+    let theirs: HashSet<Vec<u32>> = reference.faces.iter().map(|f| canonical(f)).collect();
+    if theirs.len() != reference.faces.len() {
+        return Err("the reference has duplicate faces".into());
     }
-    let mine: HashSet<[u32; 3]> = triangles.iter().map(|t| canonical(t.map(|v| map[v as usize]))).collect();
-    if mine.len() != triangles.len() {
-        return Err("our output has duplicate triangles".into());
+    let renumbered = |f: &[u32]| f.iter().map(|&v| map[v as usize]).collect::<Vec<u32>>();
+    let mine: HashSet<Vec<u32>> = ours.faces().map(|f| canonical(&renumbered(f))).collect();
+    if mine.len() != ours.num_faces() {
+        return Err("our output has duplicate faces".into());
     }
     if mine != theirs {
         let extra: Vec<_> = mine.difference(&theirs).collect();
         let missing: Vec<_> = theirs.difference(&mine).collect();
-        let flipped = extra.iter().filter(|&&&[a, b, c]| theirs.contains(&canonical([a, c, b]))).count();
+        let reversed = |f: &Vec<u32>| canonical(&f.iter().rev().copied().collect::<Vec<u32>>());
+        let flipped = extra.iter().filter(|f| theirs.contains(&reversed(f))).count();
         return Err(format!(
-            "{} of our triangles are not in the reference ({flipped} of them reversed), {} reference triangles are \
+            "{} of our faces are not in the reference ({flipped} of them reversed), {} reference faces are \
              missing; in reference numbering, first extra {:?}, first missing {:?}",
             extra.len(),
             missing.len(),
@@ -289,6 +313,34 @@ fn counts_follow_v_plus_e_2e_plus_3f_4f() {
     // SPEC §3.2: icosahedron level 1 has 42 vertices and 80 faces.
     let ours = loop_subdivide(&input("icosahedron20"), 1, &LoopOptions::default()).unwrap();
     assert_eq!((ours.num_vertices(), ours.num_faces()), (42, 80));
+}
+
+/// Catmull-Clark against OpenSubdiv's catmark scheme: each reference mesh at levels 1 and 2,
+/// boundary `EDGE_ONLY` (crease rules everywhere) and, on the grid, `EDGE_AND_CORNER`.
+#[test]
+fn catmull_clark_matches_opensubdiv_catmark() {
+    let mut failures = String::new();
+    let cases = [
+        ("cube6", "osd", BoundaryRule::Smooth),
+        ("torus48", "osd", BoundaryRule::Smooth),
+        ("prism8", "osd", BoundaryRule::Smooth),
+        ("grid16", "osd", BoundaryRule::Smooth),
+        ("grid16", "osd-corners", BoundaryRule::Corners),
+    ];
+    for (name, peer, boundary) in cases {
+        let mesh = read_obj(&format!("catmark/{name}.in.obj")).to_poly();
+        let options = CatmullClarkOptions { boundary, ..CatmullClarkOptions::default() };
+        for level in 1..=2 {
+            let what = format!("{name}.{peer}.l{level}");
+            let result = catmull_clark_subdivide(&mesh, level, &options)
+                .map_err(|e| format!("catmull_clark_subdivide failed: {e}"))
+                .and_then(|ours| compare(&ours, &read_obj(&format!("catmark/{what}.obj"))));
+            if let Err(e) = result {
+                writeln!(failures, "{what}: {e}").unwrap();
+            }
+        }
+    }
+    assert!(failures.is_empty(), "against OpenSubdiv (catmark):\n{failures}");
 }
 
 /// The comparison itself must notice a moved vertex and a reversed triangle.
