@@ -96,6 +96,7 @@ struct Args {
     int levels = 1;
     int repeat = 1;
     bool corners = false;
+    bool limit = false;  // OpenSubdiv drivers: write the limit positions of the finest level
 };
 
 inline Args parse_args(int argc, char** argv, const char* usage, bool has_corners) {
@@ -106,6 +107,7 @@ inline Args parse_args(int argc, char** argv, const char* usage, bool has_corner
         else if (s == "--repeat" && i + 1 < argc) a.repeat = std::atoi(argv[++i]);
         else if (s == "-o" && i + 1 < argc) a.output = argv[++i];
         else if (s == "--corners" && has_corners) a.corners = true;
+        else if (s == "--limit" && has_corners) a.limit = true;
         else if (s == "--json") {
         }  // always JSON
         else if (!a.input && s[0] != '-') a.input = argv[i];

@@ -1,6 +1,8 @@
 // OpenSubdiv (Far) Catmull-Clark subdivision driver.
 //
-//   osd_catmark IN.obj -n LEVELS [--repeat R] [--corners] [-o OUT.obj]
+//   osd_catmark IN.obj -n LEVELS [--repeat R] [--corners] [--limit] [-o OUT.obj]
+//
+// --limit writes the limit positions (PrimvarRefinerReal::Limit) of the finest level instead.
 //
 // Catmull-Clark scheme (Sdc::SCHEME_CATMARK) on any polygon mesh, boundary interpolation
 // VTX_BOUNDARY_EDGE_ONLY (boundary edges are sharp creases), or VTX_BOUNDARY_EDGE_AND_CORNER
@@ -13,6 +15,6 @@
 #include "osd_common.hpp"
 
 int main(int argc, char** argv) {
-    Args a = parse_args(argc, argv, "osd_catmark IN.obj -n LEVELS [--repeat R] [--corners] [-o OUT.obj]", true);
+    Args a = parse_args(argc, argv, "osd_catmark IN.obj -n LEVELS [--repeat R] [--corners] [--limit] [-o OUT.obj]", true);
     return run_osd(a, read_obj(a.input, true), Sdc::SCHEME_CATMARK, "SCHEME_CATMARK");
 }

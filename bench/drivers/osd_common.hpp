@@ -49,7 +49,9 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
             std::fprintf(stderr, "OpenSubdiv refused the topology\n");
             return 1;
         }
-        refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(a.levels));
+        Far::TopologyRefiner::UniformOptions uniform(a.levels);
+        uniform.fullTopologyInLastLevel = a.limit;  // Limit() needs it
+        refiner->RefineUniform(uniform);
         buffer.resize(refiner->GetNumVerticesTotal());
         std::memcpy(buffer.data(), in.xyz.data(), in.xyz.size() * sizeof(double));
         Far::PrimvarRefinerReal<double> primvar(*refiner);
@@ -68,7 +70,14 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
         Tri out;
         size_t first = buffer.size() - size_t(nv);
         out.xyz.resize(3 * nv);
-        std::memcpy(out.xyz.data(), &buffer[first], 3 * nv * sizeof(double));
+        if (a.limit) {
+            // the limit positions of the finest level's vertices (not timed)
+            std::vector<Vertex> limit(nv);
+            Far::PrimvarRefinerReal<double>(*refiner).Limit(&buffer[first], limit);
+            std::memcpy(out.xyz.data(), limit.data(), 3 * nv * sizeof(double));
+        } else {
+            std::memcpy(out.xyz.data(), &buffer[first], 3 * nv * sizeof(double));
+        }
         bool triangles = true;
         for (int f = 0; f < nf; ++f) {
             Far::ConstIndexArray fv = last.GetFaceVertices(f);
@@ -78,9 +87,10 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
         }
         if (triangles) out.sizes.clear();  // the triangle form of write_obj
         char comment[512];
-        std::snprintf(comment, sizeof comment, "OpenSubdiv %d.%d.%d Far, %s, %s, RefineUniform(%d), PrimvarRefinerReal<double>",
+        std::snprintf(comment, sizeof comment, "OpenSubdiv %d.%d.%d Far, %s, %s, RefineUniform(%d), PrimvarRefinerReal<double>%s",
                       OPENSUBDIV_VERSION_MAJOR, OPENSUBDIV_VERSION_MINOR, OPENSUBDIV_VERSION_PATCH, scheme_name,
-                      a.corners ? "VTX_BOUNDARY_EDGE_AND_CORNER" : "VTX_BOUNDARY_EDGE_ONLY", a.levels);
+                      a.corners ? "VTX_BOUNDARY_EDGE_AND_CORNER" : "VTX_BOUNDARY_EDGE_ONLY", a.levels,
+                      a.limit ? ", Limit" : "");
         write_obj(a.output, out, comment);
     }
     print_json(nv, nf, times);

@@ -10,7 +10,7 @@ use clap::ValueEnum;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
     BoundaryRule, CatmullClarkOptions, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
-    catmull_clark_subdivide,
+    catmull_clark_limit_positions, catmull_clark_subdivide, loop_limit_positions,
 };
 use splinekit_io::mesh::{MeshFormat, load_mesh, save, save_poly};
 
@@ -30,6 +30,9 @@ use crate::output::JsonNum;
 /// vertices and one quad per corner; boundaries are creases, `--boundary corners` keeps
 /// single-face corners fixed; colours are carried (normals and UVs are not; `--weights` is
 /// Loop's only). OBJ output keeps the quads, the other formats get two triangles per quad.
+///
+/// `--limit` moves every output vertex to its limit position (Loop or Catmull-Clark masks
+/// matching the weights and boundary rule; Catmull-Clark needs at least one level).
 ///
 /// Writes the result by the extension of OUT (.obj, .ply, .stl, .glb) through a temporary
 /// file, so an error never leaves a partial file; without -o nothing is written (use it to
@@ -77,6 +80,11 @@ pub struct SubdivideArgs {
     /// Split non-manifold edges and vertices instead of refusing the mesh
     #[arg(long)]
     pub split_nonmanifold: bool,
+
+    /// Move every output vertex to its limit position (the surface after infinitely many
+    /// levels; exact closed-form masks); not included in the time
+    #[arg(long)]
+    pub limit: bool,
 
     /// Print one JSON object {"vertices", "faces", "seconds"}
     #[arg(long)]
@@ -190,7 +198,12 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     let (vertices, faces) = (finest.num_vertices(), finest.num_triangles());
 
     if let (Some(path), Some(format)) = (&args.output, format) {
-        let tri = finest.into_tri_mesh();
+        let mut tri = finest.into_tri_mesh();
+        if args.limit {
+            let mesh = PolyMesh::from_triangles(std::mem::take(&mut tri.positions), &tri.triangles);
+            tri.positions =
+                loop_limit_positions(&mesh, &options).map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
+        }
         save(&tri, path, format)?;
     }
     report(args, out, (vertices, faces, "triangles"), seconds, threads)
@@ -264,10 +277,14 @@ fn run_catmull_clark(
         times.push(start.elapsed());
         result = Some(fine);
     }
-    let fine = result.expect("at least one run");
+    let mut fine = result.expect("at least one run");
     times.sort_unstable();
     let seconds = times[times.len() / 2].as_secs_f64();
     if let (Some(path), Some(format)) = (&args.output, format) {
+        if args.limit {
+            fine.positions =
+                catmull_clark_limit_positions(&fine, &options).map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
+        }
         save_poly(&fine, path, format)?;
     }
     report(args, out, (fine.num_vertices(), fine.num_faces(), "quads"), seconds, pool.current_num_threads())

@@ -160,3 +160,30 @@ fn catmull_clark_on_quads_and_a_mixed_mesh() {
     assert_eq!(std::fs::metadata(&stl).unwrap().len(), 84 + 50 * 120);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn limit_moves_vertices_onto_the_limit_surface() {
+    let dir = temp_dir("limit");
+    let ico = shared("icosahedron.obj");
+    let (plain, limit) = (dir.join("plain.obj"), dir.join("limit.obj"));
+    splinekit(&["subdivide", &ico, "-n", "1", "-o", plain.to_str().unwrap()]).ok();
+    splinekit(&["subdivide", &ico, "-n", "1", "--limit", "-o", limit.to_str().unwrap()]).ok();
+    let radii = |p: &Path| -> Vec<f64> {
+        std::fs::read_to_string(p)
+            .unwrap()
+            .lines()
+            .filter(|l| l.starts_with("v "))
+            .map(|l| l.split_whitespace().skip(1).map(|x| x.parse::<f64>().unwrap().powi(2)).sum::<f64>().sqrt())
+            .collect()
+    };
+    let (a, b) = (radii(&plain), radii(&limit));
+    assert_eq!(a.len(), b.len());
+    // Loop shrinks a convex mesh level by level: the limit lies inside every level, and the
+    // icosahedron's symmetry puts all 12 old vertices at one radius, all 30 new ones at another
+    // (to the 6 digits of the course file's coordinates)
+    assert!(a.iter().zip(&b).all(|(x, y)| y < x), "{a:?} vs {b:?}");
+    for group in [&b[..12], &b[12..]] {
+        assert!(group.iter().all(|r| (r - group[0]).abs() < 1e-6 * group[0]), "{group:?}");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -312,3 +312,23 @@ fn non_manifold_input_is_an_error_that_names_it() {
     let same = catmull_clark_subdivide(&cube(), 0, &CatmullClarkOptions::default()).unwrap();
     assert_eq!(same.positions, cube().positions);
 }
+
+#[test]
+fn limit_positions_need_quads_and_are_fixed_points_of_subdivision() {
+    use splinekit::subdiv::catmull_clark_limit_positions;
+    let options = CatmullClarkOptions::default();
+    match catmull_clark_limit_positions(&prism(), &options) {
+        Err(SubdivError::NotQuads { corners, .. }) => assert_ne!(corners, 4),
+        other => panic!("expected NotQuads, got {other:?}"),
+    }
+    // the limit of a vertex does not depend on the level it is computed at
+    let one = catmull_clark_subdivide(&prism(), 1, &options).unwrap();
+    let two = catmull_clark_subdivide(&prism(), 2, &options).unwrap();
+    let (l1, l2) = (
+        catmull_clark_limit_positions(&one, &options).unwrap(),
+        catmull_clark_limit_positions(&two, &options).unwrap(),
+    );
+    for v in 0..one.num_vertices() {
+        assert!((l1[v] - l2[v]).length() < 1e-14, "vertex {v}: {} vs {}", l1[v], l2[v]);
+    }
+}

@@ -21,7 +21,8 @@ use std::fmt::Write as _;
 use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
-    BoundaryRule, CatmullClarkOptions, LoopOptions, LoopWeights, catmull_clark_subdivide, loop_subdivide,
+    BoundaryRule, CatmullClarkOptions, LoopOptions, LoopWeights, catmull_clark_limit_positions,
+    catmull_clark_subdivide, loop_limit_positions, loop_subdivide,
 };
 
 /// Largest distance allowed between a vertex of ours and its match in the reference, as a
@@ -341,6 +342,48 @@ fn catmull_clark_matches_opensubdiv_catmark() {
         }
     }
     assert!(failures.is_empty(), "against OpenSubdiv (catmark):\n{failures}");
+}
+
+/// Limit positions against OpenSubdiv's `PrimvarRefinerReal::Limit` after one level of Loop
+/// or Catmull-Clark (both boundary options), compared like the refined meshes: our level-1
+/// faces carrying our limit positions.
+#[test]
+fn limit_positions_match_opensubdiv() {
+    let mut failures = String::new();
+    let mut check = |what: String, result: Result<PolyMesh, String>| {
+        if let Err(e) = result.and_then(|ours| compare(&ours, &read_obj(&format!("limit/{what}.obj")))) {
+            writeln!(failures, "{what}: {e}").unwrap();
+        }
+    };
+    for (name, peer, boundary) in [
+        ("icosahedron20", "osd-loop", BoundaryRule::Smooth),
+        ("torus96", "osd-loop", BoundaryRule::Smooth),
+        ("grid32", "osd-loop", BoundaryRule::Smooth),
+        ("grid32", "osd-loop-corners", BoundaryRule::Corners),
+    ] {
+        let options = LoopOptions { boundary, ..LoopOptions::default() };
+        let result = loop_subdivide(&input(name), 1, &options).map_err(|e| e.to_string()).and_then(|mut fine| {
+            fine.positions = loop_limit_positions(&fine, &options).map_err(|e| e.to_string())?;
+            Ok(fine)
+        });
+        check(format!("{name}.{peer}.l1"), result);
+    }
+    for (name, peer, boundary) in [
+        ("cube6", "osd-catmark", BoundaryRule::Smooth),
+        ("torus48", "osd-catmark", BoundaryRule::Smooth),
+        ("prism8", "osd-catmark", BoundaryRule::Smooth),
+        ("grid16", "osd-catmark", BoundaryRule::Smooth),
+        ("grid16", "osd-catmark-corners", BoundaryRule::Corners),
+    ] {
+        let options = CatmullClarkOptions { boundary, ..CatmullClarkOptions::default() };
+        let mesh = read_obj(&format!("catmark/{name}.in.obj")).to_poly();
+        let result = catmull_clark_subdivide(&mesh, 1, &options).map_err(|e| e.to_string()).and_then(|mut fine| {
+            fine.positions = catmull_clark_limit_positions(&fine, &options).map_err(|e| e.to_string())?;
+            Ok(fine)
+        });
+        check(format!("{name}.{peer}.l1"), result);
+    }
+    assert!(failures.is_empty(), "limit positions against OpenSubdiv:\n{failures}");
 }
 
 /// The comparison itself must notice a moved vertex and a reversed triangle.

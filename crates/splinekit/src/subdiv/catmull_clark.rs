@@ -80,13 +80,15 @@ pub fn catmull_clark_subdivide(
 }
 
 /// What one level needs: the mesh's faces and their adjacency, checked to be manifold.
-struct Rings<'a> {
-    mesh: &'a PolyMesh,
-    adj: Adjacency,
+pub(super) struct Rings<'a> {
+    pub(super) mesh: &'a PolyMesh,
+    pub(super) adj: Adjacency,
 }
 
 impl<'a> Rings<'a> {
-    fn new(mesh: &'a PolyMesh) -> Result<Self, SubdivError> {
+    /// The adjacency of `mesh`; an error for the first non-manifold or inconsistently
+    /// oriented edge or vertex.
+    pub(super) fn new(mesh: &'a PolyMesh) -> Result<Self, SubdivError> {
         let adj = Adjacency::build(mesh);
         if let Some(p) = adj.problems.first() {
             let (a, b, corners) = match p {
@@ -108,7 +110,7 @@ impl<'a> Rings<'a> {
 
     /// The corner before `c` in its face.
     #[inline]
-    fn prev(&self, c: u32) -> u32 {
+    pub(super) fn prev(&self, c: u32) -> u32 {
         let f = self.adj.face_of[c as usize] as usize;
         let start = self.mesh.face_offsets[f];
         if c == start { self.mesh.face_offsets[f + 1] - 1 } else { c - 1 }
@@ -140,16 +142,10 @@ impl<'a> Rings<'a> {
         out
     }
 
-    /// The vertex point of vertex `v`.
-    fn vertex_point<T: Attribute>(&self, p: &[T], faces: &[T], v: usize, boundary: BoundaryRule) -> T {
-        let pv = p[v];
-        let corners = self.adj.corners_of(v as u32);
-        if corners.is_empty() {
-            return pv;
-        }
-        // boundary: the half-edge leaving along the boundary, and the one arriving
+    /// The neighbours of vertex `v` along the boundary (leaving, arriving), if it is on one.
+    pub(super) fn boundary_neighbours(&self, v: u32) -> Option<(u32, u32)> {
         let mut ends = [None, None];
-        for &c in corners {
+        for &c in self.adj.corners_of(v) {
             if self.adj.twin[c as usize] == NONE {
                 ends[0] = Some(self.adj.to[c as usize]);
             }
@@ -158,7 +154,21 @@ impl<'a> Rings<'a> {
                 ends[1] = Some(self.mesh.face_vertices[pc as usize]);
             }
         }
-        if let [Some(a), Some(b)] = ends {
+        match ends {
+            [Some(a), Some(b)] => Some((a, b)),
+            _ => None,
+        }
+    }
+
+    /// The vertex point of vertex `v`.
+    fn vertex_point<T: Attribute>(&self, p: &[T], faces: &[T], v: usize, boundary: BoundaryRule) -> T {
+        let pv = p[v];
+        let corners = self.adj.corners_of(v as u32);
+        if corners.is_empty() {
+            return pv;
+        }
+        // boundary: the half-edge leaving along the boundary, and the one arriving
+        if let Some((a, b)) = self.boundary_neighbours(v as u32) {
             if boundary == BoundaryRule::Corners && corners.len() == 1 {
                 return pv;
             }

@@ -104,6 +104,19 @@ pub enum SubdivError {
         /// Its number of corners.
         corners: usize,
     },
+    /// Catmull-Clark's limit mask needs quads around an interior vertex.
+    #[error(
+        "vertex {vertex} lies on face {face} with {corners} corners; Catmull-Clark limit positions need quads \
+         around each vertex (subdivide once first)"
+    )]
+    NotQuads {
+        /// The vertex.
+        vertex: usize,
+        /// A face around it that is not a quad.
+        face: usize,
+        /// Its number of corners.
+        corners: usize,
+    },
     /// The triangles are not a manifold, consistently oriented surface.
     #[error("{0}")]
     Topology(#[from] TopologyError),
@@ -130,7 +143,7 @@ pub(super) struct Rules {
 }
 
 impl Rules {
-    fn new(options: &LoopOptions) -> Self {
+    pub(super) fn new(options: &LoopOptions) -> Self {
         let warren = options.weights == LoopWeights::Warren;
         let mut beta = [0.0; 16];
         for (n, b) in beta.iter_mut().enumerate().skip(1) {

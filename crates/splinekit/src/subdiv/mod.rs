@@ -18,10 +18,12 @@
 mod catmull_clark;
 mod grandchild;
 mod groups;
+mod limit;
 mod loop_scheme;
 pub mod topology;
 
 pub use catmull_clark::{CatmullClarkOptions, catmull_clark_subdivide};
+pub use limit::{catmull_clark_limit_positions, loop_limit_positions};
 pub use loop_scheme::{
     Attribute, BoundaryRule, LEVEL_COLORS, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
     loop_subdivide,

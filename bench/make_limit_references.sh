@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Limit-position reference data for crates/splinekit/tests/subdivision_reference.rs:
+# OpenSubdiv's PrimvarRefinerReal::Limit of the finest level after uniform Loop and
+# Catmull-Clark refinement (bench/drivers/osd_loop.cpp, osd_catmark.cpp with --limit), on the
+# input meshes of tests/data/loop and tests/data/catmark, into tests/data/limit/. Needs the
+# peers (bench/install_peers.sh); CI does not run it. Deterministic.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$here/.."
+data="$root/crates/splinekit/tests/data"
+peers="$root/target/bench-peers"
+mkdir -p "$data/limit"
+bash "$here/drivers/build.sh" "$peers"
+for m in icosahedron20 torus96 grid32; do
+    "$peers/osd_loop" "$data/loop/$m.in.obj" -n 1 --limit -o "$data/limit/$m.osd-loop.l1.obj" >/dev/null
+done
+"$peers/osd_loop" "$data/loop/grid32.in.obj" -n 1 --limit --corners -o "$data/limit/grid32.osd-loop-corners.l1.obj" >/dev/null
+for m in cube6 torus48 prism8 grid16; do
+    "$peers/osd_catmark" "$data/catmark/$m.in.obj" -n 1 --limit -o "$data/limit/$m.osd-catmark.l1.obj" >/dev/null
+done
+"$peers/osd_catmark" "$data/catmark/grid16.in.obj" -n 1 --limit --corners -o "$data/limit/grid16.osd-catmark-corners.l1.obj" >/dev/null
+ls -l "$data/limit"
