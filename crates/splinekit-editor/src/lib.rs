@@ -26,7 +26,7 @@ pub mod view3d;
 use std::path::{Path, PathBuf};
 
 use eframe::egui::{self, Key, Modifiers};
-use splinekit::subdiv::{LoopOptions, LoopPyramid};
+use splinekit::subdiv::{CatmullClarkOptions, LoopOptions, LoopPyramid, catmull_clark_subdivide};
 use splinekit::{PolyMesh, TriMesh};
 use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
@@ -53,12 +53,37 @@ pub const SHORTCUTS: [(&str, &str); 13] = [
     ("f", "fit both views"),
 ];
 
-/// A loaded mesh and its Loop subdivision levels.
+/// The subdivision schemes the editor offers for a loaded mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Scheme {
+    /// Loop (triangle meshes).
+    #[default]
+    Loop,
+    /// Catmull-Clark (any polygon mesh; quads after one level).
+    CatmullClark,
+}
+
+impl Scheme {
+    /// The name in the scheme menu.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Loop => "Loop",
+            Self::CatmullClark => "Catmull-Clark",
+        }
+    }
+}
+
+/// A loaded mesh and its subdivision levels.
 pub struct MeshState {
     /// Where it came from.
     pub name: String,
-    /// The subdivision levels (level 0 is the loaded mesh).
+    /// The Loop levels (level 0 is the loaded mesh), or why it cannot be Loop-subdivided.
     pub pyramid: Result<LoopPyramid, String>,
+    /// The Catmull-Clark levels 1, 2, … made so far.
+    pub catmull_clark: Vec<PolyMesh>,
+    /// The scheme of the levels shown.
+    pub scheme: Scheme,
     /// The loaded mesh (triangles or polygons).
     pub base: PolyMesh,
     /// The level shown.
@@ -66,22 +91,45 @@ pub struct MeshState {
 }
 
 impl MeshState {
+    /// The Catmull-Clark level shown (the loaded mesh at level 0).
+    fn catmull_clark_level(&self) -> &PolyMesh {
+        if self.level == 0 { &self.base } else { &self.catmull_clark[self.level - 1] }
+    }
+
     /// The number of faces of the level shown.
     #[must_use]
     pub fn faces(&self) -> usize {
-        match &self.pyramid {
-            Ok(p) => p.level(self.level).num_triangles(),
-            Err(_) => self.base.num_faces(),
+        match (self.scheme, &self.pyramid) {
+            (Scheme::CatmullClark, _) => self.catmull_clark_level().num_faces(),
+            (Scheme::Loop, Ok(p)) => p.level(self.level).num_triangles(),
+            (Scheme::Loop, Err(_)) => self.base.num_faces(),
         }
     }
 
     /// The number of vertices of the level shown.
     #[must_use]
     pub fn vertices(&self) -> usize {
-        match &self.pyramid {
-            Ok(p) => p.level(self.level).num_vertices(),
-            Err(_) => self.base.positions.len(),
+        match (self.scheme, &self.pyramid) {
+            (Scheme::CatmullClark, _) => self.catmull_clark_level().num_vertices(),
+            (Scheme::Loop, Ok(p)) => p.level(self.level).num_vertices(),
+            (Scheme::Loop, Err(_)) => self.base.positions.len(),
         }
+    }
+
+    /// The level shown, triangulated for the 3D view and export.
+    #[must_use]
+    pub fn shown(&self) -> TriMesh {
+        match (self.scheme, &self.pyramid) {
+            (Scheme::CatmullClark, _) => self.catmull_clark_level().to_tri_mesh(),
+            (Scheme::Loop, Ok(p)) => p.level(self.level).clone().into_tri_mesh(),
+            (Scheme::Loop, Err(_)) => self.base.to_tri_mesh(),
+        }
+    }
+
+    /// Whether the level shown can be refined.
+    #[must_use]
+    pub fn can_refine(&self) -> bool {
+        self.scheme == Scheme::CatmullClark || self.pyramid.is_ok()
     }
 }
 
@@ -222,6 +270,8 @@ impl EditorApp {
                 self.set_mesh_state(Some(MeshState {
                     name: path.display().to_string(),
                     pyramid,
+                    catmull_clark: Vec::new(),
+                    scheme: Scheme::Loop,
                     base: mesh,
                     level: 0,
                 }));
@@ -241,15 +291,46 @@ impl EditorApp {
         LoopOptions { color_by_level: self.color_by_level, ..LoopOptions::default() }
     }
 
-    /// Refines the loaded mesh one level (kept levels are reused when coarsening).
+    /// Refines the loaded mesh one level with its scheme (kept levels are reused when
+    /// coarsening). An error (e.g. a non-manifold mesh for Catmull-Clark) goes to the status
+    /// line.
     pub fn refine(&mut self) {
+        let color_by_level = self.color_by_level;
         let Some(m) = &mut self.mesh else { return };
-        let Ok(p) = &mut m.pyramid else { return };
-        if m.level + 1 > p.finest().depth() {
-            p.refine();
+        match m.scheme {
+            Scheme::Loop => {
+                let Ok(p) = &mut m.pyramid else { return };
+                if m.level + 1 > p.finest().depth() {
+                    p.refine();
+                }
+                m.level = (m.level + 1).min(p.finest().depth());
+            }
+            Scheme::CatmullClark => {
+                if m.level >= m.catmull_clark.len() {
+                    let options = CatmullClarkOptions { color_by_level, ..CatmullClarkOptions::default() };
+                    match catmull_clark_subdivide(&m.base, m.level + 1, &options) {
+                        Ok(fine) => m.catmull_clark.push(fine),
+                        Err(e) => {
+                            self.status = format!("Error: {}: {e}", m.name);
+                            return;
+                        }
+                    }
+                }
+                m.level += 1;
+            }
         }
-        m.level = (m.level + 1).min(p.finest().depth());
-        self.status = format!("Level {}: {} faces", m.level, p.level(m.level).num_triangles());
+        self.status = format!("Level {}: {} faces", m.level, m.faces());
+    }
+
+    /// Subdivides the loaded mesh with `scheme` from now on (showing the loaded mesh again).
+    pub fn set_scheme(&mut self, scheme: Scheme) {
+        let Some(m) = &mut self.mesh else { return };
+        if m.scheme != scheme {
+            m.scheme = scheme;
+            m.level = 0;
+            self.mesh_generation += 1;
+            self.status = format!("{} subdivision", scheme.name());
+        }
     }
 
     /// Rebuilds the loaded mesh's levels with the current colour setting, keeping the level shown.
@@ -257,9 +338,15 @@ impl EditorApp {
         let options = self.loop_options();
         let Some(m) = &mut self.mesh else { return };
         m.pyramid = LoopPyramid::new(&m.base, options).map_err(|e| e.to_string());
-        if let Ok(p) = &mut m.pyramid {
+        if let Ok(p) = &mut m.pyramid
+            && m.scheme == Scheme::Loop
+        {
             p.refine_to(m.level, |_| {});
         }
+        // the Catmull-Clark levels made so far, again with the new colours
+        let options = CatmullClarkOptions { color_by_level: options.color_by_level, ..CatmullClarkOptions::default() };
+        m.catmull_clark =
+            (1..=m.catmull_clark.len()).map_while(|k| catmull_clark_subdivide(&m.base, k, &options).ok()).collect();
         self.mesh_generation += 1;
     }
 
@@ -316,10 +403,7 @@ impl EditorApp {
     /// Why there is none (no surface in the document, or a surface that cannot be built).
     pub fn shown_mesh(&self) -> Result<TriMesh, String> {
         if let Some(m) = &self.mesh {
-            return Ok(match &m.pyramid {
-                Ok(p) => p.level(m.level).clone().into_tri_mesh(),
-                Err(_) => m.base.to_tri_mesh(),
-            });
+            return Ok(m.shown());
         }
         if self.doc.swp.surfaces.is_empty() {
             return Err("the document has no surface (add srev or gcyl to the SWP file)".to_owned());
@@ -343,13 +427,7 @@ impl EditorApp {
         }
         self.shown = Some(shown);
         match &self.mesh {
-            Some(m) => {
-                let mesh = match &m.pyramid {
-                    Ok(p) => p.level(m.level).clone().into_tri_mesh(),
-                    Err(_) => m.base.to_tri_mesh(),
-                };
-                self.view3d.set_mesh(&mesh);
-            }
+            Some(m) => self.view3d.set_mesh(&m.shown()),
             None => {
                 self.update_surfaces();
                 self.view3d.set_mesh(&self.surfaces.mesh);
@@ -552,7 +630,14 @@ impl EditorApp {
             ui.label(format!("Mesh {}", m.name));
             ui.label(format!("Level {}: {} vertices", m.level, m.vertices()));
             ui.label(format!("Faces: {}", m.faces()));
-            let can_refine = m.pyramid.is_ok();
+            let (can_refine, scheme) = (m.can_refine(), m.scheme);
+            egui::ComboBox::from_label("Scheme").selected_text(scheme.name()).show_ui(ui, |ui| {
+                for s in [Scheme::Loop, Scheme::CatmullClark] {
+                    if ui.selectable_label(s == scheme, s.name()).clicked() {
+                        self.set_scheme(s);
+                    }
+                }
+            });
             ui.horizontal(|ui| {
                 if ui.add_enabled(can_refine, egui::Button::new("Refine subdivision")).clicked() {
                     self.refine();

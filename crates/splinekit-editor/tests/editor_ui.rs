@@ -424,3 +424,25 @@ fn the_empty_editor_and_its_help() {
     h.get_by_label("cycle the spline kind");
     h.snapshot("empty_with_help");
 }
+
+#[test]
+fn catmull_clark_from_the_scheme_menu() {
+    let mut h = harness(EditorApp::new(Some(&data("obj/icosahedron.obj"))));
+    h.get_by_label("Scheme").click();
+    h.run();
+    h.get_by_label("Catmull-Clark").click();
+    h.run();
+    h.get_by_label("Refine subdivision").click();
+    h.run();
+    // 20 triangles → 60 quads (one per corner), 12 + 30 + 20 vertices; two triangles a quad in 3D
+    h.get_by_label("Faces: 60");
+    h.get_by_label("Level 1: 62 vertices");
+    assert_eq!(h.state().view3d.num_triangles(), 120);
+    h.get_by_label("Refine subdivision").click();
+    h.run();
+    h.get_by_label("Faces: 240");
+    assert_eq!(h.state().view3d.num_triangles(), 480);
+    h.get_by_label("Coarsen subdivision").click();
+    h.run();
+    h.get_by_label("Faces: 60");
+}
