@@ -26,7 +26,7 @@ pub mod view3d;
 use std::path::{Path, PathBuf};
 
 use eframe::egui::{self, Key, Modifiers};
-use splinekit::subdiv::{CatmullClarkOptions, LoopOptions, LoopPyramid, catmull_clark_subdivide};
+use splinekit::subdiv::{CatmullClarkOptions, LoopOptions, LoopPyramid, catmull_clark_step};
 use splinekit::{PolyMesh, TriMesh};
 use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
@@ -308,7 +308,8 @@ impl EditorApp {
             Scheme::CatmullClark => {
                 if m.level >= m.catmull_clark.len() {
                     let options = CatmullClarkOptions { color_by_level, ..CatmullClarkOptions::default() };
-                    match catmull_clark_subdivide(&m.base, m.level + 1, &options) {
+                    let coarse = m.catmull_clark.last().unwrap_or(&m.base);
+                    match catmull_clark_step(coarse, m.level + 1, &options) {
                         Ok(fine) => m.catmull_clark.push(fine),
                         Err(e) => {
                             self.status = format!("Error: {}: {e}", m.name);
@@ -345,8 +346,14 @@ impl EditorApp {
         }
         // the Catmull-Clark levels made so far, again with the new colours
         let options = CatmullClarkOptions { color_by_level: options.color_by_level, ..CatmullClarkOptions::default() };
-        m.catmull_clark =
-            (1..=m.catmull_clark.len()).map_while(|k| catmull_clark_subdivide(&m.base, k, &options).ok()).collect();
+        let mut levels: Vec<PolyMesh> = Vec::with_capacity(m.catmull_clark.len());
+        for depth in 1..=m.catmull_clark.len() {
+            match catmull_clark_step(levels.last().unwrap_or(&m.base), depth, &options) {
+                Ok(fine) => levels.push(fine),
+                Err(_) => break,
+            }
+        }
+        m.catmull_clark = levels;
         self.mesh_generation += 1;
     }
 
@@ -401,17 +408,18 @@ impl EditorApp {
     /// # Errors
     ///
     /// Why there is none (no surface in the document, or a surface that cannot be built).
-    pub fn shown_mesh(&self) -> Result<TriMesh, String> {
+    pub fn shown_mesh(&mut self) -> Result<TriMesh, String> {
         if let Some(m) = &self.mesh {
             return Ok(m.shown());
         }
         if self.doc.swp.surfaces.is_empty() {
             return Err("the document has no surface (add srev or gcyl to the SWP file)".to_owned());
         }
-        let swept = SweptSurfaces::sweep(&self.doc.swp);
-        match swept.errors.first() {
+        // the sweep the surface panel and the 3D view already show
+        self.update_surfaces();
+        match self.surfaces.errors.first() {
             Some(e) => Err(e.clone()),
-            None => Ok(swept.mesh),
+            None => Ok(self.surfaces.mesh.clone()),
         }
     }
 

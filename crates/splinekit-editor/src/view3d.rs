@@ -537,9 +537,7 @@ impl View3d {
         );
         let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
         self.overlay_bounds = (!handles.is_empty() || !polyline.is_empty()).then(|| {
-            let overlay =
-                TriMesh { positions: handles.iter().chain(polyline).copied().collect(), ..TriMesh::default() };
-            let (centre, radius) = bounds(&overlay);
+            let (centre, radius) = point_bounds(|| handles.iter().chain(polyline).copied());
             (centre, if radius > 0.0 { radius } else { 1.0 })
         });
         if self.fit_pending && self.data.surface.is_empty() && self.overlay_bounds.is_some() {
@@ -698,16 +696,20 @@ impl Drop for View3d {
 /// none), and the largest distance of one from it: the bounding sphere the view frames.
 #[must_use]
 pub fn bounds(mesh: &TriMesh) -> (DVec3, f64) {
+    point_bounds(|| mesh.positions.iter().copied())
+}
+
+/// [`bounds`] of the points `points()` gives (called twice: box, then sphere).
+fn point_bounds<I: Iterator<Item = DVec3>>(points: impl Fn() -> I) -> (DVec3, f64) {
     let mut lo = DVec3::INFINITY;
     let mut hi = DVec3::NEG_INFINITY;
-    for p in mesh.positions.iter().filter(|p| p.is_finite()) {
-        lo = lo.min(*p);
-        hi = hi.max(*p);
+    for p in points().filter(|p| p.is_finite()) {
+        lo = lo.min(p);
+        hi = hi.max(p);
     }
     let origin = if lo.x <= hi.x { 0.5 * (lo + hi) } else { DVec3::ZERO };
     // Bounding sphere about the box centre, tighter than the box's.
-    let radius =
-        mesh.positions.iter().filter(|p| p.is_finite()).map(|p| p.distance_squared(origin)).fold(0.0, f64::max).sqrt();
+    let radius = points().filter(|p| p.is_finite()).map(|p| p.distance_squared(origin)).fold(0.0, f64::max).sqrt();
     (origin, radius)
 }
 

@@ -332,3 +332,17 @@ fn limit_positions_need_quads_and_are_fixed_points_of_subdivision() {
         assert!((l1[v] - l2[v]).length() < 1e-14, "vertex {v}: {} vs {}", l1[v], l2[v]);
     }
 }
+
+#[test]
+fn level_by_level_equals_one_call() {
+    use splinekit::subdiv::catmull_clark_step;
+    for color_by_level in [false, true] {
+        let options = CatmullClarkOptions { color_by_level, ..CatmullClarkOptions::default() };
+        let mut level = prism();
+        for depth in 1..=3 {
+            level = catmull_clark_step(&level, depth, &options).unwrap();
+            let once = catmull_clark_subdivide(&prism(), depth, &options).unwrap();
+            assert_eq!(level, once, "depth {depth}, colour by level {color_by_level}");
+        }
+    }
+}

@@ -180,7 +180,7 @@ pub fn save_poly(mesh: &PolyMesh, path: impl AsRef<Path>, format: MeshFormat) ->
     if format != MeshFormat::Obj {
         return save(&mesh.to_tri_mesh(), path, format);
     }
-    check(&mesh.to_tri_mesh()).map_err(|e| e.with_origin(path))?;
+    // write_obj_poly validates before writing a byte; on error the temporary file goes away
     atomic::write_file(path, |w| write_obj_poly(mesh, w).map_err(|e| e.with_origin(path)))
 }
 

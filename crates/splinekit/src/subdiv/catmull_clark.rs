@@ -49,34 +49,42 @@ pub fn catmull_clark_subdivide(
     levels: usize,
     options: &CatmullClarkOptions,
 ) -> Result<PolyMesh, SubdivError> {
-    let mut level = PolyMesh {
-        positions: mesh.positions.clone(),
-        colors: mesh.colors.clone(),
-        face_offsets: mesh.face_offsets.clone(),
-        face_vertices: mesh.face_vertices.clone(),
-        normals: None,
-        uvs: None,
-    };
-    if options.color_by_level {
-        level.colors = vec![LEVEL_COLORS[0]; level.positions.len()];
+    if levels == 0 {
+        return Ok(PolyMesh { normals: None, uvs: None, ..mesh.clone() });
     }
-    for depth in 1..=levels {
-        let rings = Rings::new(&level)?;
-        let positions = rings.refine(&level.positions, options.boundary);
-        let colors = if options.color_by_level {
-            let mut c = level.colors.clone();
-            c.resize(positions.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
-            c
-        } else if level.colors.len() == level.positions.len() {
-            rings.refine(&level.colors, options.boundary)
-        } else {
-            Vec::new()
-        };
-        let (face_offsets, face_vertices) = rings.child_faces();
-        drop(rings);
-        level = PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs: None };
+    let mut level = catmull_clark_step(mesh, 1, options)?;
+    for depth in 2..=levels {
+        level = catmull_clark_step(&level, depth, options)?;
     }
     Ok(level)
+}
+
+/// One level of [`catmull_clark_subdivide`]: the child of `mesh`, which is level `depth − 1`
+/// of the subdivision (`depth` picks the colour of the new vertices with
+/// [`CatmullClarkOptions::color_by_level`]; at depth 1 the mesh's own vertices get
+/// [`LEVEL_COLORS`]`[0]`). Refining level by level gives the same meshes as one call.
+///
+/// # Errors
+///
+/// As [`catmull_clark_subdivide`].
+pub fn catmull_clark_step(
+    mesh: &PolyMesh,
+    depth: usize,
+    options: &CatmullClarkOptions,
+) -> Result<PolyMesh, SubdivError> {
+    let rings = Rings::new(mesh)?;
+    let positions = rings.refine(&mesh.positions, options.boundary);
+    let colors = if options.color_by_level {
+        let mut c = if depth <= 1 { vec![LEVEL_COLORS[0]; mesh.positions.len()] } else { mesh.colors.clone() };
+        c.resize(positions.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
+        c
+    } else if mesh.colors.len() == mesh.positions.len() {
+        rings.refine(&mesh.colors, options.boundary)
+    } else {
+        Vec::new()
+    };
+    let (face_offsets, face_vertices) = rings.child_faces();
+    Ok(PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs: None })
 }
 
 /// What one level needs: the mesh's faces and their adjacency, checked to be manifold.
@@ -125,7 +133,7 @@ impl<'a> Rings<'a> {
             sum * (1.0 / corners.len() as f64)
         };
         let faces: Vec<T> = (0..nf).into_par_iter().with_min_len(MIN_LEN).map(face_point).collect();
-        let mut out = Vec::with_capacity(nv + ne + nf);
+        let mut out = Vec::new();
         let vertices = (0..nv).into_par_iter().with_min_len(MIN_LEN).map(|v| self.vertex_point(p, &faces, v, boundary));
         let edges = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
             let c = self.adj.edge_corner[e];
@@ -137,8 +145,7 @@ impl<'a> Rings<'a> {
             let (f0, f1) = (faces[self.adj.face_of[c as usize] as usize], faces[self.adj.face_of[t as usize] as usize]);
             (a + b + f0 + f1) * 0.25
         });
-        vertices.chain(edges).collect_into_vec(&mut out);
-        out.extend_from_slice(&faces);
+        vertices.chain(edges).chain(faces.par_iter().copied()).collect_into_vec(&mut out);
         out
     }
 

@@ -22,7 +22,7 @@ mod limit;
 mod loop_scheme;
 pub mod topology;
 
-pub use catmull_clark::{CatmullClarkOptions, catmull_clark_subdivide};
+pub use catmull_clark::{CatmullClarkOptions, catmull_clark_step, catmull_clark_subdivide};
 pub use limit::{catmull_clark_limit_positions, loop_limit_positions};
 pub use loop_scheme::{
     Attribute, BoundaryRule, LEVEL_COLORS, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
