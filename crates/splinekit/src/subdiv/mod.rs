@@ -15,7 +15,7 @@
 //! ```
 
 mod grandchild;
-mod groups;
+mod great;
 mod loop_scheme;
 pub mod topology;
 
