@@ -22,7 +22,6 @@
 
 use rayon::prelude::*;
 
-use super::groups::groups;
 use super::loop_scheme::{Attribute, BoundaryRule, LEVEL_COLORS, SubdivError};
 use super::topology::{MIN_LEN, TopologyError};
 use crate::mesh::{Adjacency, EdgeProblem, NONE, PolyMesh};
@@ -197,17 +196,20 @@ impl<'a> Rings<'a> {
         let (nv, ne) = (self.mesh.num_vertices() as u32, self.adj.num_edges() as u32);
         let corners = self.mesh.face_vertices.len();
         let offsets: Vec<u32> = (0..=corners as u32).map(|k| 4 * k).collect();
-        let mut quads = Vec::with_capacity(4 * corners);
-        groups(corners, |c| {
-            [
-                self.mesh.face_vertices[c as usize],
-                nv + self.adj.edge_of[c as usize],
-                nv + ne + self.adj.face_of[c as usize],
-                nv + self.adj.edge_of[self.prev(c) as usize],
-            ]
-        })
-        .with_min_len(MIN_LEN)
-        .collect_into_vec(&mut quads);
+        let mut quads: Vec<[u32; 4]> = Vec::with_capacity(corners);
+        (0..corners as u32)
+            .into_par_iter()
+            .with_min_len(MIN_LEN)
+            .map(|c| {
+                [
+                    self.mesh.face_vertices[c as usize],
+                    nv + self.adj.edge_of[c as usize],
+                    nv + ne + self.adj.face_of[c as usize],
+                    nv + self.adj.edge_of[self.prev(c) as usize],
+                ]
+            })
+            .collect_into_vec(&mut quads);
+        let quads: Vec<u32> = bytemuck::cast_vec(quads);
         (offsets, quads)
     }
 }

@@ -32,8 +32,9 @@
 //! a parallel map (rayon) over vertices, edges or faces writing its own output slot, so
 //! results do not depend on the number of threads. Per-vertex and per-edge code does not
 //! allocate. A one-shot subdivision ([`LoopPyramid::into_refined`], [`loop_subdivide`]) goes
-//! further: it makes each level from the tables of the level two above it (`grandchild`), so
-//! tables and triangles are made only up to two levels above the finest, and the finest
+//! further: it makes each level from the tables of the level two above it (`grandchild`), and
+//! the finest from those three above it (`great`), so tables and triangles are made only up
+//! to three levels above the finest (for three levels: none beyond the base), and the finest
 //! level's triangles and values are written straight from them.
 
 use core::ops::{Add, Mul};
@@ -42,7 +43,8 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::grandchild::{grandchild_triangles, grandchild_values};
-use super::topology::{MIN_LEN, Table, Topology, TopologyError, child_level, next, prev};
+use super::great::{great_grandchild_triangles, great_grandchild_values};
+use super::topology::{MIN_LEN, MIN_RINGS, Table, Topology, TopologyError, child_level, next, prev};
 use std::collections::HashMap;
 
 use crate::mesh::{FaceVarying, NONE, PolyMesh, TriMesh};
@@ -242,7 +244,7 @@ fn refine_values<T: Attribute>(topo: &Table<'_>, p: &[T], rules: &Rules) -> Vec<
     let mut out = Vec::new();
     (0..nv + topo.num_edges() as u32)
         .into_par_iter()
-        .with_min_len(MIN_LEN)
+        .with_min_len(MIN_RINGS)
         .map(|k| if k < nv { even(topo, p, k, rules) } else { odd(topo, p, k - nv) })
         .collect_into_vec(&mut out);
     out
@@ -419,6 +421,14 @@ impl LoopLevel {
         mesh
     }
 
+    /// This level's triangles and stored tables.
+    ///
+    /// # Panics
+    /// If the level has no tables.
+    fn table(&self) -> Table<'_> {
+        Table { triangles: &self.triangles, topology: self.topology.as_ref().expect("a level with tables") }
+    }
+
     /// This level as a polygon mesh (normals renormalized).
     #[must_use]
     pub fn to_mesh(&self) -> PolyMesh {
@@ -453,11 +463,21 @@ impl LoopPyramid {
     /// Non-triangle faces, non-manifold or inconsistently oriented topology, malformed
     /// attributes — naming the face, edge or vertex.
     pub fn new(mesh: &PolyMesh, options: LoopOptions) -> Result<Self, SubdivError> {
-        let mut triangles = Vec::with_capacity(mesh.num_faces());
-        for (face, f) in mesh.faces().enumerate() {
-            match f {
-                &[a, b, c] => triangles.push([a, b, c]),
-                _ => return Err(SubdivError::NotTriangles { face, corners: f.len() }),
+        // Triangles and positions are copied in parallel: the copy is cheap, the fresh pages
+        // it writes are not.
+        let mut triangles: Vec<[u32; 3]> = Vec::new();
+        if mesh.face_offsets.iter().enumerate().all(|(f, &o)| o as usize == 3 * f)
+            && mesh.face_vertices.len() == 3 * mesh.num_faces()
+        {
+            let corners: &[[u32; 3]] = bytemuck::cast_slice(&mesh.face_vertices);
+            corners.par_iter().with_min_len(MIN_LEN).copied().collect_into_vec(&mut triangles);
+        } else {
+            triangles.reserve(mesh.num_faces());
+            for (face, f) in mesh.faces().enumerate() {
+                match f {
+                    &[a, b, c] => triangles.push([a, b, c]),
+                    _ => return Err(SubdivError::NotTriangles { face, corners: f.len() }),
+                }
             }
         }
         let n = mesh.num_vertices();
@@ -468,18 +488,12 @@ impl LoopPyramid {
                 problem: format!("{} colours for {n} vertices", mesh.colors.len()),
             });
         }
+        let mut positions = Vec::new();
+        mesh.positions.par_iter().with_min_len(MIN_LEN).copied().collect_into_vec(&mut positions);
         let normals = mesh.normals.as_ref().map(|fv| Channel::base("normals", &topology, fv)).transpose()?;
         let uvs = mesh.uvs.as_ref().map(|fv| Channel::base("uvs", &topology, fv)).transpose()?;
         let colors = if options.color_by_level { vec![LEVEL_COLORS[0]; n] } else { mesh.colors.clone() };
-        let level = LoopLevel {
-            triangles,
-            positions: mesh.positions.clone(),
-            colors,
-            depth: 0,
-            topology: Some(topology),
-            normals,
-            uvs,
-        };
+        let level = LoopLevel { triangles, positions, colors, depth: 0, topology: Some(topology), normals, uvs };
         Ok(Self { rules: Rules::new(&options), options, levels: vec![level] })
     }
 
@@ -603,9 +617,10 @@ impl LoopPyramid {
     /// Refines `levels` levels below the finest level like [`Self::refine_to`] and returns
     /// the new finest level (the same to the bit), dropping every level as soon as it is no
     /// longer read: the least time and memory for a one-shot subdivision. Without normals and
-    /// UVs, each level's values are made from the tables of the level two above it, so only
-    /// levels up to `levels − 2` below get tables and triangles, and besides the output at
-    /// most the values of its parent and the tables of its grandparent are alive.
+    /// UVs, each level's values are made from the tables of the level two above it, and the
+    /// finest level's values and triangles from those of the level three above it, so only
+    /// levels up to `levels − 3` below get tables and triangles, and besides the output at
+    /// most the values of its parent and the tables of two levels are alive.
     #[must_use]
     pub fn into_refined(mut self, levels: usize, mut progress: impl FnMut(usize)) -> LoopLevel {
         let last = self.levels.len() - 1;
@@ -618,51 +633,73 @@ impl LoopPyramid {
             return self.into_finest();
         }
         // Without face-varying channels: each level's values are made two steps below a level
-        // with stored tables (the grandchild passes), so only the levels up to `levels − 2`
-        // get tables and triangles; the finest level's triangles come from level `levels − 2`.
+        // with stored tables (the grandchild passes), the finest level's three steps below
+        // (the great-grandchild passes), so only the levels up to `levels − 3` get tables and
+        // triangles.
         self.ensure_topology(last);
         let mut level = self.levels.pop().expect("a pyramid has a base level");
         self.levels.clear();
-        let topo = level.topology.as_ref().expect("ensured");
-        let (mut positions, mut colors) =
-            self.child_values(&Table { triangles: &level.triangles, topology: topo }, &level);
+        let (mut positions, mut colors) = self.child_values(&level.table(), &level);
         (level.positions, level.colors) = (Vec::new(), Vec::new());
         progress(1);
         let d0 = level.depth;
         for k in 2..=levels {
-            // `level` is level k − 2, `positions` and `colors` level k − 1's.
-            let topo = level.topology.as_ref().expect("stored");
-            let table = Table { triangles: &level.triangles, topology: topo };
-            let (fine, fine_colors) = self.grandchild_values(&table, &positions, colors, d0 + k);
+            // `positions` and `colors` are level k − 1's; `level` is level k − 2, except at the
+            // last of three or more steps, where it is level k − 3 (see `finest_level`).
             if k == levels {
-                drop(positions);
-                let triangles = grandchild_triangles(&table);
+                let finest = self.finest_level(&level, positions, colors, d0 + k);
                 progress(k);
-                return LoopLevel {
+                return finest;
+            }
+            let (fine, fine_colors) = self.grandchild_values(&level.table(), &positions, colors, d0 + k);
+            if k + 1 < levels {
+                let (triangles, topology) = child_level(&level.table());
+                level = LoopLevel {
                     triangles,
-                    positions: fine,
-                    colors: fine_colors,
-                    depth: d0 + k,
-                    topology: None,
+                    positions: Vec::new(),
+                    colors: Vec::new(),
+                    depth: d0 + k - 1,
+                    topology: Some(topology),
                     normals: None,
                     uvs: None,
                 };
             }
-            let (triangles, topology) = child_level(&table);
-            let topology = Some(topology);
-            level = LoopLevel {
-                triangles,
-                positions: Vec::new(),
-                colors: Vec::new(),
-                depth: d0 + k - 1,
-                topology,
-                normals: None,
-                uvs: None,
-            };
             (positions, colors) = (fine, fine_colors);
             progress(k);
         }
         unreachable!("the loop returns at k = levels ≥ 2")
+    }
+
+    /// The finest level, level `depth`, from the positions and colours of level `depth − 1`
+    /// and the tables of `level`: level `depth − 3` (the great-grandchild passes), or
+    /// `depth − 2` when there are only two steps.
+    fn finest_level(&self, level: &LoopLevel, positions: Vec<DVec3>, colors: Vec<DVec3>, depth: usize) -> LoopLevel {
+        let table = level.table();
+        let great = level.depth + 3 == depth;
+        let values = |p: &[DVec3]| {
+            if great {
+                great_grandchild_values(&table, p, &self.rules)
+            } else {
+                grandchild_values(&table, p, &self.rules)
+            }
+        };
+        let fine = values(&positions);
+        drop(positions);
+        let fine_colors = if self.options.color_by_level {
+            let mut c = colors;
+            c.resize(fine.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
+            c
+        } else if colors.is_empty() {
+            colors
+        } else {
+            let fine_colors = values(&colors);
+            drop(colors);
+            fine_colors
+        };
+        // Made last, so that the memory of the inputs just dropped serves it (see the CLI's
+        // allocator).
+        let triangles = if great { great_grandchild_triangles(&table) } else { grandchild_triangles(&table) };
+        LoopLevel { triangles, positions: fine, colors: fine_colors, depth, topology: None, normals: None, uvs: None }
     }
 
     /// The positions and colours two steps below `s`, from those one step below, making

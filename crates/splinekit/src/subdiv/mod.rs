@@ -17,7 +17,7 @@
 
 mod catmull_clark;
 mod grandchild;
-mod groups;
+mod great;
 mod limit;
 mod loop_scheme;
 pub mod topology;

@@ -25,6 +25,10 @@ use crate::mesh::{Adjacency, NONE};
 /// Work items per rayon task (large, so that one thread runs at full speed).
 pub(crate) const MIN_LEN: usize = 1 << 13;
 
+/// Vertices per rayon task in passes that walk vertex rings: each costs several items' worth,
+/// and smaller tasks balance two threads on small meshes.
+pub(crate) const MIN_RINGS: usize = MIN_LEN / 8;
+
 /// The adjacency tables of one level (see the module docs).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Topology {
@@ -81,6 +85,12 @@ pub(super) fn next(i: u32) -> u32 {
 #[inline]
 pub(super) fn prev(i: u32) -> u32 {
     if i == 0 { 2 } else { i - 1 }
+}
+
+/// `[f(0), f(1), f(2)]`: like `[0, 1, 2].map(f)`, which is not always inlined in the passes.
+#[inline(always)]
+pub(super) fn three<T>(f: impl Fn(usize) -> T) -> [T; 3] {
+    [f(0), f(1), f(2)]
 }
 
 impl Topology {
@@ -152,9 +162,13 @@ impl Topology {
             .map(|h| {
                 let t = &triangles[(h / 3) as usize];
                 let (a, b) = (t[(h % 3) as usize], t[next(h % 3) as usize]);
+                // The twin is the one half-edge back from b to a. Two half-edges from a to b
+                // are caught from the other side (the search of a half-edge back finds both)
+                // or, with none back, by the fan check of a below (neither can be reached
+                // from the other by rotating, which crosses an edge only to its twin).
                 let mut found = out(b).iter().filter(|&&[_, hc]| hc == a);
                 match (found.next(), found.next()) {
-                    _ if a == b || out(a).iter().any(|&[c, hc]| hc == b && c != h) => fail(),
+                    _ if a == b => fail(),
                     (None, _) => NONE,
                     (Some(&[c, _]), None) => c,
                     (Some(_), Some(_)) => fail(),
@@ -178,7 +192,7 @@ impl Topology {
         let mut vertex_start = Vec::new();
         (0..nv as u32)
             .into_par_iter()
-            .with_min_len(MIN_LEN)
+            .with_min_len(MIN_RINGS)
             .map(|v| {
                 let corners = out(v);
                 let Some(&[first, _]) = corners.first() else { return NONE };
