@@ -2,24 +2,28 @@
 # Loop subdivision speed against the peers (issue #4): OpenSubdiv, CGAL, OpenMesh, libigl and
 # splinekit (1 and 2 threads) on three meshes, one line per (tool, mesh, levels), then the ratios.
 #
-#   bench/compare_loop.sh [--levels N] [--repeat R] [--no-install] [--no-igl] [--no-splinekit]
+#   bench/compare_loop.sh [--levels N] [--repeat R] [--rounds K] [--settle S] [--no-install] [--no-igl]
+#                         [--no-splinekit]
 #
 # Installs the peers if missing (bench/install_peers.sh: Debian libosd-dev libcgal-dev
 # libopenmesh-dev, PyPI libigl in bench/.venv), builds the C++ drivers (bench/drivers/) and
 # `cargo build --release -p splinekit-cli`, generates the meshes with bench/meshgen.py into
-# target/bench-meshes/ (once), and runs every tool once per mesh with --repeat R.
+# target/bench-meshes/ (once), and runs every tool K times (default 3) per mesh with --repeat R,
+# each run after S seconds of rest (default 1: a peer's freed memory slows the next process).
 #
-# seconds  = median of R repeats of the subdivision alone (no file I/O; see each driver's header
+# seconds  = median over K runs of the median of R repeats of the subdivision alone (no file I/O; see each driver's header
 #            for exactly what is timed), levels N (default 3), peers on one thread;
 # rss_MB   = peak resident memory of the whole process (GNU time %M: input, output, everything);
 # out_MB   = size of the output arrays, V*3*8 + F*3*4 bytes (f64 positions, u32 triangles).
 #
-# Documentation and measurement only: never run by CI, asserts nothing. Takes about two minutes.
+# Documentation and measurement only: never run by CI, asserts nothing. Takes about five minutes.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/.." && pwd)"
 levels=3
 repeat=5
+rounds=3
+settle=1
 install=1
 igl=1
 splinekit=1
@@ -27,10 +31,12 @@ while [ $# -gt 0 ]; do
     case "$1" in
     --levels) levels="$2"; shift 2 ;;
     --repeat) repeat="$2"; shift 2 ;;
+    --rounds) rounds="$2"; shift 2 ;;
+    --settle) settle="$2"; shift 2 ;;
     --no-install) install=0; shift ;;
     --no-igl) igl=0; shift ;;
     --no-splinekit) splinekit=0; shift ;;
-    *) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+    *) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
     esac
 done
 if [ "${CI:-}" = true ]; then
@@ -82,7 +88,7 @@ fi
 
 # ---- runs
 load="$(cut -d' ' -f1 /proc/loadavg)"
-echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; Loop, $levels levels, median of $repeat repeats; peers on one thread"
+echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; Loop, $levels levels; each line the median over $rounds runs of the median of $repeat repeats; peers on one thread"
 if ! python3 -c 'import sys; sys.exit(float(sys.argv[1]) >= 0.5)' "$load"; then
     notes+=("the machine was busy at the start (load average $load): other work inflates every time")
 fi
@@ -92,17 +98,26 @@ printf "$fmt" tool mesh levels seconds vertices faces rss_MB out_MB
 run() { # tool mesh command...
     local tool="$1" mesh="$2"
     shift 2
-    if ! /usr/bin/time -f '%M' -o "$tmp/rss" "$@" >"$tmp/out" 2>"$tmp/err"; then
-        printf '%-18s %-13s %6s   failed: %s\n' "$tool" "$mesh" "$levels" "$(tail -n 1 "$tmp/err")"
-        return 0
-    fi
+    local r
+    : >"$tmp/rounds"
+    for ((r = 0; r < rounds; r++)); do
+        # Let the kernel finish taking back the previous process's memory first: right after
+        # a peer frees 800 MB, fresh pages cost the next process up to 2x more.
+        sleep "$settle"
+        if ! /usr/bin/time -f '%M' -o "$tmp/rss" "$@" >"$tmp/out" 2>"$tmp/err"; then
+            printf '%-18s %-13s %6s   failed: %s\n' "$tool" "$mesh" "$levels" "$(tail -n 1 "$tmp/err")"
+            return 0
+        fi
+        { tail -n 1 "$tmp/out"; tail -n 1 "$tmp/rss"; } >>"$tmp/rounds"
+    done
     local line
-    line="$(python3 - "$tmp/out" "$tmp/rss" <<'PY'
-import json, sys
-out = open(sys.argv[1]).read().strip().splitlines()
-j = json.loads(out[-1])
-rss_kb = int(open(sys.argv[2]).read().split()[-1])
-v, f, s = int(j["vertices"]), int(j["faces"]), float(j["seconds"])
+    line="$(python3 - "$tmp/rounds" <<'PY'
+import json, statistics, sys
+lines = open(sys.argv[1]).read().strip().splitlines()
+runs = [(json.loads(lines[k]), int(lines[k + 1].split()[-1])) for k in range(0, len(lines), 2)]
+v, f = int(runs[0][0]["vertices"]), int(runs[0][0]["faces"])
+s = statistics.median(float(j["seconds"]) for j, _ in runs)
+rss_kb = max(kb for _, kb in runs)
 print("%.6f" % s, v, f, "%.1f" % (rss_kb / 1024), "%.1f" % ((24 * v + 12 * f) / 1e6))
 PY
 )"
