@@ -464,32 +464,36 @@ impl LoopPyramid {
     /// attributes — naming the face, edge or vertex.
     pub fn new(mesh: &PolyMesh, options: LoopOptions) -> Result<Self, SubdivError> {
         // Triangles and positions are copied in parallel: the copy is cheap, the fresh pages
-        // it writes are not.
-        let mut triangles: Vec<[u32; 3]> = Vec::new();
-        if mesh.face_offsets.iter().enumerate().all(|(f, &o)| o as usize == 3 * f)
-            && mesh.face_vertices.len() == 3 * mesh.num_faces()
-        {
+        // it writes are not (each is cleared by the one thread that touches it first). With
+        // triangles only, the copies are made while the adjacency is built from the mesh's own
+        // corners, so that on several threads they cost no time of their own.
+        let n = mesh.num_vertices();
+        let triangles_only = mesh.face_offsets.iter().enumerate().all(|(f, &o)| o as usize == 3 * f)
+            && mesh.face_vertices.len() == 3 * mesh.num_faces();
+        let (triangles, topology, positions) = if triangles_only {
             let corners: &[[u32; 3]] = bytemuck::cast_slice(&mesh.face_vertices);
-            corners.par_iter().with_min_len(MIN_LEN).copied().collect_into_vec(&mut triangles);
+            let (topology, (triangles, positions)) = rayon::join(
+                || Topology::build(corners, n),
+                || rayon::join(|| par_copy(corners), || par_copy(&mesh.positions)),
+            );
+            (triangles, topology?, positions)
         } else {
-            triangles.reserve(mesh.num_faces());
+            let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(mesh.num_faces());
             for (face, f) in mesh.faces().enumerate() {
                 match f {
                     &[a, b, c] => triangles.push([a, b, c]),
                     _ => return Err(SubdivError::NotTriangles { face, corners: f.len() }),
                 }
             }
-        }
-        let n = mesh.num_vertices();
-        let topology = Topology::build(&triangles, n)?;
+            let topology = Topology::build(&triangles, n)?;
+            (triangles, topology, par_copy(&mesh.positions))
+        };
         if !mesh.colors.is_empty() && mesh.colors.len() != n {
             return Err(SubdivError::Attribute {
                 attribute: "colors",
                 problem: format!("{} colours for {n} vertices", mesh.colors.len()),
             });
         }
-        let mut positions = Vec::new();
-        mesh.positions.par_iter().with_min_len(MIN_LEN).copied().collect_into_vec(&mut positions);
         let normals = mesh.normals.as_ref().map(|fv| Channel::base("normals", &topology, fv)).transpose()?;
         let uvs = mesh.uvs.as_ref().map(|fv| Channel::base("uvs", &topology, fv)).transpose()?;
         let colors = if options.color_by_level { vec![LEVEL_COLORS[0]; n] } else { mesh.colors.clone() };
@@ -739,6 +743,13 @@ impl LoopPyramid {
         };
         (positions, colors)
     }
+}
+
+/// A copy of `from`, made in parallel.
+fn par_copy<T: Copy + Send + Sync>(from: &[T]) -> Vec<T> {
+    let mut to = Vec::new();
+    from.par_iter().with_min_len(MIN_LEN).copied().collect_into_vec(&mut to);
+    to
 }
 
 /// Gives a channel the adjacency tables derived from its parent's.

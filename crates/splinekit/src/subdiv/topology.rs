@@ -16,7 +16,7 @@
 //! happens after the base level, and every pass is a parallel map over faces, edges or
 //! vertices.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use rayon::prelude::*;
 
@@ -122,7 +122,9 @@ impl Topology {
     /// vertex whose corners are not one fan), so that [`Self::build_checked`] names it. The
     /// tables are the same as `build_checked`'s: edges numbered in half-edge order and owned by
     /// their first half-edge, starts on the last boundary half-edge leaving the vertex, else
-    /// its first half-edge.
+    /// its first half-edge. Every step is a parallel pass ([`leaving_lists`],
+    /// [`number_edges`]): everything else is, so serial steps here would take a growing share
+    /// of the time as threads are added.
     fn build_manifold(triangles: &[[u32; 3]], nv: usize) -> Option<Self> {
         let nh = 3 * triangles.len();
         if nh >= NONE as usize || nv >= NONE as usize {
@@ -133,28 +135,14 @@ impl Topology {
             problem.store(true, Ordering::Relaxed);
             NONE
         };
-        // The half-edges leaving each vertex, in half-edge order.
-        let mut offsets = vec![0u32; nv + 1];
-        for t in triangles {
-            for &v in t {
-                *offsets.get_mut(v as usize + 1)? += 1;
-            }
-        }
-        for v in 0..nv {
-            offsets[v + 1] += offsets[v];
-        }
-        let mut fill = offsets[..nv].to_vec();
+        let (offsets, leaving) = leaving_lists(triangles, nv)?;
         // (half-edge, its head) pairs.
-        let mut leaving = vec![[0u32; 2]; nh];
-        for (f, t) in triangles.iter().enumerate() {
-            for (i, &v) in t.iter().enumerate() {
-                let k = &mut fill[v as usize];
-                leaving[*k as usize] = [(3 * f + i) as u32, t[next(i as u32) as usize]];
-                *k += 1;
-            }
-        }
-        drop(fill);
-        let out = |v: u32| &leaving[offsets[v as usize] as usize..offsets[v as usize + 1] as usize];
+        let out = |v: u32| {
+            leaving[offsets[v as usize] as usize..offsets[v as usize + 1] as usize]
+                .iter()
+                .map(|c| c.load(Ordering::Relaxed))
+                .map(|c| [c as u32, (c >> 32) as u32])
+        };
         let mut twin = Vec::new();
         (0..nh as u32)
             .into_par_iter()
@@ -166,11 +154,11 @@ impl Topology {
                 // are caught from the other side (the search of a half-edge back finds both)
                 // or, with none back, by the fan check of a below (neither can be reached
                 // from the other by rotating, which crosses an edge only to its twin).
-                let mut found = out(b).iter().filter(|&&[_, hc]| hc == a);
+                let mut found = out(b).filter(|&[_, hc]| hc == a);
                 match (found.next(), found.next()) {
                     _ if a == b => fail(),
                     (None, _) => NONE,
-                    (Some(&[c, _]), None) => c,
+                    (Some([c, _]), None) => c,
                     (Some(_), Some(_)) => fail(),
                 }
             })
@@ -178,25 +166,14 @@ impl Topology {
         if problem.load(Ordering::Relaxed) {
             return None;
         }
-        let mut edge_of = vec![0u32; nh];
-        let mut edge_owner = Vec::with_capacity(nh / 2 + 1);
-        for h in 0..nh {
-            let t = twin[h];
-            edge_of[h] = if t == NONE || h < t as usize {
-                edge_owner.push(h as u32);
-                (edge_owner.len() - 1) as u32
-            } else {
-                edge_of[t as usize]
-            };
-        }
         let mut vertex_start = Vec::new();
         (0..nv as u32)
             .into_par_iter()
             .with_min_len(MIN_RINGS)
             .map(|v| {
-                let corners = out(v);
-                let Some(&[first, _]) = corners.first() else { return NONE };
-                let start = corners.iter().rev().map(|&[h, _]| h).find(|&h| twin[h as usize] == NONE).unwrap_or(first);
+                let corners = offsets[v as usize + 1] - offsets[v as usize];
+                let Some([first, _]) = out(v).next() else { return NONE };
+                let start = out(v).map(|[h, _]| h).filter(|&h| twin[h as usize] == NONE).last().unwrap_or(first);
                 // Every corner must be reached by rotating from the start.
                 let mut h = start;
                 let mut n = 1;
@@ -207,16 +184,18 @@ impl Topology {
                     }
                     h = t;
                     n += 1;
-                    if n > corners.len() {
+                    if n > corners {
                         return fail();
                     }
                 }
-                if n == corners.len() { start } else { fail() }
+                if n == corners { start } else { fail() }
             })
             .collect_into_vec(&mut vertex_start);
         if problem.load(Ordering::Relaxed) {
             return None;
         }
+        drop(leaving); // no longer read: less memory alive while the edges are numbered
+        let (edge_of, edge_owner) = number_edges(&twin);
         Some(Self { twin, edge_of, edge_owner, vertex_start })
     }
 
@@ -325,6 +304,129 @@ impl Topology {
             (child_triangles(&level), None)
         }
     }
+}
+
+/// The half-edges leaving each vertex, in half-edge order, each as `h | head << 32` (the
+/// half-edge and the vertex it points to), and where each vertex's list starts (`nv + 1`
+/// offsets); `None` if a triangle refers to a vertex `≥ nv`.
+///
+/// A counting sort in one chunk of triangles per thread: each chunk counts its corners per
+/// vertex, the counts become each chunk's places (a vertex's corners from chunk 0, then those
+/// from chunk 1, …: half-edge order), and each chunk writes its corners to its places. The
+/// chunks write to places scattered over one table, which safe code can share only as
+/// atomics; relaxed atomic stores and loads are plain ones.
+fn leaving_lists(triangles: &[[u32; 3]], nv: usize) -> Option<(Vec<u32>, Vec<AtomicU64>)> {
+    let per = triangles.len().div_ceil(rayon::current_num_threads()).max(MIN_LEN);
+    let mut places: Vec<Vec<u32>> = triangles
+        .par_chunks(per)
+        .map(|chunk| {
+            let mut count = vec![0u32; nv];
+            for t in chunk {
+                for &v in t {
+                    *count.get_mut(v as usize)? += 1;
+                }
+            }
+            Some(count)
+        })
+        .collect::<Option<_>>()?;
+    let mut offsets = Vec::with_capacity(nv + 1);
+    let mut at = 0;
+    for v in 0..nv {
+        offsets.push(at);
+        for place in &mut places {
+            (place[v], at) = (at, at + place[v]);
+        }
+    }
+    offsets.push(at);
+    // Zeroed in parallel: the first touch of fresh pages is the costly part of filling them.
+    let mut leaving = Vec::new();
+    (0..3 * triangles.len())
+        .into_par_iter()
+        .with_min_len(MIN_LEN)
+        .map(|_| AtomicU64::new(0))
+        .collect_into_vec(&mut leaving);
+    triangles.par_chunks(per).zip(places.par_iter_mut()).enumerate().for_each(|(c, (chunk, place))| {
+        for (f, t) in (c * per..).zip(chunk) {
+            for i in 0..3 {
+                let k = &mut place[t[i] as usize];
+                let h = (3 * f + i) as u64;
+                leaving[*k as usize].store(h | u64::from(t[next(i as u32) as usize]) << 32, Ordering::Relaxed);
+                *k += 1;
+            }
+        }
+    });
+    Some((offsets, leaving))
+}
+
+/// Per half-edge its edge, and per edge its owner, from the twins: edges numbered in
+/// half-edge order, each owned by its first half-edge (the one without a twin or before it).
+///
+/// In parallel through a bitmask of the owners, one bit per half-edge: the edge of owner `h`
+/// is the number of owners before it — those before its word of 64 bits, counted once, plus
+/// the bits below it in its word — and the edge of another half-edge is its twin's, found the
+/// same way. Then runs of words number their owners side by side, each from its own start.
+fn number_edges(twin: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    /// Words per run.
+    const RUN: usize = MIN_LEN / 64;
+    let nh = twin.len();
+    let owns = |h: usize, t: u32| t == NONE || h < t as usize;
+    let mut mask = Vec::new();
+    twin.par_chunks(64)
+        .with_min_len(RUN)
+        .enumerate()
+        .map(|(w, twins)| {
+            // Eight bits at a time, whose shifts are then constants: several times faster.
+            // (`NONE` is larger than any half-edge.)
+            let h0 = 64 * w as u32;
+            let mut eights = twins.chunks_exact(8);
+            let (mut m, mut k) = (0u64, 0);
+            for t in &mut eights {
+                m |= (0..8).fold(0u64, |b, i| b | u64::from(h0 + k + (i as u32) < t[i]) << i) << k;
+                k += 8;
+            }
+            for (i, &t) in (k..).zip(eights.remainder()) {
+                m |= u64::from(h0 + i < t) << i;
+            }
+            m
+        })
+        .collect_into_vec(&mut mask);
+    let mut before = Vec::with_capacity(mask.len() + 1);
+    let mut ne = 0;
+    for m in &mask {
+        before.push(ne);
+        ne += m.count_ones();
+    }
+    before.push(ne);
+    let rank = |h: u32| {
+        let w = (h / 64) as usize;
+        before[w] + (mask[w] & ((1u64 << (h % 64)) - 1)).count_ones()
+    };
+    // Each run's edges, and the half-edges of each run.
+    let mut edge_owner = vec![0u32; ne as usize];
+    let mut runs = Vec::with_capacity(mask.len().div_ceil(RUN));
+    let mut rest = edge_owner.as_mut_slice();
+    for w in (0..mask.len()).step_by(RUN) {
+        let end = mask.len().min(w + RUN);
+        let (run, tail) = core::mem::take(&mut rest).split_at_mut((before[end] - before[w]) as usize);
+        runs.push(run);
+        rest = tail;
+    }
+    let mut edge_of = vec![0u32; nh];
+    edge_of.par_chunks_mut(64 * RUN).zip(runs).enumerate().for_each(|(r, (edges, owners))| {
+        let h0 = 64 * RUN * r;
+        let first = before[RUN * r];
+        let mut e = first;
+        for (h, (edge, &t)) in (h0..).zip(edges.iter_mut().zip(&twin[h0..])) {
+            *edge = if owns(h, t) {
+                owners[(e - first) as usize] = h as u32;
+                e += 1;
+                e - 1
+            } else {
+                rank(t)
+            };
+        }
+    });
+    (edge_of, edge_owner)
 }
 
 /// One level's triangles and tables, read by the passes that make the next levels.
@@ -542,6 +644,39 @@ mod tests {
         let mut tris = octahedron();
         tris.truncate(5);
         check_against_rebuild(&tris, 6, 3);
+    }
+
+    /// Large enough for several chunks and runs in [`leaving_lists`] and [`number_edges`], on
+    /// any number of threads the same tables as the checked build's.
+    #[test]
+    fn parallel_build_matches_checked() {
+        let mut tris = octahedron();
+        let mut topo = Topology::build(&tris, 6).unwrap();
+        for _ in 0..6 {
+            let (child, t) = topo.refine(&tris, true);
+            (tris, topo) = (child, t.unwrap());
+        }
+        let nv = topo.num_vertices();
+        // Scatter the vertex numbers, and open the surface: drop what became of base triangle
+        // 5 (some vertices are then on no triangle).
+        let perm: Vec<u32> = (0..nv as u32).map(|v| (v * 7919) % nv as u32).collect();
+        assert_eq!(perm.iter().collect::<std::collections::HashSet<_>>().len(), nv);
+        let n = tris.len() / 8;
+        let scattered: Vec<[u32; 3]> =
+            tris[..5 * n].iter().chain(&tris[6 * n..]).map(|t| t.map(|v| perm[v as usize])).collect();
+        for (mesh, label) in [(&tris, "closed"), (&scattered, "open, scattered")] {
+            let checked = Topology::build_checked(mesh, nv).unwrap();
+            for threads in [1, 2, 3] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let fast = pool.install(|| Topology::build_manifold(mesh, nv));
+                assert_eq!(fast.as_ref(), Some(&checked), "{label}, {threads} threads");
+            }
+        }
+        // A vertex out of range in the last chunk.
+        let mut bad = tris.clone();
+        bad.last_mut().unwrap()[1] = nv as u32;
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(3).build().unwrap();
+        assert_eq!(pool.install(|| Topology::build_manifold(&bad, nv)), None);
     }
 
     #[test]
