@@ -8,6 +8,7 @@ mod alloc;
 mod arclen_cmd;
 mod curve_cmd;
 mod edit_cmd;
+mod gallery_cmd;
 mod info_cmd;
 mod mesh_info;
 mod output;
@@ -41,6 +42,7 @@ static ALLOCATOR: alloc::HugePageAlloc = alloc::HugePageAlloc;
     splinekit sweep wineglass.swp -o out --format glb\n  \
     splinekit info wineglass.swp\n  \
     splinekit render wineglass.swp -o wineglass.png\n  \
+    splinekit gallery -o gallery\n  \
     splinekit edit wineglass.swp\n\n\
     Run `splinekit <COMMAND> --help` for the flags of each command.")]
 struct Cli {
@@ -56,6 +58,7 @@ enum Command {
     Info(info_cmd::InfoArgs),
     Subdivide(subdivide_cmd::SubdivideArgs),
     Render(render_cmd::RenderArgs),
+    Gallery(gallery_cmd::GalleryArgs),
     Edit(edit_cmd::EditArgs),
 }
 
@@ -69,6 +72,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Info(args) => info_cmd::run(&args, &mut out)?,
         Command::Subdivide(args) => subdivide_cmd::run(&args, &mut out)?,
         Command::Render(args) => render_cmd::run(&args, &mut out)?,
+        Command::Gallery(args) => gallery_cmd::run(&args, &mut out)?,
         Command::Edit(args) => edit_cmd::run(&args)?,
     }
     out.flush()?;

@@ -117,3 +117,30 @@ fn bad_input_names_the_problem_and_writes_nothing() {
     let run = splinekit(&args(&["render", &g, "-o", &no_dir]));
     assert!(run.fails_with_error().contains("out.png"), "{}", run.stderr);
 }
+
+#[test]
+fn gallery_writes_its_page_and_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("gallery");
+    let run = splinekit(&[
+        "gallery".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--size".as_ref(),
+        "64x48".as_ref(),
+        "--levels".as_ref(),
+        "1".as_ref(),
+    ]);
+    let stdout = run.ok();
+    // 12 course files, 2 arc-length entries, 2 meshes × 2 levels, the ribbon.
+    assert!(stdout.starts_with("19 entries, "), "{stdout}");
+    assert!(stdout.contains(&out.join("index.html").display().to_string()), "{stdout}");
+    assert_eq!(png_size(&out.join("images/wineglass.png")), (64, 48));
+    assert!(out.join("meshes/bunny-loop1.glb").is_file());
+    assert!(!out.join("meshes/bunny-loop2.obj").exists());
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("<h2>Loop subdivision</h2>"));
+
+    let bad = splinekit(&["gallery", "--levels", "9"]);
+    assert!(bad.fails().contains("--levels"), "{}", bad.stderr);
+}

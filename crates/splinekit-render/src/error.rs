@@ -65,6 +65,14 @@ pub enum RenderError {
     /// A marker spacing that is not a positive number.
     #[error("marker spacing must be a positive number, found {0}")]
     BadMarkerSpacing(f64),
+    /// A bundled example could not be built (a bug: the tests build every one).
+    #[error("bundled example {name}: {message}")]
+    Example {
+        /// The example's file name.
+        name: String,
+        /// What went wrong.
+        message: String,
+    },
     /// PNG encoding or decoding failed.
     #[error("PNG: {0}")]
     Png(String),

@@ -195,6 +195,42 @@ fn render_options(options: &FileOptions, view: View) -> RenderOptions {
 
 fn render_swp(input: &Path, path: &str, format: PictureFormat, options: &FileOptions) -> Result<Rendered, RenderError> {
     let doc = SwpDocument::read(input)?;
+    let meshes = sweep_surfaces(&doc, path)?;
+    render_swp_document(&doc, &meshes, path, format, options)
+}
+
+/// Every surface of `doc` swept with the default [`SurfaceOptions`] (as `splinekit sweep`
+/// does), in file order; `path` names the file in errors.
+///
+/// # Errors
+/// [`RenderError::Surface`] for the first surface that cannot be swept.
+pub fn sweep_surfaces(doc: &SwpDocument, path: &str) -> Result<Vec<TriMesh>, RenderError> {
+    (0..doc.surfaces.len())
+        .map(|i| {
+            doc.surface_mesh(i, &SurfaceOptions::default())
+                .map_err(|source| RenderError::Surface { path: path.to_string(), source })
+        })
+        .collect()
+}
+
+/// Draws a parsed SWP document whose surfaces are already swept (`meshes`, one per surface
+/// of `doc`, e.g. from [`sweep_surfaces`]), as [`render_file`] draws an SWP file; `path` names
+/// the document in errors.
+///
+/// # Errors
+/// As [`render_file`] for an SWP file, after parsing.
+pub fn render_swp_document(
+    doc: &SwpDocument,
+    meshes: &[TriMesh],
+    path: &str,
+    format: PictureFormat,
+    options: &FileOptions,
+) -> Result<Rendered, RenderError> {
+    if let Some(spacing) = options.curves.marker_spacing
+        && !(spacing > 0.0 && spacing.is_finite())
+    {
+        return Err(RenderError::BadMarkerSpacing(spacing));
+    }
     if doc.curves.is_empty() && doc.surfaces.is_empty() {
         return Err(RenderError::Empty { path: path.to_string(), what: "no curves or surfaces" });
     }
@@ -230,12 +266,6 @@ fn render_swp(input: &Path, path: &str, format: PictureFormat, options: &FileOpt
     if format == PictureFormat::Svg {
         return Err(RenderError::SvgOf3d { path: path.to_string(), what: "surfaces" });
     }
-    let meshes = (0..doc.surfaces.len())
-        .map(|i| {
-            doc.surface_mesh(i, &SurfaceOptions::default())
-                .map_err(|source| RenderError::Surface { path: path.to_string(), source })
-        })
-        .collect::<Result<Vec<TriMesh>, _>>()?;
     let view = options.view.unwrap_or_default();
     let radius = bounding_radius(
         meshes.iter().flat_map(|m| m.positions.iter().copied()).chain(curves.iter().flat_map(PlotCurve::bound_points)),

@@ -58,6 +58,7 @@
 pub mod camera;
 mod error;
 pub mod file;
+pub mod gallery;
 pub mod image;
 pub mod marks;
 pub mod plot;
@@ -65,7 +66,10 @@ pub mod raster;
 
 pub use camera::{Camera, DEFAULT_MARGIN, Projection, View, ViewError};
 pub use error::RenderError;
-pub use file::{FileOptions, Picture, PictureFormat, PictureKind, Rendered, render_file};
+pub use file::{
+    FileOptions, Picture, PictureFormat, PictureKind, Rendered, render_file, render_swp_document, sweep_surfaces,
+};
+pub use gallery::{Gallery, GalleryOptions, write_gallery};
 pub use image::{Image, ImageSize, MAX_SIDE, Rgb, SizeError};
 pub use marks::{CurveOptions, Mark, PlotCurve, SEGMENT_COLOURS, Theme, curve_marks};
 pub use plot::{PlotOptions, draw_marks, marks_svg, plot_curves, plot_curves_svg};
