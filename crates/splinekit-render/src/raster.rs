@@ -328,24 +328,11 @@ impl Renderer {
         self.ids.resize(n, NONE);
         let bins = bin_triangles(meshes, &vert_offsets, &self.verts, &self.mark_tris[..mark_count], sh);
         {
-            let verts = &self.verts;
-            let mark_tris = &self.mark_tris;
             let band = |(b, (depth, ids)): (usize, (&mut [f32], &mut [u32]))| {
                 let y0 = b * BAND_ROWS;
                 let mut target = Band { depth, ids, width: sw, y0, y1: (y0 + BAND_ROWS).min(sh) };
-                for &g in &bins[b] {
-                    if u64::from(g) < mark_base {
-                        let mi = if meshes.len() == 1 { 0 } else { offsets.partition_point(|&o| o <= g) - 1 };
-                        let t = meshes[mi].triangles[(g - offsets[mi]) as usize];
-                        let vo = vert_offsets[mi];
-                        let v = t.map(|i| {
-                            let p = verts[vo + i as usize];
-                            [p.x, p.y, p.z]
-                        });
-                        target.triangle(v, g, false);
-                    } else {
-                        target.triangle(mark_tris[(u64::from(g) - mark_base) as usize].v, g, true);
-                    }
+                for t in &bins[b] {
+                    target.triangle(t.v, t.id, u64::from(t.id) >= mark_base);
                 }
             };
             let chunks = self.depth.chunks_mut(BAND_ROWS * sw).zip(self.ids.chunks_mut(BAND_ROWS * sw)).enumerate();
@@ -460,18 +447,27 @@ fn project_vertices(
     }));
 }
 
-/// For each band of sample rows, the global ids of the triangles that may touch it, in
-/// drawing order.
+/// A triangle to rasterize: sample coordinates and depth key per corner, and global id.
+#[derive(Clone, Copy, Debug)]
+struct BinTri {
+    v: [[f32; 3]; 3],
+    id: u32,
+}
+
+/// For each band of sample rows, the triangles that may touch it, in drawing order, with
+/// their corners copied in: each band then reads its triangles in order from one array
+/// instead of gathering corners from the vertex array at random.
 fn bin_triangles(
     meshes: &[&TriMesh],
     vert_offsets: &[usize],
     verts: &[Vert],
     mark_tris: &[MarkTri],
     rows: usize,
-) -> Vec<Vec<u32>> {
+) -> Vec<Vec<BinTri>> {
     let num_bands = rows.div_ceil(BAND_ROWS);
     let mut bins = vec![Vec::new(); num_bands];
-    let mut add = |ys: [f32; 3], id: u32| {
+    let mut add = |v: [[f32; 3]; 3], id: u32| {
+        let ys = [v[0][1], v[1][1], v[2][1]];
         let lo = ys[0].min(ys[1]).min(ys[2]);
         let hi = ys[0].max(ys[1]).max(ys[2]);
         // NaN fails both tests.
@@ -481,7 +477,7 @@ fn bin_triangles(
         let b0 = (lo.max(0.0) as usize) / BAND_ROWS;
         let b1 = ((hi as usize) / BAND_ROWS).min(num_bands - 1);
         for bin in &mut bins[b0..=b1] {
-            bin.push(id);
+            bin.push(BinTri { v, id });
         }
     };
     let mut id = 0u32;
@@ -493,18 +489,20 @@ fn bin_triangles(
         }
         for t in &mesh.triangles {
             // Out-of-range indices and unprojectable corners leave the triangle out.
-            let v = t.map(|i| {
-                let p = verts[vo + (i as usize).min(n.saturating_sub(1))];
-                if (i as usize) < n && !p.x.is_nan() { p.y } else { f32::NAN }
-            });
-            if !v.iter().any(|y| y.is_nan()) {
-                add(v, id);
+            if t.iter().all(|&i| (i as usize) < n) {
+                let v = t.map(|i| {
+                    let p = &verts[vo + i as usize];
+                    [p.x, p.y, p.z]
+                });
+                if !v.iter().any(|p| p[0].is_nan() || p[1].is_nan()) {
+                    add(v, id);
+                }
             }
             id += 1;
         }
     }
     for m in mark_tris {
-        add([m.v[0][1], m.v[1][1], m.v[2][1]], id);
+        add(m.v, id);
         id += 1;
     }
     bins
