@@ -423,7 +423,7 @@ fn project_vertices(
 ) {
     let ss = f64::from(ss);
     let perspective = camera.projection == Projection::Perspective;
-    out.extend(mesh.positions.iter().enumerate().map(|(i, &p)| {
+    let project = |(i, &p): (usize, &DVec3)| {
         let q = camera.project(p);
         let valid = p.is_finite() && (!perspective || q.depth > 0.0);
         let (z, inv_w) = match camera.projection {
@@ -444,7 +444,15 @@ fn project_vertices(
             normal,
             colour,
         }
-    }));
+    };
+    // In parallel for large meshes (the order, hence the picture, is the same).
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        out.par_extend(mesh.positions.par_iter().enumerate().with_min_len(1 << 12).map(project));
+    }
+    #[cfg(not(feature = "parallel"))]
+    out.extend(mesh.positions.iter().enumerate().map(project));
 }
 
 /// A triangle to rasterize: sample coordinates and depth key per corner, and global id.
@@ -454,9 +462,15 @@ struct BinTri {
     id: u32,
 }
 
+/// Triangles binned per pass of [`bin_triangles`]: large enough to amortize a pass's bins,
+/// small enough to share the work among threads.
+const BIN_CHUNK: usize = 1 << 14;
+
 /// For each band of sample rows, the triangles that may touch it, in drawing order, with
 /// their corners copied in: each band then reads its triangles in order from one array
-/// instead of gathering corners from the vertex array at random.
+/// instead of gathering corners from the vertex array at random. Chunks of triangles are
+/// binned in parallel and their bins joined in chunk order, so the order is the same on any
+/// number of threads.
 fn bin_triangles(
     meshes: &[&TriMesh],
     vert_offsets: &[usize],
@@ -465,29 +479,42 @@ fn bin_triangles(
     rows: usize,
 ) -> Vec<Vec<BinTri>> {
     let num_bands = rows.div_ceil(BAND_ROWS);
-    let mut bins = vec![Vec::new(); num_bands];
-    let mut add = |v: [[f32; 3]; 3], id: u32| {
-        let ys = [v[0][1], v[1][1], v[2][1]];
-        let lo = ys[0].min(ys[1]).min(ys[2]);
-        let hi = ys[0].max(ys[1]).max(ys[2]);
-        // NaN fails both tests.
-        if !(hi >= 0.0 && lo < rows as f32) {
-            return;
-        }
-        let b0 = (lo.max(0.0) as usize) / BAND_ROWS;
-        let b1 = ((hi as usize) / BAND_ROWS).min(num_bands - 1);
-        for bin in &mut bins[b0..=b1] {
-            bin.push(BinTri { v, id });
-        }
-    };
+    // Chunks: (mesh, first triangle, end, global id of the first); `usize::MAX` for the marks.
+    let mut chunks = Vec::new();
     let mut id = 0u32;
-    for (mesh, &vo) in meshes.iter().zip(vert_offsets) {
-        let n = mesh.positions.len();
-        if n == 0 {
-            id += mesh.triangles.len() as u32;
-            continue;
+    for (mi, mesh) in meshes.iter().enumerate() {
+        let n = mesh.triangles.len();
+        for start in (0..n).step_by(BIN_CHUNK) {
+            chunks.push((mi, start, (start + BIN_CHUNK).min(n), id + start as u32));
         }
-        for t in &mesh.triangles {
+        id += n as u32;
+    }
+    chunks.push((usize::MAX, 0, mark_tris.len(), id));
+    let bin_chunk = |&(mi, start, end, first): &(usize, usize, usize, u32)| {
+        let mut bins = vec![Vec::new(); num_bands];
+        let mut add = |v: [[f32; 3]; 3], id: u32| {
+            let ys = [v[0][1], v[1][1], v[2][1]];
+            let lo = ys[0].min(ys[1]).min(ys[2]);
+            let hi = ys[0].max(ys[1]).max(ys[2]);
+            // NaN fails both tests.
+            if !(hi >= 0.0 && lo < rows as f32) {
+                return;
+            }
+            let b0 = (lo.max(0.0) as usize) / BAND_ROWS;
+            let b1 = ((hi as usize) / BAND_ROWS).min(num_bands - 1);
+            for bin in &mut bins[b0..=b1] {
+                bin.push(BinTri { v, id });
+            }
+        };
+        if mi == usize::MAX {
+            for (k, m) in mark_tris.iter().enumerate() {
+                add(m.v, first + k as u32);
+            }
+            return bins;
+        }
+        let (mesh, vo) = (meshes[mi], vert_offsets[mi]);
+        let n = mesh.positions.len();
+        for (k, t) in mesh.triangles[start..end].iter().enumerate() {
             // Out-of-range indices and unprojectable corners leave the triangle out.
             if t.iter().all(|&i| (i as usize) < n) {
                 let v = t.map(|i| {
@@ -495,17 +522,30 @@ fn bin_triangles(
                     [p.x, p.y, p.z]
                 });
                 if !v.iter().any(|p| p[0].is_nan() || p[1].is_nan()) {
-                    add(v, id);
+                    add(v, first + k as u32);
                 }
             }
-            id += 1;
         }
+        bins
+    };
+    let join = |b: usize, parts: &[Vec<Vec<BinTri>>]| {
+        let mut bin = Vec::with_capacity(parts.iter().map(|p| p[b].len()).sum());
+        for part in parts {
+            bin.extend_from_slice(&part[b]);
+        }
+        bin
+    };
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        let parts: Vec<Vec<Vec<BinTri>>> = chunks.par_iter().map(bin_chunk).collect();
+        (0..num_bands).into_par_iter().map(|b| join(b, &parts)).collect()
     }
-    for m in mark_tris {
-        add(m.v, id);
-        id += 1;
+    #[cfg(not(feature = "parallel"))]
+    {
+        let parts: Vec<Vec<Vec<BinTri>>> = chunks.iter().map(bin_chunk).collect();
+        (0..num_bands).map(|b| join(b, &parts)).collect()
     }
-    bins
 }
 
 /// A band of rows `y0..y1` of the sample buffers.
