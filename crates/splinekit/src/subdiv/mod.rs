@@ -20,6 +20,7 @@ mod grandchild;
 mod great;
 mod limit;
 mod loop_scheme;
+mod matrix;
 pub mod topology;
 
 pub use catmull_clark::{CatmullClarkOptions, catmull_clark_step, catmull_clark_subdivide};
@@ -28,4 +29,5 @@ pub use loop_scheme::{
     Attribute, BoundaryRule, LEVEL_COLORS, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
     loop_subdivide,
 };
+pub use matrix::SubdivisionMatrix;
 pub use topology::{Topology, TopologyError};
