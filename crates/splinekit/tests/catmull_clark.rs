@@ -9,15 +9,8 @@ use splinekit::PolyMesh;
 use splinekit::mesh::Adjacency;
 use splinekit::subdiv::{BoundaryRule, CatmullClarkOptions, SubdivError, catmull_clark_subdivide};
 
-fn poly(positions: Vec<DVec3>, faces: &[&[u32]]) -> PolyMesh {
-    let mut face_offsets = vec![0];
-    let mut face_vertices = Vec::new();
-    for f in faces {
-        face_vertices.extend_from_slice(f);
-        face_offsets.push(face_vertices.len() as u32);
-    }
-    PolyMesh { positions, face_offsets, face_vertices, ..PolyMesh::default() }
-}
+mod common;
+use common::poly;
 
 /// The cube `[−1, 1]³`, faces counter-clockwise from outside.
 fn cube() -> PolyMesh {

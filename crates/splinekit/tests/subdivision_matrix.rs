@@ -10,15 +10,8 @@ use splinekit::subdiv::{
     catmull_clark_subdivide, loop_subdivide,
 };
 
-fn poly(positions: Vec<DVec3>, faces: &[Vec<u32>]) -> PolyMesh {
-    let mut face_offsets = vec![0];
-    let mut face_vertices = Vec::new();
-    for f in faces {
-        face_vertices.extend_from_slice(f);
-        face_offsets.push(face_vertices.len() as u32);
-    }
-    PolyMesh { positions, face_offsets, face_vertices, ..PolyMesh::default() }
-}
+mod common;
+use common::poly;
 
 /// A deterministic pseudo-random offset in [−0.1, 0.1]³ (so no symmetry hides a wrong weight).
 fn jitter(k: u32) -> DVec3 {
@@ -33,45 +26,11 @@ fn jitter(k: u32) -> DVec3 {
 
 /// The icosahedron, jittered.
 fn icosahedron() -> PolyMesh {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let p = [
-        (-1.0, t, 0.0),
-        (1.0, t, 0.0),
-        (-1.0, -t, 0.0),
-        (1.0, -t, 0.0),
-        (0.0, -1.0, t),
-        (0.0, 1.0, t),
-        (0.0, -1.0, -t),
-        (0.0, 1.0, -t),
-        (t, 0.0, -1.0),
-        (t, 0.0, 1.0),
-        (-t, 0.0, -1.0),
-        (-t, 0.0, 1.0),
-    ];
-    let f: [[u32; 3]; 20] = [
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    let positions = p.iter().enumerate().map(|(k, &(x, y, z))| DVec3::new(x, y, z) + jitter(k as u32)).collect();
-    PolyMesh::from_triangles(positions, &f)
+    let mut mesh = common::icosahedron();
+    for (k, p) in mesh.positions.iter_mut().enumerate() {
+        *p += jitter(k as u32);
+    }
+    mesh
 }
 
 /// An open `n × n` grid; `triangles` splits each quad in two.
@@ -83,7 +42,7 @@ fn grid(n: u32, triangles: bool) -> PolyMesh {
             p.push(DVec3::new(f64::from(i), f64::from(j), 0.0) + jitter(id(i, j)));
         }
     }
-    let mut faces = Vec::new();
+    let mut faces: Vec<Vec<u32>> = Vec::new();
     for j in 0..n {
         for i in 0..n {
             let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
@@ -95,6 +54,7 @@ fn grid(n: u32, triangles: bool) -> PolyMesh {
             }
         }
     }
+    let faces: Vec<&[u32]> = faces.iter().map(Vec::as_slice).collect();
     poly(p, &faces)
 }
 
@@ -117,6 +77,7 @@ fn prism() -> PolyMesh {
         vec![3, 4, 9, 8],
         vec![4, 0, 5, 9],
     ];
+    let faces: Vec<&[u32]> = faces.iter().map(Vec::as_slice).collect();
     poly(p, &faces)
 }
 
@@ -232,10 +193,7 @@ fn errors() {
     let err = SubdivisionMatrix::loop_scheme(&quads, 1, &LoopOptions::default()).unwrap_err();
     assert!(matches!(err, SubdivError::NotTriangles { face: 0, corners: 4 }), "{err}");
     // Three faces on one edge.
-    let bad = poly(
-        vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE],
-        &[vec![0, 1, 2], vec![1, 0, 3], vec![0, 1, 4]],
-    );
+    let bad = poly(vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE], &[&[0, 1, 2], &[1, 0, 3], &[0, 1, 4]]);
     assert!(SubdivisionMatrix::loop_scheme(&bad, 1, &LoopOptions::default()).is_err());
     assert!(SubdivisionMatrix::catmull_clark(&bad, 1, &CatmullClarkOptions::default()).is_err());
 }
