@@ -20,7 +20,7 @@ use splinekit_render::{CurveOptions, FileOptions, ImageSize, PictureFormat, Pict
 ///   `front` (the xy-plane) when all curves are 2D, `iso` otherwise. Writes SVG instead of
 ///   PNG when OUT ends in .svg.
 ///
-/// - A mesh (.obj, .ply, .stl): a 3D picture of the mesh, smooth-shaded with the file's
+/// - A mesh (.obj, .glb, .ply, .stl): a 3D picture of the mesh, smooth-shaded with the file's
 ///   vertex normals, flat-shaded without.
 ///
 /// Prints one line: the path written, the size, and what was drawn. The file is written to
@@ -33,7 +33,7 @@ use splinekit_render::{CurveOptions, FileOptions, ImageSize, PictureFormat, Pict
     3D pictures use a perspective camera framing the whole scene, 2×2 supersampling and a \
     depth buffer; --wireframe draws the visible triangle edges only.")]
 pub struct RenderArgs {
-    /// SWP file, or mesh file (.obj, .ply, .stl), to draw
+    /// SWP file, or mesh file (.obj, .glb, .ply, .stl), to draw
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
 

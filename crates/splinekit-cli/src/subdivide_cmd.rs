@@ -16,7 +16,7 @@ use splinekit_io::mesh::{MeshFormat, load_mesh, save, save_poly};
 
 use crate::output::JsonNum;
 
-/// Subdivide a mesh (OBJ, PLY or STL): Loop's scheme for triangle meshes (default), or
+/// Subdivide a mesh (OBJ, glb, PLY or STL): Loop's scheme for triangle meshes (default), or
 /// Catmull-Clark for any polygon mesh (`--scheme catmull-clark`).
 ///
 /// Each level splits every triangle into four (SPEC §3.2); a closed mesh with V vertices,
@@ -49,7 +49,7 @@ use crate::output::JsonNum;
     splinekit subdivide torus.ply -n 3 --threads 1 --json --repeat 5\n  \
     splinekit subdivide patch.obj -n 4 --boundary corners --color-by-level -o patch4.ply")]
 pub struct SubdivideArgs {
-    /// Input mesh (.obj, .ply, .stl)
+    /// Input mesh (.obj, .glb, .ply, .stl)
     #[arg(value_name = "IN")]
     pub input: PathBuf,
 

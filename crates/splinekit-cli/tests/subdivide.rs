@@ -54,6 +54,11 @@ fn writes_every_format_and_warns_about_html_lines() {
         assert!(run.stderr.contains("warning"), "the HTML lines are reported: {}", run.stderr);
         assert!(out.metadata().unwrap().len() > 0);
     }
+    // The .glb reads back: one more level.
+    let glb = dir.join("bunny.glb");
+    let run = splinekit(&["subdivide", glb.to_str().unwrap(), "-n", "1", "--json", "--threads", "1"]);
+    assert_eq!(run.json()["faces"], 4 * 19872);
+    assert!(!run.stderr.contains("warning"), "{}", run.stderr);
     // V + E for the bunny: V = 2503, F = 4968, 42 boundary edges → E = (3F + 42) / 2.
     let (v, f) = obj_counts(&dir.join("bunny.obj"));
     assert_eq!((v, f), (2503 + (3 * 4968 + 42) / 2, 4 * 4968));

@@ -31,7 +31,7 @@ pub enum RenderError {
         source: splinekit::SplineError,
     },
     /// The input's extension names no format that can be drawn.
-    #[error("{path}: cannot draw a file of this kind ({extension}); expected .swp, .obj, .ply or .stl")]
+    #[error("{path}: cannot draw a file of this kind ({extension}); expected .swp, .obj, .glb, .ply or .stl")]
     UnknownInput {
         /// The input file.
         path: String,

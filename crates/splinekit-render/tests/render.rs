@@ -316,7 +316,7 @@ fn errors_name_the_problem() {
     let err = render_file(&txt, PictureFormat::Png, &FileOptions::DEFAULT).unwrap_err();
     assert!(
         err.to_string()
-            .ends_with("notes.txt: cannot draw a file of this kind (.txt); expected .swp, .obj, .ply or .stl"),
+            .ends_with("notes.txt: cannot draw a file of this kind (.txt); expected .swp, .obj, .glb, .ply or .stl"),
         "{err}"
     );
 
@@ -355,4 +355,22 @@ fn writing_replaces_the_file_atomically() {
     // A directory that does not exist: an error naming the path, nothing written.
     let err = r.picture.write(&dir.path().join("no/such/dir/x.png")).unwrap_err();
     assert!(err.to_string().contains("x.png"), "{err}");
+}
+
+#[test]
+fn glb_meshes_render_like_their_obj() {
+    let dir = tempfile::tempdir().unwrap();
+    let glb = dir.path().join("icosahedron.glb");
+    splinekit_io::mesh::save(&icosahedron(), &glb, splinekit_io::MeshFormat::Glb).unwrap();
+    let options = FileOptions::DEFAULT.with_size(size(160, 120));
+    let from_glb = render(&glb, &options);
+    let from_obj = render(&io_data("obj/icosahedron.obj"), &options);
+    assert_eq!(from_glb.kind, PictureKind::Mesh);
+    assert_eq!(from_glb.num_triangles, 20);
+    // The same picture up to the f32 rounding of the glb's coordinates.
+    let (a, b) = (image_of(&from_glb), image_of(&from_obj));
+    let changed = a.iter_pixels().zip(b.iter_pixels()).filter(|(p, q)| diff(*p, *q) > 2).count();
+    assert!(changed <= 16, "{changed} pixels differ");
+    let trimesh = io_data("glb/trimesh_scene.glb");
+    assert!(render(&trimesh, &options).num_triangles > 0);
 }
