@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the C++ Loop drivers into OUTDIR (default: target/bench-peers of the workspace),
+# Builds the C++ subdivision drivers into OUTDIR (default: target/bench-peers of the workspace),
 # skipping a driver whose headers are missing and rebuilding only when a source changed.
 # Needs the Debian packages libosd-dev, libcgal-dev (+ libgmp-dev libmpfr-dev, pulled in),
 # libopenmesh-dev and g++; bench/install_peers.sh installs them.
@@ -31,4 +31,5 @@ build() { # name header libs...
 build osd_loop /usr/include/opensubdiv/far/primvarRefiner.h -losdCPU
 build osd_catmark /usr/include/opensubdiv/far/primvarRefiner.h -losdCPU
 build cgal_loop /usr/include/CGAL/subdivision_method_3.h -lgmp -lmpfr
+build cgal_sqrt3_doosabin /usr/include/CGAL/subdivision_method_3.h -lgmp -lmpfr
 build openmesh_loop /usr/include/OpenMesh/Tools/Subdivider/Uniform/LoopT.hh -lOpenMeshCore

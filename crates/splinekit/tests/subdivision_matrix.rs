@@ -191,7 +191,7 @@ fn errors() {
     assert!(err.to_string().contains("11 values for a matrix of 12 columns"), "{err}");
     let quads = grid(2, false);
     let err = SubdivisionMatrix::loop_scheme(&quads, 1, &LoopOptions::default()).unwrap_err();
-    assert!(matches!(err, SubdivError::NotTriangles { face: 0, corners: 4 }), "{err}");
+    assert!(matches!(err, SubdivError::NotTriangles { face: 0, corners: 4, .. }), "{err}");
     // Three faces on one edge.
     let bad = poly(vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE], &[&[0, 1, 2], &[1, 0, 3], &[0, 1, 4]]);
     assert!(SubdivisionMatrix::loop_scheme(&bad, 1, &LoopOptions::default()).is_err());

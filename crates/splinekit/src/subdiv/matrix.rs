@@ -62,7 +62,7 @@ impl SubdivisionMatrix {
         for (face, f) in mesh.faces().enumerate() {
             match f {
                 &[a, b, c] => triangles.push([a, b, c]),
-                _ => return Err(SubdivError::NotTriangles { face, corners: f.len() }),
+                _ => return Err(SubdivError::NotTriangles { face, corners: f.len(), scheme: "Loop" }),
             }
         }
         let rules = Rules::new(options);
