@@ -21,6 +21,7 @@
 //! pictures are the same bytes on every run; `index.html` differs only in its timings. Every
 //! file goes through a temporary file and a rename.
 
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -201,7 +202,14 @@ pub fn write_gallery(
         std::fs::create_dir_all(&path)
             .map_err(|error| RenderError::Write { path: path.display().to_string(), error })?;
     }
-    let mut writer = Writer { dir: dir.to_path_buf(), size: options.size, files: Vec::new(), steps: 0, progress };
+    let mut writer = Writer {
+        dir: dir.to_path_buf(),
+        size: options.size,
+        files: Vec::new(),
+        pictures: BTreeMap::new(),
+        steps: 0,
+        progress,
+    };
     let mut entries = Vec::new();
     for (name, text) in COURSE_FILES {
         entries.push(writer.course_file(name, text)?);
@@ -219,7 +227,7 @@ pub fn write_gallery(
     entries.push(writer.ribbon()?);
     writer.step("ribbon along a trefoil knot");
     let elapsed = start.elapsed();
-    let html = page(&entries, &writer.dir, options, elapsed)?;
+    let html = page(&entries, &writer.pictures, options, elapsed);
     writer.write_bytes("index.html", html.as_bytes())?;
     writer.step("index.html");
     Ok(Gallery { entries, files: writer.files, elapsed })
@@ -230,6 +238,8 @@ struct Writer<'a> {
     dir: PathBuf,
     size: ImageSize,
     files: Vec<String>,
+    /// The PNG bytes of every picture written, for the page.
+    pictures: BTreeMap<String, Vec<u8>>,
     steps: usize,
     progress: &'a mut dyn FnMut(usize, &str),
 }
@@ -243,6 +253,13 @@ impl Writer<'_> {
     fn write_bytes(&mut self, rel: &str, bytes: &[u8]) -> Result<(), RenderError> {
         crate::image::write_bytes(&self.dir.join(rel), bytes)?;
         self.files.push(rel.to_string());
+        Ok(())
+    }
+
+    /// Writes a PNG picture and keeps its bytes for the page.
+    fn write_picture(&mut self, rel: &str, png: Vec<u8>) -> Result<(), RenderError> {
+        self.write_bytes(rel, &png)?;
+        self.pictures.insert(rel.to_string(), png);
         Ok(())
     }
 
@@ -281,7 +298,7 @@ impl Writer<'_> {
         let render_time = t.elapsed();
         let picture = format!("images/{stem}.png");
         let png = picture_png(&rendered.picture)?;
-        self.write_bytes(&picture, &png)?;
+        self.write_picture(&picture, png)?;
         if meshes.is_empty() {
             let svg = render_swp_document(&doc, &meshes, name, PictureFormat::Svg, &self.file_options())?;
             if let crate::Picture::Svg(text) = svg.picture {
@@ -341,7 +358,7 @@ impl Writer<'_> {
         let scene =
             render_swp_document(&doc, &[], name, PictureFormat::Png, &self.file_options().with_view(Some(View::Iso)))?;
         let scene_time = t.elapsed();
-        self.write_bytes("images/reference-scene.png", &picture_png(&scene.picture)?)?;
+        self.write_picture("images/reference-scene.png", picture_png(&scene.picture)?)?;
         let rows: Vec<Vec<String>> =
             chord.iter_rows().map(|(u, s)| vec![format!("{u:.1}"), format!("{s:.5}")]).collect();
         let first = Entry {
@@ -372,7 +389,7 @@ impl Writer<'_> {
         let png = picture_png(&plot.picture)?;
         let svg = render_swp_document(&doc, &[], name, PictureFormat::Svg, &options)?;
         let plot_time = t.elapsed();
-        self.write_bytes("images/arc-length-markers.png", &png)?;
+        self.write_picture("images/arc-length-markers.png", png)?;
         let mut files = Vec::new();
         if let crate::Picture::Svg(text) = svg.picture {
             self.write_bytes("images/arc-length-markers.svg", text.as_bytes())?;
@@ -424,7 +441,7 @@ impl Writer<'_> {
         let image = render_mesh(&tri, &options);
         let render_time = t.elapsed();
         let picture = format!("images/{name}.png");
-        self.write_bytes(&picture, &image.encode_png()?)?;
+        self.write_picture(&picture, image.encode_png()?)?;
         let mut facts = vec![
             (String::from("vertices"), group_digits(tri.num_vertices())),
             (String::from("triangles"), group_digits(tri.triangles.len())),
@@ -477,7 +494,7 @@ impl Writer<'_> {
         let image = render_mesh(&mesh, &RenderOptions::DEFAULT.with_size(self.size).with_view(View::Iso));
         let render_time = t.elapsed();
         let picture = format!("images/{stem}.png");
-        self.write_bytes(&picture, &image.encode_png()?)?;
+        self.write_picture(&picture, image.encode_png()?)?;
         Ok(Entry {
             section: Section::Frames,
             title: String::from("A ribbon along a trefoil knot"),
@@ -586,7 +603,12 @@ fn base64(bytes: &[u8]) -> String {
 }
 
 /// The page: every entry by section, pictures embedded.
-fn page(entries: &[Entry], dir: &Path, options: &GalleryOptions, elapsed: Duration) -> Result<String, RenderError> {
+fn page(
+    entries: &[Entry],
+    pictures: &BTreeMap<String, Vec<u8>>,
+    options: &GalleryOptions,
+    elapsed: Duration,
+) -> String {
     let mut html = String::new();
     let total_files: usize = entries.iter().map(|e| 1 + e.files.len()).sum();
     let _ = write!(
@@ -632,23 +654,21 @@ footer {{ margin: 2em 0; font-size: 0.85em; color: #666; }}
         }
         let _ = writeln!(html, "<h2>{}</h2>\n<div class=\"grid\">", escape(section.title()));
         for entry in in_section {
-            card(&mut html, entry, dir)?;
+            card(&mut html, entry, &pictures[&entry.picture]);
         }
         html.push_str("</div>\n");
     }
     html.push_str("<footer>Timings are wall-clock times of this run on this machine.</footer>\n</body>\n</html>\n");
-    Ok(html)
+    html
 }
 
 /// One entry's card.
-fn card(html: &mut String, entry: &Entry, dir: &Path) -> Result<(), RenderError> {
-    let path = dir.join(&entry.picture);
-    let png = std::fs::read(&path).map_err(|error| RenderError::Write { path: path.display().to_string(), error })?;
+fn card(html: &mut String, entry: &Entry, png: &[u8]) {
     let _ = writeln!(
         html,
         "<div class=\"card\">\n<a href=\"{src}\"><img src=\"data:image/png;base64,{data}\" alt=\"{alt}\"></a>\n<h3>{title}</h3>\n<p>{caption}</p>",
         src = escape(&entry.picture),
-        data = base64(&png),
+        data = base64(png),
         alt = escape(&entry.title),
         title = escape(&entry.title),
         caption = escape(&entry.caption),
@@ -682,7 +702,6 @@ fn card(html: &mut String, entry: &Entry, dir: &Path) -> Result<(), RenderError>
         let _ = write!(html, "<a href=\"{}\">{}</a>", escape(file), escape(label));
     }
     html.push_str("</div>\n</div>\n");
-    Ok(())
 }
 
 #[cfg(test)]

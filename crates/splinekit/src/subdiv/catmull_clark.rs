@@ -209,7 +209,7 @@ impl<'a> Rings<'a> {
     }
 
     /// The child faces (all quads): face offsets and corners.
-    fn child_faces(&self) -> (Vec<u32>, Vec<u32>) {
+    pub(super) fn child_faces(&self) -> (Vec<u32>, Vec<u32>) {
         let (nv, ne) = (self.mesh.num_vertices() as u32, self.adj.num_edges() as u32);
         let corners = self.mesh.face_vertices.len();
         let offsets: Vec<u32> = (0..=corners as u32).map(|k| 4 * k).collect();

@@ -33,7 +33,7 @@
 
 use rayon::prelude::*;
 
-use super::catmull_clark::{CatmullClarkOptions, Rings, catmull_clark_step};
+use super::catmull_clark::{CatmullClarkOptions, Rings};
 use super::loop_scheme::{Attribute, BoundaryRule, LoopOptions, Rules, SubdivError};
 use super::topology::{MIN_LEN, Table, Topology, next, prev};
 use crate::mesh::{NONE, PolyMesh};
@@ -90,17 +90,16 @@ impl SubdivisionMatrix {
     /// inconsistently oriented topology, naming it.
     pub fn catmull_clark(mesh: &PolyMesh, levels: usize, options: &CatmullClarkOptions) -> Result<Self, SubdivError> {
         let mut matrix = Self::identity(mesh.num_vertices());
-        let topology_only = CatmullClarkOptions { color_by_level: false, ..*options };
         let mut current: Option<PolyMesh> = None;
         for level in 0..levels {
             let m = current.as_ref().unwrap_or(mesh);
             let rings = Rings::new(m)?;
             matrix = catmull_clark_level(&rings, options.boundary).times(&matrix);
             if level + 1 < levels {
-                // The child's connectivity (its positions are computed on the way; cheap next
-                // to the weights).
-                let bare = PolyMesh { colors: Vec::new(), normals: None, uvs: None, ..m.clone() };
-                current = Some(catmull_clark_step(&bare, level + 1, &topology_only)?);
+                // The child's connectivity only: its positions are never read.
+                let (face_offsets, face_vertices) = rings.child_faces();
+                let positions = vec![glam::DVec3::ZERO; matrix.num_rows()];
+                current = Some(PolyMesh { positions, face_offsets, face_vertices, ..PolyMesh::default() });
             }
         }
         Ok(matrix)
@@ -243,6 +242,7 @@ impl Builder {
 fn loop_level(topo: &Table<'_>, rules: &Rules) -> SubdivisionMatrix {
     let nv = topo.num_vertices() as u32;
     let mut b = Builder::new(nv as usize);
+    let mut ring = Vec::new();
     for v in 0..nv {
         let start = topo.vertex_start(v);
         if start == NONE {
@@ -251,7 +251,7 @@ fn loop_level(topo: &Table<'_>, rules: &Rules) -> SubdivisionMatrix {
             continue;
         }
         let out = |h: u32| topo.tri(h / 3)[next(h % 3) as usize];
-        let mut ring = Vec::new();
+        ring.clear();
         let mut h = start;
         let mut boundary = None;
         loop {
