@@ -5,20 +5,13 @@
 use glam::{DMat3, DVec2, DVec3};
 use splinekit::PolyMesh;
 use splinekit::mesh::{Adjacency, FaceVarying};
+mod common;
+use common::{cube, poly, prism};
+
 use splinekit::subdiv::{
     DooSabinOptions, LEVEL_COLORS, Sqrt3Options, SubdivError, catmull_clark_subdivide, doo_sabin_subdivide,
     sqrt3_subdivide,
 };
-
-fn poly(positions: Vec<DVec3>, faces: &[&[u32]]) -> PolyMesh {
-    let mut face_offsets = vec![0];
-    let mut face_vertices = Vec::new();
-    for f in faces {
-        face_vertices.extend_from_slice(f);
-        face_offsets.push(face_vertices.len() as u32);
-    }
-    PolyMesh { positions, face_offsets, face_vertices, ..PolyMesh::default() }
-}
 
 /// An irregular tetrahedron, outward.
 fn tetra() -> PolyMesh {
@@ -65,38 +58,6 @@ fn grid(n: u32, triangles: bool, z: impl Fn(f64, f64) -> f64) -> PolyMesh {
 
 fn bump(x: f64, y: f64) -> f64 {
     0.2 * (2.0 * x + 1.0).sin() * (3.0 * y).cos()
-}
-
-/// The cube `[−1, 1]³`.
-fn cube() -> PolyMesh {
-    let p = (0..8).map(|i| {
-        DVec3::new(f64::from(i & 1) * 2.0 - 1.0, f64::from((i >> 1) & 1) * 2.0 - 1.0, f64::from(i >> 2) * 2.0 - 1.0)
-    });
-    poly(p.collect(), &[&[0, 2, 3, 1], &[4, 5, 7, 6], &[0, 1, 5, 4], &[2, 6, 7, 3], &[0, 4, 6, 2], &[1, 3, 7, 5]])
-}
-
-/// A pentagonal prism with one side split into two triangles.
-fn prism() -> PolyMesh {
-    let mut p = Vec::new();
-    for z in [0.0, 1.3] {
-        for k in 0..5 {
-            let a = std::f64::consts::TAU * f64::from(k) / 5.0 + 0.1;
-            p.push(DVec3::new(a.cos(), a.sin(), z + 0.1 * f64::from(k)));
-        }
-    }
-    poly(
-        p,
-        &[
-            &[4, 3, 2, 1, 0],
-            &[5, 6, 7, 8, 9],
-            &[0, 1, 6, 5],
-            &[1, 2, 7],
-            &[1, 7, 6],
-            &[2, 3, 8, 7],
-            &[3, 4, 9, 8],
-            &[4, 0, 5, 9],
-        ],
-    )
 }
 
 /// (V, E, F, boundary edges), checking that the mesh is manifold and consistently oriented.

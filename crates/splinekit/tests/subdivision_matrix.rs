@@ -58,27 +58,13 @@ fn grid(n: u32, triangles: bool) -> PolyMesh {
     poly(p, &faces)
 }
 
-/// A closed mesh of triangles, quads and pentagons (a pentagonal prism, one side split).
+/// The prism of triangles, quads and pentagons, jittered.
 fn prism() -> PolyMesh {
-    let mut p = Vec::new();
-    for z in [0.0, 1.3] {
-        for k in 0..5 {
-            let a = std::f64::consts::TAU * f64::from(k) / 5.0 + 0.1;
-            p.push(DVec3::new(a.cos(), a.sin(), z) + jitter(p.len() as u32));
-        }
+    let mut mesh = common::prism();
+    for (k, p) in mesh.positions.iter_mut().enumerate() {
+        *p += jitter(k as u32);
     }
-    let faces = [
-        vec![4, 3, 2, 1, 0],
-        vec![5, 6, 7, 8, 9],
-        vec![0, 1, 6, 5],
-        vec![1, 2, 7],
-        vec![1, 7, 6],
-        vec![2, 3, 8, 7],
-        vec![3, 4, 9, 8],
-        vec![4, 0, 5, 9],
-    ];
-    let faces: Vec<&[u32]> = faces.iter().map(Vec::as_slice).collect();
-    poly(p, &faces)
+    mesh
 }
 
 fn max_diff(a: &[DVec3], b: &[DVec3]) -> f64 {
