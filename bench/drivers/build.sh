@@ -20,7 +20,7 @@ build() { # name header libs...
         return 0
     fi
     if [ "$out/$name" -nt "$here/$name.cpp" ] && [ "$out/$name" -nt "$here/common.hpp" ] \
-        && [ "$out/$name" -nt "$here/osd_common.hpp" ]; then
+        && [ "$out/$name" -nt "$here/osd_common.hpp" ] && [ "$out/$name" -nt "$here/cgal_common.hpp" ]; then
         return 0
     fi
     echo "build.sh: building $name" >&2

@@ -19,7 +19,7 @@
 #include <CGAL/subdivision_method_3.h>
 #include <CGAL/version.h>
 
-#include "common.hpp"
+#include "cgal_common.hpp"
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
 typedef Kernel::Point_3 Point;
@@ -41,23 +41,14 @@ int main(int argc, char** argv) {
     const bool sqrt3 = scheme == "sqrt3";
     Args a = parse_args(int(rest.size()), rest.data(), usage, false);
     Tri in = read_obj(a.input, true);
+    if (sqrt3 && !in.sizes.empty())
+        for (int f = 0; f < in.num_faces(); ++f)
+            if (in.sizes[f] != 3) {
+                std::fprintf(stderr, "face %d is not a triangle\n", f);
+                return 1;
+            }
     Mesh base;
-    std::vector<Mesh::Vertex_index> vi;
-    for (int v = 0; v < in.num_vertices(); ++v)
-        vi.push_back(base.add_vertex(Point(in.xyz[3 * v], in.xyz[3 * v + 1], in.xyz[3 * v + 2])));
-    size_t c = 0;
-    for (int f = 0; f < in.num_faces(); ++f) {
-        std::vector<Mesh::Vertex_index> face;
-        for (int k = 0; k < in.sizes[f]; ++k) face.push_back(vi[in.tri[c++]]);
-        if (sqrt3 && face.size() != 3) {
-            std::fprintf(stderr, "face %d is not a triangle\n", f);
-            return 1;
-        }
-        if (base.add_face(face) == Mesh::null_face()) {
-            std::fprintf(stderr, "CGAL refused face %d\n", f);
-            return 1;
-        }
-    }
+    to_surface_mesh(in, base);
 
     std::vector<double> times;
     Mesh m;
@@ -73,22 +64,7 @@ int main(int argc, char** argv) {
     }
 
     if (a.output) {
-        Tri out;
-        std::vector<int> index(m.number_of_vertices() + m.number_of_removed_vertices(), -1);
-        int k = 0;
-        for (auto v : m.vertices()) {
-            index[v.idx()] = k++;
-            const Point& p = m.point(v);
-            out.xyz.insert(out.xyz.end(), {p.x(), p.y(), p.z()});
-        }
-        for (auto f : m.faces()) {
-            int n = 0;
-            for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) {
-                out.tri.push_back(index[v.idx()]);
-                ++n;
-            }
-            out.sizes.push_back(n);
-        }
+        Tri out = from_surface_mesh(m);
         char comment[256];
         std::snprintf(comment, sizeof comment, "CGAL %s Subdivision_method_3::%s, number_of_iterations(%d)",
                       CGAL_VERSION_STR, sqrt3 ? "Sqrt3_subdivision" : "DooSabin_subdivision", a.levels);
