@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the C++ Loop drivers into OUTDIR (default: target/bench-peers of the workspace),
+# Builds the C++ subdivision drivers into OUTDIR (default: target/bench-peers of the workspace),
 # skipping a driver whose headers are missing and rebuilding only when a source changed.
 # Needs the Debian packages libosd-dev, libcgal-dev (+ libgmp-dev libmpfr-dev, pulled in),
 # libopenmesh-dev and g++; bench/install_peers.sh installs them.
@@ -20,7 +20,7 @@ build() { # name header libs...
         return 0
     fi
     if [ "$out/$name" -nt "$here/$name.cpp" ] && [ "$out/$name" -nt "$here/common.hpp" ] \
-        && [ "$out/$name" -nt "$here/osd_common.hpp" ]; then
+        && [ "$out/$name" -nt "$here/osd_common.hpp" ] && [ "$out/$name" -nt "$here/cgal_common.hpp" ]; then
         return 0
     fi
     echo "build.sh: building $name" >&2
@@ -31,4 +31,5 @@ build() { # name header libs...
 build osd_loop /usr/include/opensubdiv/far/primvarRefiner.h -losdCPU
 build osd_catmark /usr/include/opensubdiv/far/primvarRefiner.h -losdCPU
 build cgal_loop /usr/include/CGAL/subdivision_method_3.h -lgmp -lmpfr
+build cgal_sqrt3_doosabin /usr/include/CGAL/subdivision_method_3.h -lgmp -lmpfr
 build openmesh_loop /usr/include/OpenMesh/Tools/Subdivider/Uniform/LoopT.hh -lOpenMeshCore

@@ -13,7 +13,7 @@
 #include <CGAL/subdivision_method_3.h>
 #include <CGAL/version.h>
 
-#include "common.hpp"
+#include "cgal_common.hpp"
 
 typedef CGAL::Simple_cartesian<double> Kernel;
 typedef Kernel::Point_3 Point;
@@ -23,15 +23,7 @@ int main(int argc, char** argv) {
     Args a = parse_args(argc, argv, "cgal_loop IN.obj -n LEVELS [--repeat R] [-o OUT.obj]", false);
     Tri in = read_obj(a.input);
     Mesh base;
-    std::vector<Mesh::Vertex_index> vi;
-    for (int v = 0; v < in.num_vertices(); ++v)
-        vi.push_back(base.add_vertex(Point(in.xyz[3 * v], in.xyz[3 * v + 1], in.xyz[3 * v + 2])));
-    for (int t = 0; t < in.num_faces(); ++t) {
-        if (base.add_face(vi[in.tri[3 * t]], vi[in.tri[3 * t + 1]], vi[in.tri[3 * t + 2]]) == Mesh::null_face()) {
-            std::fprintf(stderr, "CGAL refused face %d\n", t);
-            return 1;
-        }
-    }
+    to_surface_mesh(in, base);
 
     std::vector<double> times;
     Mesh m;
@@ -44,22 +36,8 @@ int main(int argc, char** argv) {
     }
 
     if (a.output) {
-        Tri out;
-        std::vector<int> index(m.number_of_vertices() + m.number_of_removed_vertices(), -1);
-        int k = 0;
-        for (auto v : m.vertices()) {
-            index[v.idx()] = k++;
-            const Point& p = m.point(v);
-            out.xyz.insert(out.xyz.end(), {p.x(), p.y(), p.z()});
-        }
-        for (auto f : m.faces()) {
-            int c = 0;
-            for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) {
-                out.tri.push_back(index[v.idx()]);
-                ++c;
-            }
-            if (c != 3) return 1;
-        }
+        Tri out = from_surface_mesh(m);
+        if (!out.sizes.empty()) return 1;  // Loop gives triangles only
         char comment[256];
         std::snprintf(comment, sizeof comment, "CGAL %s Subdivision_method_3::Loop_subdivision, number_of_iterations(%d)",
                       CGAL_VERSION_STR, a.levels);

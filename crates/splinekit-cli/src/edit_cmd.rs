@@ -6,7 +6,7 @@ use clap::Args;
 
 /// Open the interactive editor: 2D curve editing and the swept surfaces or a mesh in 3D.
 ///
-/// FILE may be an SWP file (edited as the document), or an OBJ, PLY or STL mesh (shown with
+/// FILE may be an SWP file (edited as the document), or an OBJ, glb, PLY or STL mesh (shown with
 /// Loop subdivision; an OBJ with a spline header is rebuilt from its spline). Files can also
 /// be opened from the path field at the top of the window. Press h in the window for the
 /// keyboard shortcuts. Needs a display (X11 or Wayland) and a Vulkan, Metal, DX12 or GL driver.

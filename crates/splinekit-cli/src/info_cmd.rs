@@ -13,7 +13,7 @@ use crate::sweep_cmd;
 /// List the curves (kind, points, segments, closed) and surfaces of an SWP file, with the
 /// vertex and triangle counts each surface sweeps to.
 ///
-/// For a mesh file (.obj, .ply, .stl): counts, boundary loops, components, Euler
+/// For a mesh file (.obj, .glb, .ply, .stl): counts, boundary loops, components, Euler
 /// characteristic, genus and every topology problem, by vertex and face index.
 #[derive(Debug, clap::Args)]
 #[command(after_help = "Examples:\n  \
@@ -22,7 +22,7 @@ use crate::sweep_cmd;
     Surface counts are given for both layouts: compat (the course program's, SPEC §2.3) and welded \
     (seams and poles shared; the default of `splinekit sweep`).")]
 pub struct InfoArgs {
-    /// SWP file, or mesh file (.obj, .ply, .stl), to read
+    /// SWP file, or mesh file (.obj, .glb, .ply, .stl), to read
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
 

@@ -8,9 +8,11 @@ mod alloc;
 mod arclen_cmd;
 mod curve_cmd;
 mod edit_cmd;
+mod gallery_cmd;
 mod info_cmd;
 mod mesh_info;
 mod output;
+mod render_cmd;
 mod select;
 mod subdivide_cmd;
 mod sweep_cmd;
@@ -24,8 +26,8 @@ use clap::{Parser, Subcommand};
 static ALLOCATOR: alloc::HugePageAlloc = alloc::HugePageAlloc;
 
 /// Spline curves and swept surfaces from SWP files: arc length, u–s tables, arc-length
-/// resampling, tessellated points, and meshes of surfaces of revolution and generalized
-/// cylinders.
+/// resampling, tessellated points, meshes of surfaces of revolution and generalized
+/// cylinders, and pictures of them (PNG, SVG) drawn without a display.
 ///
 /// Reads SWP curve descriptions (bez2/bez3 Bézier, bsp2/bsp3 uniform B-spline, cr2/cr3
 /// Catmull-Rom, her2/her3 Hermite, circ) and prints results as text, CSV or JSON on
@@ -39,6 +41,8 @@ static ALLOCATOR: alloc::HugePageAlloc = alloc::HugePageAlloc;
     splinekit curve scene.swp --curve 1 --steps 50 --format json\n  \
     splinekit sweep wineglass.swp -o out --format glb\n  \
     splinekit info wineglass.swp\n  \
+    splinekit render wineglass.swp -o wineglass.png\n  \
+    splinekit gallery -o gallery\n  \
     splinekit edit wineglass.swp\n\n\
     Run `splinekit <COMMAND> --help` for the flags of each command.")]
 struct Cli {
@@ -53,6 +57,8 @@ enum Command {
     Sweep(sweep_cmd::SweepArgs),
     Info(info_cmd::InfoArgs),
     Subdivide(subdivide_cmd::SubdivideArgs),
+    Render(render_cmd::RenderArgs),
+    Gallery(gallery_cmd::GalleryArgs),
     Edit(edit_cmd::EditArgs),
 }
 
@@ -65,6 +71,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Sweep(args) => sweep_cmd::run(&args, &mut out)?,
         Command::Info(args) => info_cmd::run(&args, &mut out)?,
         Command::Subdivide(args) => subdivide_cmd::run(&args, &mut out)?,
+        Command::Render(args) => render_cmd::run(&args, &mut out)?,
+        Command::Gallery(args) => gallery_cmd::run(&args, &mut out)?,
         Command::Edit(args) => edit_cmd::run(&args)?,
     }
     out.flush()?;

@@ -1,4 +1,4 @@
-//! `splinekit info MESH`: counts, topology and problems of an OBJ, PLY or STL mesh.
+//! `splinekit info MESH`: counts, topology and problems of an OBJ, glb, PLY or STL mesh.
 
 use std::io::Write;
 use std::path::Path;
@@ -12,7 +12,7 @@ use crate::output::{json_array, json_str};
 /// The `--json` fields for a mesh, shown in `splinekit info --help`.
 pub const JSON_HELP: &str = "Print one JSON object instead of text.
 
-For a mesh file (.obj, .ply, .stl) the object has: file, format; vertices and faces (as \
+For a mesh file (.obj, .glb, .ply, .stl) the object has: file, format; vertices and faces (as \
 read), triangles, quads and other_faces (faces by corner count); normals, uvs, colors \
 (booleans: whether the file gives them); edges, boundary_edges, boundary_loops (the edge \
 count of each loop); components; euler_characteristic (V − E + F over the vertices used by \

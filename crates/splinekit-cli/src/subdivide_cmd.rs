@@ -1,5 +1,5 @@
-//! `splinekit subdivide`: Loop subdivision of a triangle mesh file, Catmull-Clark of a
-//! polygon mesh file.
+//! `splinekit subdivide`: Loop or √3 subdivision of a triangle mesh file, Catmull-Clark or
+//! Doo-Sabin of a polygon mesh file.
 
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
@@ -9,15 +9,17 @@ use anyhow::{Context, anyhow, bail};
 use clap::ValueEnum;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
-    BoundaryRule, CatmullClarkOptions, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
-    catmull_clark_limit_positions, catmull_clark_subdivide, loop_limit_positions,
+    BoundaryRule, CatmullClarkOptions, DooSabinOptions, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options,
+    SubdivError, catmull_clark_limit_positions, catmull_clark_subdivide, doo_sabin_subdivide, loop_limit_positions,
+    sqrt3_subdivide,
 };
 use splinekit_io::mesh::{MeshFormat, load_mesh, save, save_poly};
 
 use crate::output::JsonNum;
 
-/// Subdivide a mesh (OBJ, PLY or STL): Loop's scheme for triangle meshes (default), or
-/// Catmull-Clark for any polygon mesh (`--scheme catmull-clark`).
+/// Subdivide a mesh (OBJ, glb, PLY or STL): Loop's scheme (default) or √3 (`--scheme sqrt3`)
+/// for triangle meshes, Catmull-Clark (`--scheme catmull-clark`) or Doo-Sabin (`--scheme
+/// doo-sabin`) for any polygon mesh.
 ///
 /// Each level splits every triangle into four (SPEC §3.2); a closed mesh with V vertices,
 /// E edges and F faces becomes V+E, 2E+3F, 4F. Weights: Loop's original β(n) (default; what
@@ -28,8 +30,21 @@ use crate::output::JsonNum;
 ///
 /// Catmull-Clark (OpenSubdiv's catmark weights) turns every n-gon into n quads: V+E+F
 /// vertices and one quad per corner; boundaries are creases, `--boundary corners` keeps
-/// single-face corners fixed; colours are carried (normals and UVs are not; `--weights` is
-/// Loop's only). OBJ output keeps the quads, the other formats get two triangles per quad.
+/// single-face corners fixed; colours are carried (normals and UVs are not). OBJ output keeps
+/// the quads, the other formats get two triangles per quad.
+///
+/// √3 (Kobbelt; CGAL's Sqrt3_subdivision) puts a point in every triangle and flips the old
+/// edges: V+F vertices, 3F triangles. Interior vertices move by α(n) = (4 − 2cos(2π/n))/9;
+/// boundaries are refined on every second level only (levels 2, 4, …: each boundary edge split
+/// in three, weights /27) and stay as they are on the others. Colours and seamless UVs are
+/// carried.
+///
+/// Doo-Sabin (CGAL's DooSabin_subdivision) makes a point for every face corner, weights
+/// (n+5)/(4n) and (3+2cos(2πk/n))/(4n), and a face for every face, interior edge and interior
+/// vertex (none along the boundary, which shrinks): Σ(face sizes) vertices. Colours and UVs are
+/// carried; OBJ keeps the polygons. √3 and Doo-Sabin have fixed rules: `--boundary` and
+/// `--limit` are refused, and so is `--color-by-level` for Doo-Sabin (every vertex is new at
+/// every level); `--weights` is refused for every scheme but Loop.
 ///
 /// `--limit` moves every output vertex to its limit position (Loop or Catmull-Clark masks
 /// matching the weights and boundary rule; Catmull-Clark needs at least one level).
@@ -47,9 +62,11 @@ use crate::output::JsonNum;
 #[command(after_help = "Examples:\n  \
     splinekit subdivide bunny.obj -n 2 -o bunny2.obj\n  \
     splinekit subdivide torus.ply -n 3 --threads 1 --json --repeat 5\n  \
-    splinekit subdivide patch.obj -n 4 --boundary corners --color-by-level -o patch4.ply")]
+    splinekit subdivide patch.obj -n 4 --boundary corners --color-by-level -o patch4.ply\n  \
+    splinekit subdivide bunny.obj -n 3 --scheme sqrt3 -o bunny3.obj\n  \
+    splinekit subdivide cube.obj -n 2 --scheme doo-sabin -o cube2.obj")]
 pub struct SubdivideArgs {
-    /// Input mesh (.obj, .ply, .stl)
+    /// Input mesh (.obj, .glb, .ply, .stl)
     #[arg(value_name = "IN")]
     pub input: PathBuf,
 
@@ -61,13 +78,14 @@ pub struct SubdivideArgs {
     #[arg(long, value_enum, default_value_t = Scheme::Loop)]
     pub scheme: Scheme,
 
-    /// Even-vertex weights: Loop's β(n) or Warren's 3/(8n)
-    #[arg(long, value_enum, default_value_t = Weights::Loop)]
-    pub weights: Weights,
+    /// Even-vertex weights (Loop only): Loop's β(n) or Warren's 3/(8n) [default: loop]
+    #[arg(long, value_enum)]
+    pub weights: Option<Weights>,
 
-    /// Boundary vertices: crease rule everywhere (smooth) or single-face corners fixed
-    #[arg(long, value_enum, default_value_t = Boundary::Smooth)]
-    pub boundary: Boundary,
+    /// Boundary vertices (Loop and Catmull-Clark): crease rule everywhere (smooth) or
+    /// single-face corners fixed [default: smooth]
+    #[arg(long, value_enum)]
+    pub boundary: Option<Boundary>,
 
     /// Worker threads [default: all cores]
     #[arg(long, value_name = "N")]
@@ -106,6 +124,23 @@ pub enum Scheme {
     Loop,
     /// Catmull-Clark (any polygon mesh; the result is all quads)
     CatmullClark,
+    /// √3 (triangle meshes; CGAL's rules)
+    #[value(name = "sqrt3")]
+    Sqrt3,
+    /// Doo-Sabin (any polygon mesh; CGAL's rules)
+    DooSabin,
+}
+
+impl Scheme {
+    /// The scheme's name in messages.
+    fn title(self) -> &'static str {
+        match self {
+            Self::Loop => "Loop",
+            Self::CatmullClark => "Catmull-Clark",
+            Self::Sqrt3 => "√3",
+            Self::DooSabin => "Doo-Sabin",
+        }
+    }
 }
 
 /// Even-vertex weights.
@@ -126,10 +161,37 @@ pub enum Boundary {
     Corners,
 }
 
+/// Refuses the options that mean nothing for the chosen scheme.
+fn check_options(args: &SubdivideArgs) -> anyhow::Result<()> {
+    let (scheme, name) = (args.scheme, args.scheme.title());
+    if scheme != Scheme::Loop && args.weights.is_some() {
+        bail!("--weights chooses Loop's even-vertex weights; {name} subdivision has none to choose (drop --weights)");
+    }
+    if matches!(scheme, Scheme::Sqrt3 | Scheme::DooSabin) {
+        if args.boundary.is_some() {
+            bail!(
+                "--boundary is for Loop and Catmull-Clark; {name} subdivision has CGAL's boundary rule only (drop \
+                 --boundary)"
+            );
+        }
+        if args.limit {
+            bail!("--limit: limit positions are computed for Loop and Catmull-Clark only, not {name} subdivision");
+        }
+    }
+    if scheme == Scheme::DooSabin && args.color_by_level {
+        bail!(
+            "--color-by-level: Doo-Sabin subdivision makes every vertex anew at every level, so there are no levels \
+             to colour by"
+        );
+    }
+    Ok(())
+}
+
 pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     if args.repeat == 0 {
         bail!("--repeat must be at least 1");
     }
+    check_options(args)?;
     let format =
         match &args.output {
             Some(path) => Some(MeshFormat::from_path(path).ok_or_else(|| {
@@ -154,18 +216,25 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         }
         mesh = split;
     }
-    if args.scheme == Scheme::CatmullClark {
-        return run_catmull_clark(args, &mesh, format, out);
+    match args.scheme {
+        Scheme::Loop => {}
+        Scheme::CatmullClark => return run_catmull_clark(args, &mesh, format, out),
+        Scheme::Sqrt3 => {
+            let options = Sqrt3Options { color_by_level: args.color_by_level };
+            let subdivide = |m: &PolyMesh| sqrt3_subdivide(m, args.levels as usize, &options);
+            return run_polygons(args, &mesh, format, out, subdivide, "triangles");
+        }
+        Scheme::DooSabin => {
+            let subdivide = |m: &PolyMesh| doo_sabin_subdivide(m, args.levels as usize, &DooSabinOptions::default());
+            return run_polygons(args, &mesh, format, out, subdivide, "faces");
+        }
     }
     let options = LoopOptions {
-        weights: match args.weights {
+        weights: match args.weights.unwrap_or(Weights::Loop) {
             Weights::Loop => LoopWeights::Loop,
             Weights::Warren => LoopWeights::Warren,
         },
-        boundary: match args.boundary {
-            Boundary::Smooth => BoundaryRule::Smooth,
-            Boundary::Corners => BoundaryRule::Corners,
-        },
+        boundary: boundary_rule(args),
         color_by_level: args.color_by_level,
     };
     let pool = thread_pool(args)?;
@@ -178,14 +247,7 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         drop(result.take()); // the previous run's output is not kept alive during this one
         let progress = show_progress.then(|| progress_bar(args.levels, run, args.repeat));
         let (finest, elapsed) =
-            pool.install(|| subdivide(&mesh, args.levels, options, progress.as_ref())).map_err(|err| match err {
-                SubdivError::Topology(_) => anyhow!(
-                    "{}: {err}; run with --split-nonmanifold to split non-manifold edges and vertices and go on \
-                     (`splinekit info` lists every problem)",
-                    args.input.display()
-                ),
-                _ => anyhow!("{}: {err}", args.input.display()),
-            })?;
+            pool.install(|| subdivide(&mesh, args.levels, options, progress.as_ref())).map_err(|e| explain(args, e))?;
         if let Some(p) = progress {
             p.finish_and_clear();
         }
@@ -207,6 +269,26 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         save(&tri, path, format)?;
     }
     report(args, out, (vertices, faces, "triangles"), seconds, threads)
+}
+
+/// The boundary rule of `--boundary`.
+fn boundary_rule(args: &SubdivideArgs) -> BoundaryRule {
+    match args.boundary.unwrap_or(Boundary::Smooth) {
+        Boundary::Smooth => BoundaryRule::Smooth,
+        Boundary::Corners => BoundaryRule::Corners,
+    }
+}
+
+/// A subdivision error naming the input, with the way on for a topology problem.
+fn explain(args: &SubdivideArgs, err: SubdivError) -> anyhow::Error {
+    match err {
+        SubdivError::Topology(_) => anyhow!(
+            "{}: {err}; run with --split-nonmanifold to split non-manifold edges and vertices and go on \
+             (`splinekit info` lists every problem)",
+            args.input.display()
+        ),
+        _ => anyhow!("{}: {err}", args.input.display()),
+    }
 }
 
 /// The worker threads of `--threads`.
@@ -233,7 +315,7 @@ fn report(
         writeln!(out, "{{\"vertices\": {vertices}, \"faces\": {faces}, \"seconds\": {}}}", JsonNum(seconds))?;
     } else {
         let target = args.output.as_ref().map_or_else(|| String::from("(not written)"), |p| p.display().to_string());
-        let scheme = if args.scheme == Scheme::Loop { "Loop" } else { "Catmull-Clark" };
+        let scheme = args.scheme.title();
         writeln!(
             out,
             "{target}: {vertices} vertices, {faces} {noun} after {} level{} of {scheme} subdivision in {seconds:.3} s \
@@ -254,32 +336,9 @@ fn run_catmull_clark(
     format: Option<MeshFormat>,
     out: &mut impl Write,
 ) -> anyhow::Result<()> {
-    let options = CatmullClarkOptions {
-        boundary: match args.boundary {
-            Boundary::Smooth => BoundaryRule::Smooth,
-            Boundary::Corners => BoundaryRule::Corners,
-        },
-        color_by_level: args.color_by_level,
-    };
+    let options = CatmullClarkOptions { boundary: boundary_rule(args), color_by_level: args.color_by_level };
     let pool = thread_pool(args)?;
-    let mut times = Vec::with_capacity(args.repeat);
-    let mut result = None;
-    for _ in 0..args.repeat {
-        drop(result.take());
-        let start = Instant::now();
-        let fine = pool.install(|| catmull_clark_subdivide(mesh, args.levels as usize, &options)).map_err(|err| {
-            anyhow!(
-                "{}: {err}; run with --split-nonmanifold to split non-manifold edges and vertices and go on \
-                 (`splinekit info` lists every problem)",
-                args.input.display()
-            )
-        })?;
-        times.push(start.elapsed());
-        result = Some(fine);
-    }
-    let mut fine = result.expect("at least one run");
-    times.sort_unstable();
-    let seconds = times[times.len() / 2].as_secs_f64();
+    let (mut fine, seconds) = timed(args, &pool, |m| catmull_clark_subdivide(m, args.levels as usize, &options), mesh)?;
     if let (Some(path), Some(format)) = (&args.output, format) {
         if args.limit {
             fine.positions =
@@ -288,6 +347,44 @@ fn run_catmull_clark(
         save_poly(&fine, path, format)?;
     }
     report(args, out, (fine.num_vertices(), fine.num_faces(), "quads"), seconds, pool.current_num_threads())
+}
+
+/// `--scheme sqrt3` and `--scheme doo-sabin`: time `--repeat` runs of `subdivide`, write the
+/// last.
+fn run_polygons(
+    args: &SubdivideArgs,
+    mesh: &PolyMesh,
+    format: Option<MeshFormat>,
+    out: &mut impl Write,
+    subdivide: impl Fn(&PolyMesh) -> Result<PolyMesh, SubdivError> + Sync,
+    noun: &str,
+) -> anyhow::Result<()> {
+    let pool = thread_pool(args)?;
+    let (fine, seconds) = timed(args, &pool, subdivide, mesh)?;
+    if let (Some(path), Some(format)) = (&args.output, format) {
+        save_poly(&fine, path, format)?;
+    }
+    report(args, out, (fine.num_vertices(), fine.num_faces(), noun), seconds, pool.current_num_threads())
+}
+
+/// `--repeat` runs of `subdivide` on `mesh` in `pool`: the last result and the median time.
+fn timed(
+    args: &SubdivideArgs,
+    pool: &rayon::ThreadPool,
+    subdivide: impl Fn(&PolyMesh) -> Result<PolyMesh, SubdivError> + Sync,
+    mesh: &PolyMesh,
+) -> anyhow::Result<(PolyMesh, f64)> {
+    let mut times = Vec::with_capacity(args.repeat);
+    let mut result = None;
+    for _ in 0..args.repeat {
+        drop(result.take()); // the previous run's output is not kept alive during this one
+        let start = Instant::now();
+        let fine = pool.install(|| subdivide(mesh)).map_err(|e| explain(args, e))?;
+        times.push(start.elapsed());
+        result = Some(fine);
+    }
+    times.sort_unstable();
+    Ok((result.expect("at least one run"), times[times.len() / 2].as_secs_f64()))
 }
 
 /// One timed subdivision: the base level's adjacency and every level, no file I/O.

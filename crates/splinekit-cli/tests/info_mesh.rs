@@ -1,4 +1,4 @@
-//! `splinekit info MESH`: counts, topology and problems of OBJ, PLY and STL files.
+//! `splinekit info MESH`: counts, topology and problems of OBJ, glb, PLY and STL files.
 
 use std::path::Path;
 
@@ -153,6 +153,23 @@ fn ply_and_stl() {
 }
 
 #[test]
+fn glb_written_by_trimesh() {
+    // An icosphere and a transformed box (crates/splinekit-io/tests/data/glb, made by
+    // scripts/make_glb_references.py).
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../splinekit-io/tests/data/glb/trimesh_scene.glb");
+    let text = info(&path, false).ok().to_owned();
+    assert!(
+        text.starts_with(&format!("{}: GLB mesh, 50 vertices, 92 faces (92 triangles)\n", path.display())),
+        "{text}"
+    );
+    let j = info(&path, true).json();
+    assert_eq!(j["format"], "glb");
+    assert_eq!((&j["normals"], &j["uvs"], &j["colors"]), (&Value::from(true), &Value::from(true), &Value::from(false)));
+    assert_eq!((&j["components"], &j["closed"]), (&Value::from(2), &Value::from(true)));
+    assert_eq!(j["problems"]["count"], 0);
+}
+
+#[test]
 fn malformed_and_unreadable_files_fail_with_a_position() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bad.obj");
@@ -168,14 +185,21 @@ fn malformed_and_unreadable_files_fail_with_a_position() {
     let glb = dir.path().join("x.glb");
     std::fs::write(&glb, "glTF").unwrap();
     let err = info(&glb, false).fails().to_owned();
-    assert!(err.contains("binary glTF is written, not read"), "{err}");
+    assert!(
+        err.contains(&format!(
+            "{}: found end of file, expected a 12-byte binary glTF header (the file has 4 bytes)",
+            glb.display()
+        )),
+        "{err}"
+    );
 }
 
 #[test]
 fn help_documents_meshes_and_json_fields() {
     let run = splinekit(&["info", "--help"]);
     let help = run.ok();
-    for needle in ["mesh file (.obj, .ply, .stl)", "euler_characteristic", "nonmanifold_edges", "boundary_loops"] {
+    for needle in ["mesh file (.obj, .glb, .ply, .stl)", "euler_characteristic", "nonmanifold_edges", "boundary_loops"]
+    {
         assert!(help.contains(needle), "{needle:?} missing in\n{help}");
     }
 }

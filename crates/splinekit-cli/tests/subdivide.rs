@@ -54,6 +54,11 @@ fn writes_every_format_and_warns_about_html_lines() {
         assert!(run.stderr.contains("warning"), "the HTML lines are reported: {}", run.stderr);
         assert!(out.metadata().unwrap().len() > 0);
     }
+    // The .glb reads back: one more level.
+    let glb = dir.join("bunny.glb");
+    let run = splinekit(&["subdivide", glb.to_str().unwrap(), "-n", "1", "--json", "--threads", "1"]);
+    assert_eq!(run.json()["faces"], 4 * 19872);
+    assert!(!run.stderr.contains("warning"), "{}", run.stderr);
     // V + E for the bunny: V = 2503, F = 4968, 42 boundary edges → E = (3F + 42) / 2.
     let (v, f) = obj_counts(&dir.join("bunny.obj"));
     assert_eq!((v, f), (2503 + (3 * 4968 + 42) / 2, 4 * 4968));
@@ -184,6 +189,98 @@ fn limit_moves_vertices_onto_the_limit_surface() {
     assert!(a.iter().zip(&b).all(|(x, y)| y < x), "{a:?} vs {b:?}");
     for group in [&b[..12], &b[12..]] {
         assert!(group.iter().all(|r| (r - group[0]).abs() < 1e-6 * group[0]), "{group:?}");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn sqrt3_and_doo_sabin_counts_and_output() {
+    let dir = temp_dir("sqrt3-doo-sabin");
+    let ico = shared("icosahedron.obj"); // V 12, E 30, F 20, closed
+    // √3: (V, F) → (V + F, 3F)
+    for (levels, v, f) in [(1, 32, 60), (2, 92, 180), (3, 272, 540)] {
+        let json =
+            splinekit(&["subdivide", &ico, "-n", &levels.to_string(), "--scheme", "sqrt3", "--json", "--repeat", "2"])
+                .json();
+        assert_eq!((json["vertices"].as_u64(), json["faces"].as_u64()), (Some(v), Some(f)), "{json}");
+    }
+    // Doo-Sabin: Σ face sizes = 2E vertices, F + E + V faces
+    for (levels, v, f) in [(1, 60, 62), (2, 240, 242)] {
+        let json = splinekit(&["subdivide", &ico, "-n", &levels.to_string(), "--scheme", "doo-sabin", "--json"]).json();
+        assert_eq!((json["vertices"].as_u64(), json["faces"].as_u64()), (Some(v), Some(f)), "{json}");
+    }
+    // the summary names the scheme; OBJ keeps Doo-Sabin's polygons: 20 triangles (the faces),
+    // 30 quads (the edges), 12 pentagons (the vertices)
+    let out = dir.join("ico-ds.obj");
+    let run = splinekit(&["subdivide", &ico, "-n", "1", "--scheme", "doo-sabin", "-o", out.to_str().unwrap()]);
+    assert!(run.ok().contains("60 vertices, 62 faces after 1 level of Doo-Sabin subdivision"), "{}", run.stdout);
+    let text = std::fs::read_to_string(&out).unwrap();
+    let mut sizes: Vec<usize> =
+        text.lines().filter(|l| l.starts_with("f ")).map(|l| l.split_whitespace().count() - 1).collect();
+    sizes.sort_unstable();
+    assert_eq!(sizes, [vec![3; 20], vec![4; 30], vec![5; 12]].concat());
+    // √3 on an open mesh, coloured by level: OBJ vertices get r g b
+    let out = dir.join("patch-sqrt3.obj");
+    let run = splinekit(&[
+        "subdivide",
+        &shared("patch.obj"),
+        "-n",
+        "2",
+        "--scheme",
+        "sqrt3",
+        "--color-by-level",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.ok().contains("after 2 levels of √3 subdivision"), "{}", run.stdout);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.lines().filter(|l| l.starts_with("v ")).all(|l| l.split_whitespace().count() == 7));
+    assert!(text.lines().filter(|l| l.starts_with("f ")).all(|l| l.split_whitespace().count() == 4));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn sqrt3_and_doo_sabin_refuse_bad_input_and_options() {
+    let dir = temp_dir("sqrt3-doo-sabin-bad");
+    let quad = dir.join("quad.obj");
+    std::fs::write(&quad, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+    let (quad, out) = (quad.to_str().unwrap(), dir.join("out.obj"));
+    let out_s = out.to_str().unwrap();
+    let err =
+        splinekit(&["subdivide", quad, "-n", "1", "--scheme", "sqrt3", "-o", out_s]).fails_with_error().to_owned();
+    assert!(err.contains("quad.obj: face 0 has 4 corners; √3 subdivision needs triangles"), "{err}");
+    assert!(!out.exists());
+    // Doo-Sabin takes the quad: one smaller quad
+    let json = splinekit(&["subdivide", quad, "-n", "1", "--scheme", "doo-sabin", "--json"]).json();
+    assert_eq!((json["vertices"].as_u64(), json["faces"].as_u64()), (Some(4), Some(1)), "{json}");
+
+    let bowtie = dir.join("bowtie.obj");
+    std::fs::write(&bowtie, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n").unwrap();
+    for scheme in ["sqrt3", "doo-sabin"] {
+        let err = splinekit(&["subdivide", bowtie.to_str().unwrap(), "-n", "1", "--scheme", scheme, "-o", out_s])
+            .fails_with_error()
+            .to_owned();
+        assert!(err.contains("vertex 0 is non-manifold") && err.contains("--split-nonmanifold"), "{err}");
+        assert!(!out.exists());
+    }
+
+    // options that mean nothing for the scheme are refused before anything is read or written
+    let ico = shared("icosahedron.obj");
+    for (scheme, flags, needle) in [
+        ("sqrt3", &["--weights", "warren"][..], "--weights"),
+        ("doo-sabin", &["--weights", "loop"], "--weights"),
+        ("catmull-clark", &["--weights", "warren"], "--weights"),
+        ("sqrt3", &["--boundary", "corners"], "--boundary"),
+        ("doo-sabin", &["--boundary", "smooth"], "--boundary"),
+        ("sqrt3", &["--limit"], "--limit"),
+        ("doo-sabin", &["--limit"], "--limit"),
+        ("doo-sabin", &["--color-by-level"], "--color-by-level"),
+    ] {
+        let mut args = vec!["subdivide", &ico, "-n", "1", "--scheme", scheme, "-o", out_s];
+        args.extend_from_slice(flags);
+        let err = splinekit(&args).fails_with_error().to_owned();
+        assert!(err.contains(needle), "{scheme} {flags:?}: {err}");
+        assert!(!out.exists());
     }
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -3,7 +3,7 @@
 //!
 //! Files open from the command line, the path field, or by dropping them on the window.
 //!
-//! The window has a file bar (path field: load SWP, OBJ, PLY, STL; save SWP; export the
+//! The window has a file bar (path field: load SWP, OBJ, glb, PLY, STL; save SWP; export the
 //! surface as OBJ, glb, PLY or STL), a left panel (curves, kind, closed, plane, what to show),
 //! the 2D curve view in the middle, a right panel with the surface or mesh, its subdivision
 //! and the 3D view ([`View3d`]), and a status line for messages and errors. An error never
@@ -236,7 +236,7 @@ impl EditorApp {
         app
     }
 
-    /// Opens an SWP file (as the document) or a mesh (OBJ, PLY, STL; an OBJ with a spline
+    /// Opens an SWP file (as the document) or a mesh (OBJ, glb, PLY, STL; an OBJ with a spline
     /// header is rebuilt from its spline). On error the status line says why and nothing
     /// changes.
     pub fn open(&mut self, path: &Path) {

@@ -1,12 +1,18 @@
 //! File formats for splinekit.
 //!
 //! All file input and output of the project lives here, so that the geometry core
-//! (`splinekit`) stays free of I/O. Today this crate reads and writes **SWP** files, the curve
-//! and sweep descriptions of the MIT 6.837 / Aalto ME-C3100 course software (module [`swp`]).
-//! OBJ, glTF, PLY and STL will follow.
+//! (`splinekit`) stays free of I/O. This crate reads and writes
 //!
-//! Readers report *where* a problem is: every error carries the file name, a 1-based line and
-//! column, and what was found and expected. They never panic, whatever the input.
+//! - **SWP** files, the curve and sweep descriptions of the MIT 6.837 / Aalto ME-C3100 course
+//!   software (module [`swp`]);
+//! - mesh files (module [`mesh`]): [`load_mesh`] reads OBJ, binary glTF (`.glb`), PLY and STL
+//!   into a [`PolyMesh`](splinekit::PolyMesh), and [`mesh::save`] writes a
+//!   [`TriMesh`](splinekit::TriMesh) in any of the four, atomically.
+//!
+//! Readers report *where* a problem is: every error carries the file name and what was found
+//! and expected, with a 1-based line and column in text files (in binary files, the record,
+//! or for `.glb` a JSON path such as `meshes[0].primitives[1].indices`). They never panic,
+//! whatever the input.
 //!
 //! # Reading an SWP file
 //!

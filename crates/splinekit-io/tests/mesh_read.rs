@@ -1,6 +1,7 @@
-//! Integration tests of the mesh readers (OBJ, PLY, STL) and `load_mesh`: the bundled course
-//! meshes with their known counts and topology, round trips through our writers, generated
-//! ASCII and binary samples, and errors with exact positions.
+//! Integration tests of the mesh readers (OBJ, glb, PLY, STL) and `load_mesh`: the bundled
+//! course meshes with their known counts and topology, a `.glb` written by trimesh, round
+//! trips through our writers, generated ASCII and binary samples, and errors with exact
+//! positions.
 
 use std::collections::HashMap;
 use std::f64::consts::TAU;
@@ -11,7 +12,7 @@ use glam::{DVec2, DVec3};
 use splinekit::TriMesh;
 use splinekit::mesh::{Degeneracy, PolyMesh, TopologyReport};
 use splinekit_io::mesh::{
-    LoadedMesh, MeshFormat, ReadWarningKind, load_mesh, read_mesh, read_obj, read_ply, read_stl, write_mesh,
+    LoadedMesh, MeshFormat, ReadWarningKind, load_mesh, read_glb, read_mesh, read_obj, read_ply, read_stl, write_mesh,
 };
 
 // ---------------------------------------------------------------------------------------
@@ -287,6 +288,80 @@ fn ply_round_trip_rounds_to_f32() {
 }
 
 #[test]
+fn glb_round_trip_rounds_to_f32() {
+    let r = |x: f64| f64::from(x as f32);
+    for mesh in [torus(9, 6), TriMesh { normals: vec![], uvs: vec![], ..torus(5, 4) }] {
+        let read = read_glb(bytes_of(&mesh, MeshFormat::Glb).as_slice(), "rt.glb").unwrap();
+        assert!(read.warnings.is_empty());
+        let m = read.mesh;
+        assert_eq!(m.positions, mesh.positions.iter().map(|&p| f32_round(p)).collect::<Vec<_>>());
+        assert_eq!(m.triangles().unwrap(), mesh.triangles);
+        // Normals are written normalised; UVs as (u, 1 − v), read back as (u, 1 − v).
+        let normals: Vec<DVec3> = mesh.normals.iter().map(|n| f32_round(n.normalize_or_zero())).collect();
+        assert_eq!(m.normals.as_ref().map(|n| &n.values), (!normals.is_empty()).then_some(&normals));
+        let uvs: Vec<DVec2> = mesh.uvs.iter().map(|t| DVec2::new(r(t.x), 1.0 - r(1.0 - t.y))).collect();
+        assert_eq!(m.uvs.as_ref().map(|n| &n.values), (!uvs.is_empty()).then_some(&uvs));
+        for (a, b) in uvs.iter().zip(&mesh.uvs) {
+            assert!(a.distance(*b) < 1e-7);
+        }
+        assert!(report(&m).is_clean());
+        // Back to the same TriMesh, up to f32 rounding.
+        let back = m.to_tri_mesh();
+        assert_eq!(back.triangles, mesh.triangles);
+        assert_eq!(back.normals, normals);
+    }
+    // A mesh without triangles is written without vertices, and reads as an empty mesh.
+    let empty = TriMesh { positions: vec![DVec3::ONE], ..TriMesh::default() };
+    let m = read_glb(bytes_of(&empty, MeshFormat::Glb).as_slice(), "e.glb").unwrap();
+    assert!(m.warnings.is_empty());
+    assert_eq!((m.mesh.num_vertices(), m.mesh.num_faces()), (0, 0));
+}
+
+#[test]
+fn a_glb_written_by_trimesh_reads_as_trimesh_sees_it() {
+    // Made by scripts/make_glb_references.py: an icosphere on an untransformed node and a box
+    // on a node with a matrix under a parent with translation and rotation; u16 indices; the
+    // sphere's positions and normals interleaved. The JSON holds trimesh's reading of it.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/glb");
+    let loaded = load_mesh(dir.join("trimesh_scene.glb")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let refs: gltf_json::Value =
+        gltf_json::deserialize::from_slice(&fs::read(dir.join("trimesh_scene.json")).unwrap()).unwrap();
+    assert_eq!(refs["index_component_types"], gltf_json::Value::from(vec![5123]));
+    let m = &loaded.mesh;
+    assert_eq!(m.num_vertices() as u64, refs["vertices"].as_u64().unwrap());
+    assert_eq!(m.num_faces() as u64, refs["triangles"].as_u64().unwrap());
+    let vec =
+        |v: &gltf_json::Value| -> Vec<f64> { v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect() };
+    let vec3 = |v: &gltf_json::Value| DVec3::from_slice(&vec(v));
+    // The references have 9 significant digits; the node matrices are read as f32.
+    const TOLERANCE: f64 = 2e-6;
+    let (min, max) =
+        m.positions.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    assert!(min.distance(vec3(&refs["bounds"][0])) < TOLERANCE, "{min}");
+    assert!(max.distance(vec3(&refs["bounds"][1])) < TOLERANCE, "{max}");
+    let normals = &m.normals.as_ref().unwrap().values;
+    let uvs = &m.uvs.as_ref().unwrap().values;
+    let find = |p: DVec3| m.positions.iter().position(|q| q.distance(p) < TOLERANCE);
+    for node in refs["nodes"].as_array().unwrap() {
+        let name = node["node"].as_str().unwrap();
+        let p = vec3(&node["first_vertex"]);
+        let i = find(p).unwrap_or_else(|| panic!("{name}: no vertex at {p}"));
+        assert!(normals[i].distance(vec3(&node["first_normal"])) < TOLERANCE, "{name}: {}", normals[i]);
+        assert!(uvs[i].distance(DVec2::from_slice(&vec(&node["first_uv"]))) < TOLERANCE, "{name}: {}", uvs[i]);
+        // The first triangle, with its orientation.
+        let corners: Vec<usize> =
+            node["first_triangle"].as_array().unwrap().iter().map(|c| find(vec3(c)).unwrap()).collect();
+        let oriented = m.faces().any(|f| (0..3).any(|k| (0..3).all(|j| f[(j + k) % 3] as usize == corners[j])));
+        assert!(oriented, "{name}: no face {corners:?}");
+    }
+    // Both meshes are closed, and consistently oriented after the transforms.
+    let r = report(m);
+    assert!(r.is_clean() && r.is_closed(), "{r}");
+    assert_eq!(r.components.len(), 2);
+}
+
+#[test]
 fn stl_round_trip_welds_back_to_the_mesh() {
     let mesh = torus(10, 8);
     let m = read_stl(bytes_of(&mesh, MeshFormat::Stl).as_slice(), "rt.stl").unwrap().mesh;
@@ -401,18 +476,24 @@ fn load_mesh_chooses_by_extension() {
     let obj = dir.write("t.OBJ", bytes_of(&mesh, MeshFormat::Obj));
     let ply = dir.write("t.ply", bytes_of(&mesh, MeshFormat::Ply));
     let stl = dir.write("t.Stl", bytes_of(&mesh, MeshFormat::Stl));
-    for path in [obj, ply, stl] {
+    let glb = dir.write("t.GLB", bytes_of(&mesh, MeshFormat::Glb));
+    for path in [obj, ply, stl, glb] {
         let m = load_mesh(&path).unwrap_or_else(|e| panic!("{e}")).mesh;
         assert_eq!((m.num_vertices(), m.num_faces()), (12, 24), "{}", path.display());
     }
     let e = load_mesh(dir.write("t.glb", b"glTF")).unwrap_err().to_string();
-    assert!(e.ends_with(r#"t.glb: found ".glb", expected a mesh file ending in .obj, .ply or .stl (binary glTF is written, not read)"#), "{e}");
+    assert!(
+        e.ends_with("t.glb: found end of file, expected a 12-byte binary glTF header (the file has 4 bytes)"),
+        "{e}"
+    );
     let e = load_mesh(dir.write("t.off", b"OFF")).unwrap_err().to_string();
-    assert!(e.ends_with(r#"t.off: found ".off", expected a mesh file ending in .obj, .ply or .stl"#), "{e}");
+    assert!(e.ends_with(r#"t.off: found ".off", expected a mesh file ending in .obj, .glb, .ply or .stl"#), "{e}");
     let e = load_mesh(dir.0.join("missing.obj")).unwrap_err().to_string();
     assert!(e.contains("missing.obj: cannot read: "), "{e}");
     // Stream form.
     let m = read_mesh(bytes_of(&mesh, MeshFormat::Ply).as_slice(), MeshFormat::Ply, "s").unwrap();
+    assert_eq!(m.mesh.num_faces(), 24);
+    let m = read_mesh(bytes_of(&mesh, MeshFormat::Glb).as_slice(), MeshFormat::Glb, "s").unwrap();
     assert_eq!(m.mesh.num_faces(), 24);
     assert!(read_mesh(&b""[..], MeshFormat::Glb, "s").is_err());
 }
@@ -443,8 +524,10 @@ fn errors_name_file_line_and_column() {
 // Never a panic
 
 mod no_panic {
+    use glam::{DVec2, DVec3};
     use proptest::prelude::*;
-    use splinekit_io::mesh::{MeshFormat, read_mesh};
+    use splinekit::TriMesh;
+    use splinekit_io::mesh::{MeshFormat, read_mesh, write_mesh};
 
     /// Small valid files of each format, to be mutated.
     fn seeds() -> Vec<(MeshFormat, Vec<u8>)> {
@@ -463,7 +546,26 @@ mod no_panic {
             (MeshFormat::Ply, binary_ply),
             (MeshFormat::Stl, b"solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n".to_vec()),
             (MeshFormat::Stl, stl),
+            (MeshFormat::Glb, glb()),
+            (
+                MeshFormat::Glb,
+                std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/glb/trimesh_scene.glb")).unwrap(),
+            ),
         ]
+    }
+
+    /// A quad with normals and UVs, by our writer.
+    fn glb() -> Vec<u8> {
+        let mesh = TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE],
+            normals: vec![DVec3::Z; 4],
+            uvs: vec![DVec2::ZERO, DVec2::X, DVec2::Y, DVec2::ONE],
+            triangles: vec![[0, 1, 2], [1, 3, 2]],
+            ..TriMesh::default()
+        };
+        let mut out = Vec::new();
+        write_mesh(&mesh, &mut out, MeshFormat::Glb).unwrap();
+        out
     }
 
     #[test]
@@ -479,7 +581,7 @@ mod no_panic {
         /// Flipping, inserting or deleting bytes of a valid file gives a mesh or an error.
         #[test]
         fn mutated_files_do_not_panic(
-            seed in 0..5usize,
+            seed in 0..7usize,
             edits in proptest::collection::vec((any::<u16>(), any::<u8>(), 0..3u8), 1..6),
         ) {
             let (format, mut bytes) = seeds().swap_remove(seed);
@@ -496,6 +598,17 @@ mod no_panic {
                 // Whatever is read has valid indices and can be analysed.
                 let m = &loaded.mesh;
                 prop_assert!(m.face_vertices.iter().all(|&v| (v as usize) < m.num_vertices()));
+                for (indices, n) in [
+                    m.normals.as_ref().map(|a| (&a.indices, a.values.len())),
+                    m.uvs.as_ref().map(|a| (&a.indices, a.values.len())),
+                ]
+                .into_iter()
+                .flatten()
+                {
+                    prop_assert_eq!(indices.len(), m.face_vertices.len());
+                    prop_assert!(indices.iter().all(|&i| (i as usize) < n));
+                }
+                prop_assert!(m.colors.is_empty() || m.colors.len() == m.num_vertices());
                 let _ = splinekit::mesh::TopologyReport::new(m, 0.0).to_string();
                 let _ = splinekit::mesh::split_nonmanifold(m);
             }
@@ -503,9 +616,23 @@ mod no_panic {
 
         /// Arbitrary bytes never panic any reader.
         #[test]
-        fn random_bytes_do_not_panic(bytes in proptest::collection::vec(any::<u8>(), 0..300), seed in 0..3usize) {
-            let format = [MeshFormat::Obj, MeshFormat::Ply, MeshFormat::Stl][seed];
+        fn random_bytes_do_not_panic(bytes in proptest::collection::vec(any::<u8>(), 0..300), seed in 0..4usize) {
+            let format = [MeshFormat::Obj, MeshFormat::Ply, MeshFormat::Stl, MeshFormat::Glb][seed];
             let _ = read_mesh(bytes.as_slice(), format, "r");
+        }
+
+        /// Bit flips in a valid `.glb` (its JSON, lengths and data) give a mesh or an error.
+        #[test]
+        fn glb_bit_flips_do_not_panic(seed in 5..7usize, flips in proptest::collection::vec(any::<u16>(), 1..4)) {
+            let mut bytes = seeds().swap_remove(seed).1;
+            for bit in flips {
+                let bit = bit as usize % (8 * bytes.len());
+                bytes[bit / 8] ^= 1 << (bit % 8);
+            }
+            if let Ok(loaded) = read_mesh(bytes.as_slice(), MeshFormat::Glb, "f") {
+                let m = &loaded.mesh;
+                prop_assert!(m.face_vertices.iter().all(|&v| (v as usize) < m.num_vertices()));
+            }
         }
     }
 }

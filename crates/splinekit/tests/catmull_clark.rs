@@ -9,48 +9,8 @@ use splinekit::PolyMesh;
 use splinekit::mesh::Adjacency;
 use splinekit::subdiv::{BoundaryRule, CatmullClarkOptions, SubdivError, catmull_clark_subdivide};
 
-fn poly(positions: Vec<DVec3>, faces: &[&[u32]]) -> PolyMesh {
-    let mut face_offsets = vec![0];
-    let mut face_vertices = Vec::new();
-    for f in faces {
-        face_vertices.extend_from_slice(f);
-        face_offsets.push(face_vertices.len() as u32);
-    }
-    PolyMesh { positions, face_offsets, face_vertices, ..PolyMesh::default() }
-}
-
-/// The cube `[−1, 1]³`, faces counter-clockwise from outside.
-fn cube() -> PolyMesh {
-    let p = (0..8).map(|i| {
-        DVec3::new(f64::from(i & 1) * 2.0 - 1.0, f64::from((i >> 1) & 1) * 2.0 - 1.0, f64::from(i >> 2) * 2.0 - 1.0)
-    });
-    poly(p.collect(), &[&[0, 2, 3, 1], &[4, 5, 7, 6], &[0, 1, 5, 4], &[2, 6, 7, 3], &[0, 4, 6, 2], &[1, 3, 7, 5]])
-}
-
-/// A closed mesh of triangles, quads and pentagons: a pentagonal prism with one side quad
-/// split into two triangles.
-fn prism() -> PolyMesh {
-    let mut p = Vec::new();
-    for z in [0.0, 1.3] {
-        for k in 0..5 {
-            let a = std::f64::consts::TAU * f64::from(k) / 5.0 + 0.1;
-            p.push(DVec3::new(a.cos(), a.sin(), z + 0.1 * f64::from(k)));
-        }
-    }
-    poly(
-        p,
-        &[
-            &[4, 3, 2, 1, 0],
-            &[5, 6, 7, 8, 9],
-            &[0, 1, 6, 5],
-            &[1, 2, 7],
-            &[1, 7, 6],
-            &[2, 3, 8, 7],
-            &[3, 4, 9, 8],
-            &[4, 0, 5, 9],
-        ],
-    )
-}
+mod common;
+use common::{cube, poly, prism};
 
 /// An open `n × n` grid of quads over `[0, 1]²`, bumped in z.
 fn grid(n: u32) -> PolyMesh {

@@ -8,47 +8,8 @@ use glam::{DMat3, DVec2, DVec3};
 use splinekit::subdiv::{BoundaryRule, LoopOptions, LoopPyramid, LoopWeights, loop_subdivide};
 use splinekit::{FaceVarying, PolyMesh};
 
-/// The icosahedron of the course's `icosahedron.obj` (J. Burkardt), outward.
-fn icosahedron() -> PolyMesh {
-    let phi = f64::midpoint(1.0, 5f64.sqrt());
-    let p = [
-        (-1.0, phi, 0.0),
-        (1.0, phi, 0.0),
-        (-1.0, -phi, 0.0),
-        (1.0, -phi, 0.0),
-        (0.0, -1.0, phi),
-        (0.0, 1.0, phi),
-        (0.0, -1.0, -phi),
-        (0.0, 1.0, -phi),
-        (phi, 0.0, -1.0),
-        (phi, 0.0, 1.0),
-        (-phi, 0.0, -1.0),
-        (-phi, 0.0, 1.0),
-    ];
-    let t = [
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    PolyMesh::from_triangles(p.iter().map(|&(x, y, z)| DVec3::new(x, y, z)).collect(), &t)
-}
+mod common;
+use common::icosahedron;
 
 /// An `n × m` grid of squares over [0,1]², two triangles each, with a wavy height; `wrap`
 /// makes it a torus (positions on a torus of radii 2 and 0.7).

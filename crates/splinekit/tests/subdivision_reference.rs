@@ -8,6 +8,11 @@
 //!   options) on a cube, a quad torus, a prism of pentagons, quads and triangles and an open
 //!   quad grid, in `tests/data/catmark/` (made by `bench/make_catmark_references.sh` with
 //!   `bench/drivers/osd_catmark.cpp`).
+//! - √3 and Doo-Sabin (issue #7): CGAL 5.5's `Sqrt3_subdivision` (levels 1 to 3: the boundary
+//!   is refined on level 2 only) on a tetrahedron, an icosahedron, an open triangle grid and an
+//!   icosahedron with a hole, and `DooSabin_subdivision` on a cube, the prism, the icosahedron,
+//!   an open quad grid and the open triangle grid, in `tests/data/cgal/` (made by
+//!   `bench/make_cgal_references.sh` with `bench/drivers/cgal_sqrt3_doosabin.cpp`).
 //!
 //! Our vertex numbering differs from the peers', so meshes are compared as point sets plus
 //! topology: every vertex of ours is matched to the reference vertex nearest to it, the
@@ -21,8 +26,9 @@ use std::fmt::Write as _;
 use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
-    BoundaryRule, CatmullClarkOptions, LoopOptions, LoopWeights, catmull_clark_limit_positions,
-    catmull_clark_subdivide, loop_limit_positions, loop_subdivide,
+    BoundaryRule, CatmullClarkOptions, DooSabinOptions, LoopOptions, LoopWeights, Sqrt3Options,
+    catmull_clark_limit_positions, catmull_clark_subdivide, doo_sabin_subdivide, loop_limit_positions, loop_subdivide,
+    sqrt3_subdivide,
 };
 
 /// Largest distance allowed between a vertex of ours and its match in the reference, as a
@@ -342,6 +348,46 @@ fn catmull_clark_matches_opensubdiv_catmark() {
         }
     }
     assert!(failures.is_empty(), "against OpenSubdiv (catmark):\n{failures}");
+}
+
+/// √3 against CGAL's `Sqrt3_subdivision`: levels 1 to 3 of one call, so the boundary meshes
+/// meet the boundary rule of level 2 and the level after it.
+#[test]
+fn sqrt3_matches_cgal() {
+    let mut failures = String::new();
+    for name in ["tetra4", "icosahedron20", "trigrid18", "icoopen15"] {
+        let mesh = read_obj(&format!("cgal/{name}.in.obj")).to_poly();
+        for level in 1..=3 {
+            let what = format!("{name}.cgal-sqrt3.l{level}");
+            let result = sqrt3_subdivide(&mesh, level, &Sqrt3Options::default())
+                .map_err(|e| format!("sqrt3_subdivide failed: {e}"))
+                .and_then(|ours| compare(&ours, &read_obj(&format!("cgal/{what}.obj"))));
+            if let Err(e) = result {
+                writeln!(failures, "{what}: {e}").unwrap();
+            }
+        }
+    }
+    assert!(failures.is_empty(), "against CGAL (Sqrt3_subdivision):\n{failures}");
+}
+
+/// Doo-Sabin against CGAL's `DooSabin_subdivision`, closed and open meshes of triangles, quads
+/// and pentagons.
+#[test]
+fn doo_sabin_matches_cgal() {
+    let mut failures = String::new();
+    for (name, max_level) in [("cube6", 3), ("prism8", 2), ("icosahedron20", 2), ("grid16", 2), ("trigrid18", 2)] {
+        let mesh = read_obj(&format!("cgal/{name}.in.obj")).to_poly();
+        for level in 1..=max_level {
+            let what = format!("{name}.cgal-doosabin.l{level}");
+            let result = doo_sabin_subdivide(&mesh, level, &DooSabinOptions::default())
+                .map_err(|e| format!("doo_sabin_subdivide failed: {e}"))
+                .and_then(|ours| compare(&ours, &read_obj(&format!("cgal/{what}.obj"))));
+            if let Err(e) = result {
+                writeln!(failures, "{what}: {e}").unwrap();
+            }
+        }
+    }
+    assert!(failures.is_empty(), "against CGAL (DooSabin_subdivision):\n{failures}");
 }
 
 /// Limit positions against OpenSubdiv's `PrimvarRefinerReal::Limit` after one level of Loop

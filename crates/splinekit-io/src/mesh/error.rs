@@ -175,6 +175,18 @@ pub enum MeshIoErrorKind {
     /// The header is not valid UTF-8. Points at the line.
     #[error("found invalid UTF-8, expected UTF-8 text")]
     InvalidUtf8,
+    /// A binary glTF file is malformed, or uses something the reader does not support (see
+    /// [`read_glb`](super::read_glb)). Binary files have no lines, so `at` says where instead.
+    #[error("{at}: {message}")]
+    InvalidGltf {
+        /// Where: a JSON path such as `meshes[0].primitives[1].indices (accessors[4])`, a
+        /// place in the binary layout such as `chunk 1 at byte 1020`, or `JSON chunk line 1,
+        /// column 57 (byte 76)`.
+        at: String,
+        /// What is wrong, such as `found index 7 at element 5, expected an index below 4 (the
+        /// count of POSITION)`.
+        message: String,
+    },
 }
 
 /// Quotes token text for a message, shortening long tokens.

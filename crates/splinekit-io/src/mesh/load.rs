@@ -1,6 +1,7 @@
 //! Reading mesh files: [`load_mesh`] picks the reader by extension; [`read_mesh`] reads a
 //! stream. The readers themselves are [`read_obj`](super::read_obj),
-//! [`read_ply`](super::read_ply) and [`read_stl`](super::read_stl).
+//! [`read_glb`](super::read_glb), [`read_ply`](super::read_ply) and
+//! [`read_stl`](super::read_stl).
 
 use std::fmt;
 use std::io::Read;
@@ -73,10 +74,31 @@ pub enum ReadWarningKind {
         /// Line of the first vertex without one.
         first_without: usize,
     },
-    /// Bytes after the end of the data (binary PLY or STL), ignored.
+    /// Bytes after the end of the data (binary PLY or STL, or after the length in a `.glb`
+    /// header), ignored.
     TrailingBytes {
         /// How many.
         count: usize,
+    },
+    /// A binary glTF mesh primitive that is not made of triangles (points or lines), or has no
+    /// positions, skipped.
+    SkippedPrimitive {
+        /// Which, like `meshes[0].primitives[1] (mesh "Cube")`.
+        primitive: String,
+        /// Why, like `its mode is LINES, not triangles`.
+        reason: String,
+    },
+    /// A binary glTF vertex attribute was dropped because some mesh primitives have it and
+    /// others do not.
+    PrimitiveAttributeDropped {
+        /// `normals`, `texture coordinates` or `vertex colours`.
+        attribute: &'static str,
+        /// Primitives with the attribute (a mesh used by several nodes counts once per node).
+        primitives_with: usize,
+        /// Primitives without it.
+        primitives_without: usize,
+        /// The first primitive without it, like `meshes[1].primitives[0]`.
+        first_without: String,
     },
 }
 
@@ -98,6 +120,16 @@ impl fmt::Display for ReadWarning {
                 "dropped the vertex colours: {vertices_with} vertices have one, {vertices_without} do not (the first at line {first_without})"
             ),
             ReadWarningKind::TrailingBytes { count } => write!(f, "ignored {count} bytes after the end of the data"),
+            ReadWarningKind::SkippedPrimitive { primitive, reason } => write!(f, "skipped {primitive}: {reason}"),
+            ReadWarningKind::PrimitiveAttributeDropped {
+                attribute,
+                primitives_with,
+                primitives_without,
+                first_without,
+            } => write!(
+                f,
+                "dropped the {attribute}: {primitives_with} mesh primitives have them, {primitives_without} do not (the first is {first_without})"
+            ),
         }
     }
 }
@@ -252,13 +284,14 @@ pub(crate) fn lines(bytes: &[u8]) -> impl Iterator<Item = (usize, &[u8])> {
 }
 
 /// Reads the mesh file at `path`, choosing the reader by its extension: `.obj`
-/// ([`read_obj`](super::read_obj)), `.ply` ([`read_ply`](super::read_ply)) or `.stl`
-/// ([`read_stl`](super::read_stl)), in any case.
+/// ([`read_obj`](super::read_obj)), `.glb` ([`read_glb`](super::read_glb)), `.ply`
+/// ([`read_ply`](super::read_ply)) or `.stl` ([`read_stl`](super::read_stl)), in any case.
 ///
 /// # Errors
 ///
-/// A [`MeshIoError`] naming the path: an unknown extension (or `.glb`, which is only
-/// written), a file that cannot be read, or the reader's error with line and column.
+/// A [`MeshIoError`] naming the path: an unknown extension, a file that cannot be read, or
+/// the reader's error with line and column (text formats) or what is wrong where (binary
+/// formats; for `.glb` a JSON path such as `meshes[0].primitives[1].indices`).
 ///
 /// ```
 /// # let dir = std::env::temp_dir().join(format!("splinekit-load-doc-{}", std::process::id()));
@@ -287,12 +320,8 @@ pub fn load_mesh(path: impl AsRef<Path>) -> Result<LoadedMesh, MeshIoError> {
 
 /// The readable format named by the extension of `path`.
 fn readable_format(path: &Path) -> Result<MeshFormat, MeshIoErrorKind> {
-    let expected = "a mesh file ending in .obj, .ply or .stl";
+    let expected = "a mesh file ending in .obj, .glb, .ply or .stl";
     match MeshFormat::from_path(path) {
-        Some(MeshFormat::Glb) => Err(MeshIoErrorKind::UnexpectedToken {
-            found: String::from(".glb"),
-            expected: format!("{expected} (binary glTF is written, not read)"),
-        }),
         Some(format) => Ok(format),
         None => Err(MeshIoErrorKind::UnexpectedToken {
             found: path
@@ -307,7 +336,7 @@ fn readable_format(path: &Path) -> Result<MeshFormat, MeshIoErrorKind> {
 ///
 /// # Errors
 ///
-/// As [`load_mesh`]; [`MeshFormat::Glb`] is refused.
+/// As [`load_mesh`].
 pub fn read_mesh<R: Read>(reader: R, format: MeshFormat, origin: &str) -> Result<LoadedMesh, MeshIoError> {
     let bytes = read_all(reader, origin)?;
     parse_mesh(&bytes, format, origin)
@@ -319,13 +348,7 @@ fn parse_mesh(bytes: &[u8], format: MeshFormat, origin: &str) -> Result<LoadedMe
         MeshFormat::Obj => super::obj_read::parse_obj(bytes, origin),
         MeshFormat::Ply => super::ply_read::parse_ply(bytes, origin),
         MeshFormat::Stl => super::stl_read::parse_stl(bytes, origin),
-        MeshFormat::Glb => Err(error_in(
-            origin,
-            MeshIoErrorKind::UnexpectedToken {
-                found: String::from("glb"),
-                expected: String::from("obj, ply or stl (binary glTF is written, not read)"),
-            },
-        )),
+        MeshFormat::Glb => super::glb_read::parse_glb(bytes, origin),
     }
 }
 

@@ -1,5 +1,9 @@
-//! Mesh files: writers for OBJ, binary glTF, PLY and STL, atomic file writes, and the
-//! spline-annotated OBJ header of the CS 4620 revolution and sweep tools.
+//! Mesh files: readers and writers for OBJ, binary glTF, PLY and STL, atomic file writes,
+//! and the spline-annotated OBJ header of the CS 4620 revolution and sweep tools.
+//!
+//! The readers, [`read_obj`], [`read_glb`], [`read_ply`] and [`read_stl`] (or [`load_mesh`],
+//! which picks one by the extension of a path, and [`read_mesh`]), give a [`LoadedMesh`]: a
+//! [`PolyMesh`] and warnings about what was skipped or dropped.
 //!
 //! Every writer takes a [`TriMesh`] and comes in two forms:
 //!
@@ -52,6 +56,7 @@
 pub mod atomic;
 mod error;
 mod glb;
+mod glb_read;
 mod load;
 mod obj;
 mod obj_read;
@@ -69,6 +74,7 @@ use splinekit::{PolyMesh, TriMesh};
 
 pub use error::{MeshIoError, MeshIoErrorKind};
 pub use glb::write_glb;
+pub use glb_read::read_glb;
 pub use load::{LoadedMesh, MAX_WARNINGS, ReadWarning, ReadWarningKind, load_mesh, read_mesh};
 pub use obj::{write_obj, write_obj_poly};
 pub use obj_read::read_obj;
@@ -84,7 +90,7 @@ pub use stl_read::read_stl;
 /// Size of the internal output buffer of the writers.
 const BUFFER_SIZE: usize = 1 << 16;
 
-/// A mesh file format that can be written.
+/// A mesh file format, read by [`load_mesh`] and written by [`save`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MeshFormat {
     /// Wavefront OBJ text ([`write_obj`]).

@@ -23,7 +23,7 @@
 use rayon::prelude::*;
 
 use super::loop_scheme::{Attribute, BoundaryRule, LEVEL_COLORS, SubdivError};
-use super::topology::{MIN_LEN, TopologyError};
+use super::topology::{MIN_LEN, MIN_RINGS, TopologyError};
 use crate::mesh::{Adjacency, EdgeProblem, NONE, PolyMesh};
 
 /// Options of Catmull-Clark subdivision.
@@ -105,14 +105,31 @@ impl<'a> Rings<'a> {
             let faces = corners.iter().map(|&c| adj.face_of[c as usize]).collect();
             return Err(TopologyError::Edge { a, b, faces }.into());
         }
-        // a manifold vertex has at most one boundary half-edge leaving it
-        for v in 0..mesh.num_vertices() as u32 {
-            let open = adj.corners_of(v).iter().filter(|&&c| adj.twin[c as usize] == NONE).count();
-            if open > 1 {
-                return Err(TopologyError::Vertex { vertex: v, fans: open }.into());
-            }
+        // a manifold vertex's corners form one fan: rotating from its boundary half-edge (or
+        // any corner) reaches them all
+        let rings = Self { mesh, adj };
+        let bad = (0..mesh.num_vertices() as u32).into_par_iter().with_min_len(MIN_RINGS).find_first(|&v| {
+            let corners = rings.adj.corners_of(v);
+            let Some(&first) = corners.first() else { return false };
+            let start = corners.iter().copied().find(|&c| rings.adj.twin[c as usize] == NONE).unwrap_or(first);
+            rings.fan(start).take(corners.len() + 1).count() != corners.len()
+        });
+        if let Some(v) = bad {
+            return Err(TopologyError::Vertex { vertex: v, fans: rings.adj.fans(mesh, v).len() }.into());
         }
-        Ok(Self { mesh, adj })
+        Ok(rings)
+    }
+
+    /// The corners leaving the vertex of corner `start`, rotating counter-clockwise
+    /// (`c → twin(prev(c))`) until a boundary or back at `start`.
+    pub(super) fn fan(&self, start: u32) -> impl Iterator<Item = u32> + '_ {
+        let mut next = Some(start);
+        core::iter::from_fn(move || {
+            let c = next?;
+            let t = self.adj.twin[self.prev(c) as usize];
+            next = (t != NONE && t != start).then_some(t);
+            Some(c)
+        })
     }
 
     /// The corner before `c` in its face.
@@ -192,7 +209,7 @@ impl<'a> Rings<'a> {
     }
 
     /// The child faces (all quads): face offsets and corners.
-    fn child_faces(&self) -> (Vec<u32>, Vec<u32>) {
+    pub(super) fn child_faces(&self) -> (Vec<u32>, Vec<u32>) {
         let (nv, ne) = (self.mesh.num_vertices() as u32, self.adj.num_edges() as u32);
         let corners = self.mesh.face_vertices.len();
         let offsets: Vec<u32> = (0..=corners as u32).map(|k| 4 * k).collect();

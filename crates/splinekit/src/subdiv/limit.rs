@@ -40,7 +40,7 @@ fn boundary_limit(rings: &Rings<'_>, p: &[DVec3], v: usize, (a, b): (u32, u32), 
 /// for a non-manifold or inconsistently oriented edge or vertex.
 pub fn loop_limit_positions(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<DVec3>, SubdivError> {
     if let Some((face, f)) = mesh.faces().enumerate().find(|(_, f)| f.len() != 3) {
-        return Err(SubdivError::NotTriangles { face, corners: f.len() });
+        return Err(SubdivError::NotTriangles { face, corners: f.len(), scheme: "Loop" });
     }
     let rings = Rings::new(mesh)?;
     let rules = Rules::new(options);

@@ -95,16 +95,18 @@ pub const LEVEL_COLORS: [DVec3; 8] = [
     DVec3::new(0.8, 0.3, 0.85),
 ];
 
-/// Why a mesh cannot be Loop-subdivided.
+/// Why a mesh cannot be subdivided.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum SubdivError {
-    /// Loop subdivision needs triangles.
-    #[error("face {face} has {corners} corners; Loop subdivision needs triangles (triangulate the mesh first)")]
+    /// Loop and √3 subdivision need triangles.
+    #[error("face {face} has {corners} corners; {scheme} subdivision needs triangles (triangulate the mesh first)")]
     NotTriangles {
         /// The face.
         face: usize,
         /// Its number of corners.
         corners: usize,
+        /// The scheme: `Loop` or `√3`.
+        scheme: &'static str,
     },
     /// Catmull-Clark's limit mask needs quads around an interior vertex.
     #[error(
@@ -482,7 +484,7 @@ impl LoopPyramid {
             for (face, f) in mesh.faces().enumerate() {
                 match f {
                     &[a, b, c] => triangles.push([a, b, c]),
-                    _ => return Err(SubdivError::NotTriangles { face, corners: f.len() }),
+                    _ => return Err(SubdivError::NotTriangles { face, corners: f.len(), scheme: "Loop" }),
                 }
             }
             let topology = Topology::build(&triangles, n)?;

@@ -1,5 +1,7 @@
 //! Subdivision surfaces: Loop subdivision of triangle meshes (SPEC §3.2) and Catmull-Clark
-//! subdivision of polygon meshes (SPEC §3.3).
+//! subdivision of polygon meshes (SPEC §3.3), with OpenSubdiv's rules; √3 subdivision of
+//! triangle meshes ([`sqrt3_subdivide`]) and Doo-Sabin subdivision of polygon meshes
+//! ([`doo_sabin_subdivide`]), with CGAL's.
 //!
 //! ```
 //! use glam::DVec3;
@@ -16,16 +18,22 @@
 //! ```
 
 mod catmull_clark;
+pub mod doo_sabin;
 mod grandchild;
 mod great;
 mod limit;
 mod loop_scheme;
+mod matrix;
+pub mod sqrt3;
 pub mod topology;
 
 pub use catmull_clark::{CatmullClarkOptions, catmull_clark_step, catmull_clark_subdivide};
+pub use doo_sabin::{DooSabinOptions, doo_sabin_subdivide};
 pub use limit::{catmull_clark_limit_positions, loop_limit_positions};
 pub use loop_scheme::{
     Attribute, BoundaryRule, LEVEL_COLORS, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
     loop_subdivide,
 };
+pub use matrix::SubdivisionMatrix;
+pub use sqrt3::{Sqrt3Options, sqrt3_subdivide};
 pub use topology::{Topology, TopologyError};

@@ -3,7 +3,7 @@
 #![allow(dead_code)]
 
 use glam::{DVec2, DVec3};
-use splinekit::CubicBezier;
+use splinekit::{CubicBezier, PolyMesh};
 
 /// splitmix64 in `[0, scale)`: a fixed, dependency-free random stream, so every run sees the
 /// same curves.
@@ -91,4 +91,90 @@ pub fn hausdorff_lower_bound(dense: &[DVec3], poly: &[DVec3], sagitta: f64, divi
         }
     }
     h
+}
+
+/// The icosahedron of the course's `icosahedron.obj` (J. Burkardt), outward.
+pub fn icosahedron() -> PolyMesh {
+    let phi = f64::midpoint(1.0, 5f64.sqrt());
+    let p = [
+        (-1.0, phi, 0.0),
+        (1.0, phi, 0.0),
+        (-1.0, -phi, 0.0),
+        (1.0, -phi, 0.0),
+        (0.0, -1.0, phi),
+        (0.0, 1.0, phi),
+        (0.0, -1.0, -phi),
+        (0.0, 1.0, -phi),
+        (phi, 0.0, -1.0),
+        (phi, 0.0, 1.0),
+        (-phi, 0.0, -1.0),
+        (-phi, 0.0, 1.0),
+    ];
+    let t = [
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    PolyMesh::from_triangles(p.iter().map(|&(x, y, z)| DVec3::new(x, y, z)).collect(), &t)
+}
+
+/// A polygon mesh from positions and faces (lists of vertex indices).
+pub fn poly(positions: Vec<DVec3>, faces: &[&[u32]]) -> PolyMesh {
+    let mut face_offsets = vec![0];
+    let mut face_vertices = Vec::new();
+    for f in faces {
+        face_vertices.extend_from_slice(f);
+        face_offsets.push(face_vertices.len() as u32);
+    }
+    PolyMesh { positions, face_offsets, face_vertices, ..PolyMesh::default() }
+}
+
+/// The cube `[−1, 1]³`, faces counter-clockwise from outside.
+pub fn cube() -> PolyMesh {
+    let p = (0..8).map(|i| {
+        DVec3::new(f64::from(i & 1) * 2.0 - 1.0, f64::from((i >> 1) & 1) * 2.0 - 1.0, f64::from(i >> 2) * 2.0 - 1.0)
+    });
+    poly(p.collect(), &[&[0, 2, 3, 1], &[4, 5, 7, 6], &[0, 1, 5, 4], &[2, 6, 7, 3], &[0, 4, 6, 2], &[1, 3, 7, 5]])
+}
+
+/// A closed mesh of triangles, quads and pentagons: a pentagonal prism with one side quad
+/// split into two triangles.
+pub fn prism() -> PolyMesh {
+    let mut p = Vec::new();
+    for z in [0.0, 1.3] {
+        for k in 0..5 {
+            let a = std::f64::consts::TAU * f64::from(k) / 5.0 + 0.1;
+            p.push(DVec3::new(a.cos(), a.sin(), z + 0.1 * f64::from(k)));
+        }
+    }
+    poly(
+        p,
+        &[
+            &[4, 3, 2, 1, 0],
+            &[5, 6, 7, 8, 9],
+            &[0, 1, 6, 5],
+            &[1, 2, 7],
+            &[1, 7, 6],
+            &[2, 3, 8, 7],
+            &[3, 4, 9, 8],
+            &[4, 0, 5, 9],
+        ],
+    )
 }

@@ -1,0 +1,146 @@
+//! `splinekit render`: the file is written with the asked size, the summary line, SVG for
+//! curves, and bad input (a message naming the problem, a non-zero exit, no output file).
+
+use std::path::{Path, PathBuf};
+
+mod common;
+use common::{course_mesh, splinekit};
+
+fn swp(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../splinekit-io/tests/data/swp").join(rel)
+}
+
+/// Width and height from a PNG's IHDR chunk.
+fn png_size(path: &Path) -> (u32, u32) {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "not a PNG");
+    assert_eq!(&bytes[12..16], b"IHDR");
+    let be = |i: usize| u32::from_be_bytes([bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]);
+    (be(16), be(20))
+}
+
+fn args<'a>(parts: &'a [&'a str]) -> Vec<&'a str> {
+    parts.to_vec()
+}
+
+#[test]
+fn renders_a_mesh_with_the_asked_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ico.png");
+    let mesh = course_mesh("icosahedron.obj");
+    let run = splinekit(&[
+        "render".as_ref(),
+        mesh.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--size".as_ref(),
+        "320x200".as_ref(),
+        "--view".as_ref(),
+        "front".as_ref(),
+        "--wireframe".as_ref(),
+    ]);
+    let stdout = run.ok();
+    assert!(stdout.ends_with(": 320x200, mesh of 20 triangles, front view\n"), "{stdout}");
+    assert_eq!(png_size(&out), (320, 200));
+    // The same bytes on a second run.
+    let first = std::fs::read(&out).unwrap();
+    splinekit(&[
+        "render".as_ref(),
+        mesh.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--size".as_ref(),
+        "320x200".as_ref(),
+        "--view".as_ref(),
+        "front".as_ref(),
+        "--wireframe".as_ref(),
+    ])
+    .ok();
+    assert!(first == std::fs::read(&out).unwrap(), "two runs differ");
+}
+
+#[test]
+fn renders_surfaces_and_plots_curves() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("glass.png");
+    let glass = swp("srev/wineglass.swp");
+    let run = splinekit(&["render".as_ref(), glass.as_os_str(), "-o".as_ref(), png.as_os_str()]);
+    let stdout = run.ok();
+    assert!(stdout.contains(": 800x600, 1 surfaces (32940 triangles) and 1 curves, iso view"), "{stdout}");
+    assert_eq!(png_size(&png), (800, 600));
+
+    let svg = dir.path().join("circles.svg");
+    let circles = swp("circles.swp");
+    let run = splinekit(&[
+        "render".as_ref(),
+        circles.as_os_str(),
+        "-o".as_ref(),
+        svg.as_os_str(),
+        "--frames".as_ref(),
+        "--markers".as_ref(),
+        "0.5".as_ref(),
+    ]);
+    assert!(run.ok().contains("plot of 2 curves, front view"), "{}", run.stdout);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<?xml") && text.contains("<svg") && text.trim_end().ends_with("</svg>"));
+    assert!(text.contains("<circle"), "markers are drawn");
+}
+
+#[test]
+fn bad_input_names_the_problem_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.png");
+    let glass = swp("srev/wineglass.swp");
+    let o = out.to_string_lossy().into_owned();
+    let g = glass.to_string_lossy().into_owned();
+    let check = |parts: &[&str], needle: &str, usage: bool| {
+        let run = splinekit(&args(parts));
+        let stderr = if usage { run.fails() } else { run.fails_with_error() };
+        assert!(stderr.contains(needle), "{parts:?}: {stderr}");
+        assert!(!out.exists(), "{parts:?}: an output file was written");
+    };
+    check(&["render", &g, "-o", &o, "--size", "0x5"], "width must be from 1 to 8192 pixels, found 0", true);
+    check(&["render", &g, "-o", &o, "--size", "abc"], "expected WIDTHxHEIGHT such as 800x600, found \"abc\"", true);
+    check(&["render", &g, "-o", &o, "--view", "sideways"], "unknown view \"sideways\"", true);
+    check(&["render", &g, "-o", &o, "--markers", "-1"], "--markers must be a positive number", false);
+    check(&["render", &g, "-o", &o.replace(".png", ".svg")], "SVG output draws curves only", false);
+    check(&["render", &g, "-o", &o.replace(".png", ".jpg")], "expected .png or .svg", false);
+    let missing = dir.path().join("missing.swp").to_string_lossy().into_owned();
+    check(&["render", &missing, "-o", &o], "missing.swp", false);
+    let txt = dir.path().join("notes.txt");
+    std::fs::write(&txt, "hello").unwrap();
+    check(&["render", &txt.to_string_lossy(), "-o", &o], "cannot draw a file of this kind (.txt)", false);
+    let bad = dir.path().join("bad.swp");
+    std::fs::write(&bad, "bez2 . 20 4\n[0 0]\n[1 1.2.3]").unwrap();
+    check(&["render", &bad.to_string_lossy(), "-o", &o], "bad.swp:3:4", false);
+    let no_dir = dir.path().join("no/such/dir/out.png").to_string_lossy().into_owned();
+    let run = splinekit(&args(&["render", &g, "-o", &no_dir]));
+    assert!(run.fails_with_error().contains("out.png"), "{}", run.stderr);
+}
+
+#[test]
+fn gallery_writes_its_page_and_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("gallery");
+    let run = splinekit(&[
+        "gallery".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--size".as_ref(),
+        "64x48".as_ref(),
+        "--levels".as_ref(),
+        "1".as_ref(),
+    ]);
+    let stdout = run.ok();
+    // 12 course files, 2 arc-length entries, 2 meshes × 2 levels, the ribbon.
+    assert!(stdout.starts_with("19 entries, "), "{stdout}");
+    assert!(stdout.contains(&out.join("index.html").display().to_string()), "{stdout}");
+    assert_eq!(png_size(&out.join("images/wineglass.png")), (64, 48));
+    assert!(out.join("meshes/bunny-loop1.glb").is_file());
+    assert!(!out.join("meshes/bunny-loop2.obj").exists());
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("<h2>Loop subdivision</h2>"));
+
+    let bad = splinekit(&["gallery", "--levels", "9"]);
+    assert!(bad.fails().contains("--levels"), "{}", bad.stderr);
+}
