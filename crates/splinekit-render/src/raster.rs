@@ -22,9 +22,11 @@
 //!    back colour. The wireframe overlay darkens pixels within half a line width of a
 //!    triangle's own edges, so hidden lines stay hidden.
 //!
-//! Bands of sample rows are rasterized in parallel (feature `parallel`): each band draws its
-//! triangles in the same order whatever the thread count, so the picture is the same, byte
-//! for byte, on every run.
+//! The picture is made in bands of 16 pixel rows: the triangles are first binned by band
+//! (in parallel chunks, in drawing order), then each band is rasterized into a thread's own
+//! small sample buffers (a few hundred kilobytes, so they stay in cache) and shaded right
+//! away. Bands run in parallel (feature `parallel`); each draws its triangles in the same
+//! order whatever the thread count, so the picture is the same, byte for byte, on every run.
 //!
 //! Cost: linear in the triangles and the samples; about 10–20 ms for 100k triangles at
 //! 800×600 with 2×2 samples on one core here (see the `render` bench).
@@ -61,7 +63,7 @@ const SAME_SURFACE_DEPTH: f32 = 2e-3;
 const SUB_BITS: u32 = 4;
 const SUB: f32 = (1 << SUB_BITS) as f32;
 /// Sample rows per band of the visibility pass.
-const BAND_ROWS: usize = 32;
+const BAND_PIXEL_ROWS: usize = 16;
 /// No triangle.
 const NONE: u32 = u32::MAX;
 /// Unit direction towards the key light, in camera coordinates (x right, y up, z to the eye).
@@ -215,10 +217,11 @@ pub fn render_scene(scene: &Scene, options: &RenderOptions) -> Image {
 /// A rasterizer that keeps its buffers between pictures (for galleries and benchmarks).
 #[derive(Debug, Default)]
 pub struct Renderer {
-    depth: Vec<f32>,
-    ids: Vec<u32>,
     verts: Vec<Vert>,
     mark_tris: Vec<MarkTri>,
+    /// Per chunk of triangles, per band, the chunk's triangles that may touch the band (see
+    /// [`bin_triangles`]); kept between pictures so their memory is reused.
+    bins: Vec<Vec<Vec<BinTri>>>,
 }
 
 /// A projected vertex: sample coordinates, depth key, 1/w, view-space position and normal.
@@ -320,33 +323,10 @@ impl Renderer {
         }
         let mark_count = self.mark_tris.len().min((NONE as u64 - 1 - mark_base.min(NONE as u64 - 1)) as usize);
 
-        // Visibility pass.
-        let n = sw * sh;
-        self.depth.clear();
-        self.depth.resize(n, f32::NEG_INFINITY);
-        self.ids.clear();
-        self.ids.resize(n, NONE);
-        let bins = bin_triangles(meshes, &vert_offsets, &self.verts, &self.mark_tris[..mark_count], sh);
-        {
-            let band = |(b, (depth, ids)): (usize, (&mut [f32], &mut [u32]))| {
-                let y0 = b * BAND_ROWS;
-                let mut target = Band { depth, ids, width: sw, y0, y1: (y0 + BAND_ROWS).min(sh) };
-                for t in &bins[b] {
-                    target.triangle(t.v, t.id, u64::from(t.id) >= mark_base);
-                }
-            };
-            let chunks = self.depth.chunks_mut(BAND_ROWS * sw).zip(self.ids.chunks_mut(BAND_ROWS * sw)).enumerate();
-            #[cfg(feature = "parallel")]
-            {
-                use rayon::prelude::*;
-                let chunks: Vec<_> = chunks.collect();
-                chunks.into_par_iter().for_each(band);
-            }
-            #[cfg(not(feature = "parallel"))]
-            chunks.for_each(band);
-        }
-
-        // Shading pass.
+        // Bands of pixel rows, each rasterized into its own small sample buffers and shaded
+        // right away (the buffers stay in cache, and no frame-sized sample buffer is cleared).
+        let band_rows = BAND_PIXEL_ROWS * ss as usize;
+        bin_triangles(meshes, &vert_offsets, &self.verts, &self.mark_tris[..mark_count], sh, band_rows, &mut self.bins);
         let frame = Frame {
             meshes,
             offsets,
@@ -364,49 +344,45 @@ impl Renderer {
         let lut = SrgbLut::new();
         let w = size.width as usize;
         let mut data = vec![0u8; 4 * size.num_pixels()];
-        let ids = &self.ids;
-        let depth = &self.depth;
-        let row = |(py, out): (usize, &mut [u8])| {
-            let ss = ss as usize;
-            let mut samples = [NONE; 16];
-            for px in 0..w {
-                let mut k = 0;
-                for sy in 0..ss {
-                    let base = (py * ss + sy) * sw + px * ss;
-                    samples[k..k + ss].copy_from_slice(&ids[base..base + ss]);
-                    k += ss;
+        let bins = &self.bins;
+        let band = |scratch: &mut BandBuffers, (b, out): (usize, &mut [u8])| {
+            // Visibility pass.
+            let (y0, y1) = (b * band_rows, ((b + 1) * band_rows).min(sh));
+            let n = (y1 - y0) * sw;
+            scratch.depth.clear();
+            scratch.depth.resize(n, f32::NEG_INFINITY);
+            scratch.ids.clear();
+            scratch.ids.resize(n, NONE);
+            let mut target = Band { depth: &mut scratch.depth, ids: &mut scratch.ids, width: sw, y0, y1 };
+            for part in bins {
+                for t in &part[b] {
+                    target.triangle(t.v, t.id, u64::from(t.id) >= mark_base);
                 }
-                let first = samples[0];
-                let c = if samples[..k].iter().all(|&s| s == first)
-                    || frame.one_smooth_surface(&samples[..k], depth, (px, py))
-                {
-                    let centre = ((px * ss) as f32 + 0.5 * ss as f32, (py * ss) as f32 + 0.5 * ss as f32);
-                    frame.shade(first, centre)
-                } else {
-                    // Each triangle seen once, at its first sample, weighted by its samples.
-                    let mut sum = Vec3::ZERO;
-                    for (j, &id) in samples[..k].iter().enumerate() {
-                        if samples[..j].contains(&id) {
-                            continue;
-                        }
-                        let count = samples[j..k].iter().filter(|&&s| s == id).count();
-                        let (sx, sy) = (px * ss + j % ss, py * ss + j / ss);
-                        sum += frame.shade(id, (sx as f32 + 0.5, sy as f32 + 0.5)) * count as f32;
-                    }
-                    sum / k as f32
-                };
-                out[4 * px..4 * px + 4].copy_from_slice(&[lut.encode(c.x), lut.encode(c.y), lut.encode(c.z), 255]);
+            }
+            // Shading pass.
+            let (ids, depth) = (&scratch.ids[..], &scratch.depth[..]);
+            for (r, out) in out.chunks_mut(4 * w).enumerate() {
+                let py = b * BAND_PIXEL_ROWS + r;
+                match ss {
+                    1 => frame.shade_row::<1>(r, py, ids, depth, &lut, out),
+                    2 => frame.shade_row::<2>(r, py, ids, depth, &lut, out),
+                    3 => frame.shade_row::<3>(r, py, ids, depth, &lut, out),
+                    _ => frame.shade_row::<4>(r, py, ids, depth, &lut, out),
+                }
             }
         };
-        let rows = data.chunks_mut(4 * w).enumerate();
+        let bands = data.chunks_mut(4 * w * BAND_PIXEL_ROWS).enumerate();
         #[cfg(feature = "parallel")]
         {
             use rayon::prelude::*;
-            let rows: Vec<_> = rows.collect();
-            rows.into_par_iter().for_each(row);
+            let bands: Vec<_> = bands.collect();
+            bands.into_par_iter().for_each_init(BandBuffers::default, band);
         }
         #[cfg(not(feature = "parallel"))]
-        rows.for_each(row);
+        {
+            let mut scratch = BandBuffers::default();
+            bands.for_each(|b| band(&mut scratch, b));
+        }
         Image::from_rgba(size.width, size.height, data).expect("the buffer has the image's size")
     }
 }
@@ -466,19 +442,23 @@ struct BinTri {
 /// small enough to share the work among threads.
 const BIN_CHUNK: usize = 1 << 14;
 
-/// For each band of sample rows, the triangles that may touch it, in drawing order, with
-/// their corners copied in: each band then reads its triangles in order from one array
-/// instead of gathering corners from the vertex array at random. Chunks of triangles are
-/// binned in parallel and their bins joined in chunk order, so the order is the same on any
-/// number of threads.
+/// Bins the triangles into `bins[chunk][band]`: for each chunk of triangles (in drawing
+/// order) and each band of sample rows, the chunk's triangles that may touch the band, with
+/// their corners copied in. A band then reads its triangles in order (chunk by chunk) from a
+/// few arrays instead of gathering corners from the vertex array at random. Chunks are
+/// binned in parallel, and a band reads the chunks in order, so the drawing order is the
+/// same on any number of threads. The vectors are reused: after the first picture of a
+/// size, binning allocates nothing.
 fn bin_triangles(
     meshes: &[&TriMesh],
     vert_offsets: &[usize],
     verts: &[Vert],
     mark_tris: &[MarkTri],
     rows: usize,
-) -> Vec<Vec<BinTri>> {
-    let num_bands = rows.div_ceil(BAND_ROWS);
+    band_rows: usize,
+    bins: &mut Vec<Vec<Vec<BinTri>>>,
+) {
+    let num_bands = rows.div_ceil(band_rows);
     // Chunks: (mesh, first triangle, end, global id of the first); `usize::MAX` for the marks.
     let mut chunks = Vec::new();
     let mut id = 0u32;
@@ -490,8 +470,10 @@ fn bin_triangles(
         id += n as u32;
     }
     chunks.push((usize::MAX, 0, mark_tris.len(), id));
-    let bin_chunk = |&(mi, start, end, first): &(usize, usize, usize, u32)| {
-        let mut bins = vec![Vec::new(); num_bands];
+    bins.resize_with(chunks.len(), Vec::new);
+    let bin_chunk = |(bins, &(mi, start, end, first)): (&mut Vec<Vec<BinTri>>, &(usize, usize, usize, u32))| {
+        bins.resize_with(num_bands, Vec::new);
+        bins.iter_mut().for_each(Vec::clear);
         let mut add = |v: [[f32; 3]; 3], id: u32| {
             let ys = [v[0][1], v[1][1], v[2][1]];
             let lo = ys[0].min(ys[1]).min(ys[2]);
@@ -500,8 +482,8 @@ fn bin_triangles(
             if !(hi >= 0.0 && lo < rows as f32) {
                 return;
             }
-            let b0 = (lo.max(0.0) as usize) / BAND_ROWS;
-            let b1 = ((hi as usize) / BAND_ROWS).min(num_bands - 1);
+            let b0 = (lo.max(0.0) as usize) / band_rows;
+            let b1 = ((hi as usize) / band_rows).min(num_bands - 1);
             for bin in &mut bins[b0..=b1] {
                 bin.push(BinTri { v, id });
             }
@@ -510,7 +492,7 @@ fn bin_triangles(
             for (k, m) in mark_tris.iter().enumerate() {
                 add(m.v, first + k as u32);
             }
-            return bins;
+            return;
         }
         let (mesh, vo) = (meshes[mi], vert_offsets[mi]);
         let n = mesh.positions.len();
@@ -526,29 +508,24 @@ fn bin_triangles(
                 }
             }
         }
-        bins
-    };
-    let join = |b: usize, parts: &[Vec<Vec<BinTri>>]| {
-        let mut bin = Vec::with_capacity(parts.iter().map(|p| p[b].len()).sum());
-        for part in parts {
-            bin.extend_from_slice(&part[b]);
-        }
-        bin
     };
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
-        let parts: Vec<Vec<Vec<BinTri>>> = chunks.par_iter().map(bin_chunk).collect();
-        (0..num_bands).into_par_iter().map(|b| join(b, &parts)).collect()
+        bins.par_iter_mut().zip(chunks.par_iter()).for_each(bin_chunk);
     }
     #[cfg(not(feature = "parallel"))]
-    {
-        let parts: Vec<Vec<Vec<BinTri>>> = chunks.iter().map(bin_chunk).collect();
-        (0..num_bands).map(|b| join(b, &parts)).collect()
-    }
+    bins.iter_mut().zip(chunks.iter()).for_each(bin_chunk);
 }
 
-/// A band of rows `y0..y1` of the sample buffers.
+/// One thread's sample buffers for a band: depth key and triangle id per sample.
+#[derive(Default)]
+struct BandBuffers {
+    depth: Vec<f32>,
+    ids: Vec<u32>,
+}
+
+/// The sample buffers of the band of sample rows `y0..y1` (row `y0` first).
 struct Band<'a> {
     depth: &'a mut [f32],
     ids: &'a mut [u32],
@@ -661,7 +638,62 @@ impl Band<'_> {
 }
 
 impl Frame<'_> {
-    /// Whether the samples of pixel `(px, py)` all see one smoothly shaded surface: mesh
+    /// Shades pixel row `py` (RGBA into `out`) from the `SS × SS` samples of each pixel, its
+    /// row `r` of the band whose sample buffers are `ids` and `depth`.
+    #[inline(never)]
+    fn shade_row<const SS: usize>(
+        &self,
+        r: usize,
+        py: usize,
+        ids: &[u32],
+        depth: &[f32],
+        lut: &SrgbLut,
+        out: &mut [u8],
+    ) {
+        let encode = |c: Vec3| [lut.encode(c.x), lut.encode(c.y), lut.encode(c.z), 255];
+        let background = encode(self.background);
+        let sw = self.sample_width;
+        let rows: [&[u32]; SS] = std::array::from_fn(|sy| &ids[(r * SS + sy) * sw..(r * SS + sy + 1) * sw]);
+        for (px, out) in out.chunks_exact_mut(4).enumerate() {
+            let mut grid = [[NONE; SS]; SS];
+            for sy in 0..SS {
+                grid[sy].copy_from_slice(&rows[sy][px * SS..(px + 1) * SS]);
+            }
+            let samples = grid.as_flattened();
+            let first = samples[0];
+            let rgba = if samples.iter().all(|&s| s == first) {
+                if first == NONE {
+                    background
+                } else {
+                    encode(self.shade(first, Self::centre::<SS>(px, py)))
+                }
+            } else if self.one_smooth_surface(samples, depth, (px, r)) {
+                encode(self.shade(first, Self::centre::<SS>(px, py)))
+            } else {
+                // Each triangle seen once, at its first sample, weighted by its samples.
+                let mut sum = Vec3::ZERO;
+                for (j, &id) in samples.iter().enumerate() {
+                    if samples[..j].contains(&id) {
+                        continue;
+                    }
+                    let count = samples[j..].iter().filter(|&&s| s == id).count();
+                    let (sx, sy) = (px * SS + j % SS, py * SS + j / SS);
+                    sum += self.shade(id, (sx as f32 + 0.5, sy as f32 + 0.5)) * count as f32;
+                }
+                encode(sum / (SS * SS) as f32)
+            };
+            out.copy_from_slice(&rgba);
+        }
+    }
+
+    /// The centre of pixel `(px, py)` in sample coordinates.
+    #[inline(always)]
+    fn centre<const SS: usize>(px: usize, py: usize) -> (f32, f32) {
+        ((px * SS) as f32 + 0.5 * SS as f32, (py * SS) as f32 + 0.5 * SS as f32)
+    }
+
+    /// Whether the samples of pixel `(px, py)` (`py` the pixel row in `depth`'s band) all see
+    /// one smoothly shaded surface: mesh
     /// triangles of one smooth mesh, all facing the same way, at nearly the same depth. Such
     /// a pixel is shaded once, at its centre (its colour varies smoothly across it); the
     /// others (silhouettes, creases of flat shading, front/back borders, marks) once per
