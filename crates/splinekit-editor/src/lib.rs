@@ -26,7 +26,10 @@ pub mod view3d;
 use std::path::{Path, PathBuf};
 
 use eframe::egui::{self, Key, Modifiers};
-use splinekit::subdiv::{CatmullClarkOptions, LoopOptions, LoopPyramid, catmull_clark_step};
+use splinekit::subdiv::{
+    CatmullClarkOptions, DooSabinOptions, LoopOptions, LoopPyramid, Sqrt3Options, catmull_clark_step,
+    doo_sabin_subdivide, sqrt3_subdivide,
+};
 use splinekit::{PolyMesh, TriMesh};
 use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
@@ -61,16 +64,46 @@ pub enum Scheme {
     Loop,
     /// Catmull-Clark (any polygon mesh; quads after one level).
     CatmullClark,
+    /// Kobbelt's √3 (triangle meshes; the boundary is refined every second level).
+    Sqrt3,
+    /// Doo-Sabin (any polygon mesh; a face per face, edge and vertex).
+    DooSabin,
 }
 
 impl Scheme {
+    /// Every scheme, in the menu's order.
+    pub const ALL: [Self; 4] = [Self::Loop, Self::CatmullClark, Self::Sqrt3, Self::DooSabin];
+
     /// The name in the scheme menu.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
             Self::Loop => "Loop",
             Self::CatmullClark => "Catmull-Clark",
+            Self::Sqrt3 => "√3",
+            Self::DooSabin => "Doo-Sabin",
         }
+    }
+
+    /// Level `depth` of `base` (`depth ≥ 1`) from level `depth − 1`, `coarse`, for the
+    /// schemes other than Loop (whose levels are a [`LoopPyramid`]).
+    fn polygon_level(
+        self,
+        base: &PolyMesh,
+        coarse: &PolyMesh,
+        depth: usize,
+        color_by_level: bool,
+    ) -> Result<PolyMesh, String> {
+        match self {
+            Self::Loop | Self::CatmullClark => {
+                let options = CatmullClarkOptions { color_by_level, ..CatmullClarkOptions::default() };
+                catmull_clark_step(coarse, depth, &options)
+            }
+            // From the loaded mesh: the boundary rule depends on the level's parity.
+            Self::Sqrt3 => sqrt3_subdivide(base, depth, &Sqrt3Options { color_by_level }),
+            Self::DooSabin => doo_sabin_subdivide(coarse, 1, &DooSabinOptions::default()),
+        }
+        .map_err(|e| e.to_string())
     }
 }
 
@@ -80,8 +113,8 @@ pub struct MeshState {
     pub name: String,
     /// The Loop levels (level 0 is the loaded mesh), or why it cannot be Loop-subdivided.
     pub pyramid: Result<LoopPyramid, String>,
-    /// The Catmull-Clark levels 1, 2, … made so far.
-    pub catmull_clark: Vec<PolyMesh>,
+    /// The levels 1, 2, … made so far with `scheme` when it is not Loop.
+    pub levels: Vec<PolyMesh>,
     /// The scheme of the levels shown.
     pub scheme: Scheme,
     /// The loaded mesh (triangles or polygons).
@@ -91,18 +124,18 @@ pub struct MeshState {
 }
 
 impl MeshState {
-    /// The Catmull-Clark level shown (the loaded mesh at level 0).
-    fn catmull_clark_level(&self) -> &PolyMesh {
-        if self.level == 0 { &self.base } else { &self.catmull_clark[self.level - 1] }
+    /// The level shown of a scheme other than Loop (the loaded mesh at level 0).
+    fn polygon_level(&self) -> &PolyMesh {
+        if self.level == 0 { &self.base } else { &self.levels[self.level - 1] }
     }
 
     /// The number of faces of the level shown.
     #[must_use]
     pub fn faces(&self) -> usize {
         match (self.scheme, &self.pyramid) {
-            (Scheme::CatmullClark, _) => self.catmull_clark_level().num_faces(),
             (Scheme::Loop, Ok(p)) => p.level(self.level).num_triangles(),
             (Scheme::Loop, Err(_)) => self.base.num_faces(),
+            _ => self.polygon_level().num_faces(),
         }
     }
 
@@ -110,9 +143,9 @@ impl MeshState {
     #[must_use]
     pub fn vertices(&self) -> usize {
         match (self.scheme, &self.pyramid) {
-            (Scheme::CatmullClark, _) => self.catmull_clark_level().num_vertices(),
             (Scheme::Loop, Ok(p)) => p.level(self.level).num_vertices(),
             (Scheme::Loop, Err(_)) => self.base.positions.len(),
+            _ => self.polygon_level().num_vertices(),
         }
     }
 
@@ -120,16 +153,16 @@ impl MeshState {
     #[must_use]
     pub fn shown(&self) -> TriMesh {
         match (self.scheme, &self.pyramid) {
-            (Scheme::CatmullClark, _) => self.catmull_clark_level().to_tri_mesh(),
             (Scheme::Loop, Ok(p)) => p.level(self.level).clone().into_tri_mesh(),
             (Scheme::Loop, Err(_)) => self.base.to_tri_mesh(),
+            _ => self.polygon_level().to_tri_mesh(),
         }
     }
 
     /// Whether the level shown can be refined.
     #[must_use]
     pub fn can_refine(&self) -> bool {
-        self.scheme == Scheme::CatmullClark || self.pyramid.is_ok()
+        self.scheme != Scheme::Loop || self.pyramid.is_ok()
     }
 }
 
@@ -270,7 +303,7 @@ impl EditorApp {
                 self.set_mesh_state(Some(MeshState {
                     name: path.display().to_string(),
                     pyramid,
-                    catmull_clark: Vec::new(),
+                    levels: Vec::new(),
                     scheme: Scheme::Loop,
                     base: mesh,
                     level: 0,
@@ -305,12 +338,11 @@ impl EditorApp {
                 }
                 m.level = (m.level + 1).min(p.finest().depth());
             }
-            Scheme::CatmullClark => {
-                if m.level >= m.catmull_clark.len() {
-                    let options = CatmullClarkOptions { color_by_level, ..CatmullClarkOptions::default() };
-                    let coarse = m.catmull_clark.last().unwrap_or(&m.base);
-                    match catmull_clark_step(coarse, m.level + 1, &options) {
-                        Ok(fine) => m.catmull_clark.push(fine),
+            scheme => {
+                if m.level >= m.levels.len() {
+                    let coarse = m.levels.last().unwrap_or(&m.base);
+                    match scheme.polygon_level(&m.base, coarse, m.levels.len() + 1, color_by_level) {
+                        Ok(fine) => m.levels.push(fine),
                         Err(e) => {
                             self.status = format!("Error: {}: {e}", m.name);
                             return;
@@ -329,6 +361,7 @@ impl EditorApp {
         if m.scheme != scheme {
             m.scheme = scheme;
             m.level = 0;
+            m.levels.clear();
             self.mesh_generation += 1;
             self.status = format!("{} subdivision", scheme.name());
         }
@@ -344,16 +377,21 @@ impl EditorApp {
         {
             p.refine_to(m.level, |_| {});
         }
-        // the Catmull-Clark levels made so far, again with the new colours
-        let options = CatmullClarkOptions { color_by_level: options.color_by_level, ..CatmullClarkOptions::default() };
-        let mut levels: Vec<PolyMesh> = Vec::with_capacity(m.catmull_clark.len());
-        for depth in 1..=m.catmull_clark.len() {
-            match catmull_clark_step(levels.last().unwrap_or(&m.base), depth, &options) {
-                Ok(fine) => levels.push(fine),
-                Err(_) => break,
+        // the other scheme's levels made so far, again with the new colours
+        let mut levels: Vec<PolyMesh> = Vec::with_capacity(m.levels.len());
+        if m.scheme != Scheme::Loop {
+            for depth in 1..=m.levels.len() {
+                let coarse = levels.last().unwrap_or(&m.base);
+                match m.scheme.polygon_level(&m.base, coarse, depth, options.color_by_level) {
+                    Ok(fine) => levels.push(fine),
+                    Err(_) => break,
+                }
             }
         }
-        m.catmull_clark = levels;
+        if m.scheme != Scheme::Loop {
+            m.level = m.level.min(levels.len());
+        }
+        m.levels = levels;
         self.mesh_generation += 1;
     }
 
@@ -640,7 +678,7 @@ impl EditorApp {
             ui.label(format!("Faces: {}", m.faces()));
             let (can_refine, scheme) = (m.can_refine(), m.scheme);
             egui::ComboBox::from_label("Scheme").selected_text(scheme.name()).show_ui(ui, |ui| {
-                for s in [Scheme::Loop, Scheme::CatmullClark] {
+                for s in Scheme::ALL {
                     if ui.selectable_label(s == scheme, s.name()).clicked() {
                         self.set_scheme(s);
                     }

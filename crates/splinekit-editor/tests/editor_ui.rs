@@ -425,24 +425,71 @@ fn the_empty_editor_and_its_help() {
     h.snapshot("empty_with_help");
 }
 
+/// Clicks the widget labelled `label` and lets the editor react.
+fn click(h: &mut Harness<'static, EditorApp>, label: &str) {
+    h.get_by_label(label).click();
+    h.run();
+}
+
 #[test]
 fn catmull_clark_from_the_scheme_menu() {
     let mut h = harness(EditorApp::new(Some(&data("obj/icosahedron.obj"))));
-    h.get_by_label("Scheme").click();
-    h.run();
-    h.get_by_label("Catmull-Clark").click();
-    h.run();
-    h.get_by_label("Refine subdivision").click();
-    h.run();
+    click(&mut h, "Scheme");
+    click(&mut h, "Catmull-Clark");
+    click(&mut h, "Refine subdivision");
     // 20 triangles → 60 quads (one per corner), 12 + 30 + 20 vertices; two triangles a quad in 3D
     h.get_by_label("Faces: 60");
     h.get_by_label("Level 1: 62 vertices");
     assert_eq!(h.state().view3d.num_triangles(), 120);
-    h.get_by_label("Refine subdivision").click();
-    h.run();
+    click(&mut h, "Refine subdivision");
     h.get_by_label("Faces: 240");
     assert_eq!(h.state().view3d.num_triangles(), 480);
-    h.get_by_label("Coarsen subdivision").click();
-    h.run();
+    click(&mut h, "Coarsen subdivision");
     h.get_by_label("Faces: 60");
+}
+
+#[test]
+fn sqrt3_and_doo_sabin_from_the_scheme_menu() {
+    let mut h = harness(EditorApp::new(Some(&data("obj/icosahedron.obj"))));
+    click(&mut h, "Scheme");
+    click(&mut h, "√3");
+    click(&mut h, "Refine subdivision");
+    // √3: a vertex per face, each triangle → 3 (F → 3F, V → V + F)
+    h.get_by_label("Faces: 60");
+    h.get_by_label("Level 1: 32 vertices");
+    assert_eq!(h.state().view3d.num_triangles(), 60);
+    click(&mut h, "Refine subdivision");
+    h.get_by_label("Faces: 180");
+    h.get_by_label("Level 2: 92 vertices");
+
+    // Doo-Sabin starts again from the loaded mesh: a vertex per face corner (60), a face per
+    // face, edge and vertex (20 triangles + 30 quads + 12 pentagons = 62; 116 triangles in 3D)
+    click(&mut h, "Scheme");
+    click(&mut h, "Doo-Sabin");
+    h.get_by_label("Level 0: 12 vertices");
+    click(&mut h, "Refine subdivision");
+    h.get_by_label("Faces: 62");
+    h.get_by_label("Level 1: 60 vertices");
+    assert_eq!(h.state().view3d.num_triangles(), 116);
+    click(&mut h, "Coarsen subdivision");
+    h.get_by_label("Faces: 20");
+}
+
+#[test]
+fn sqrt3_of_a_quad_mesh_is_an_error_on_the_status_line() {
+    let cube = std::env::temp_dir().join(format!("splinekit-editor-cube-{}.obj", std::process::id()));
+    std::fs::write(
+        &cube,
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+         f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n",
+    )
+    .unwrap();
+    let mut h = harness(EditorApp::new(Some(&cube)));
+    std::fs::remove_file(&cube).unwrap();
+    click(&mut h, "Scheme");
+    click(&mut h, "√3");
+    click(&mut h, "Refine subdivision");
+    assert!(h.state().status.starts_with("Error: "), "{}", h.state().status);
+    assert!(h.state().status.contains("triangle"), "{}", h.state().status);
+    h.get_by_label("Level 0: 8 vertices");
 }

@@ -678,11 +678,7 @@ impl Frame<'_> {
             let samples = grid.as_flattened();
             let first = samples[0];
             let rgba = if samples.iter().all(|&s| s == first) {
-                if first == NONE {
-                    background
-                } else {
-                    encode(self.shade(first, Self::centre::<SS>(px, py)))
-                }
+                if first == NONE { background } else { encode(self.shade(first, Self::centre::<SS>(px, py))) }
             } else if self.one_smooth_surface(samples, depth, (px, r)) {
                 encode(self.shade(first, Self::centre::<SS>(px, py)))
             } else {
