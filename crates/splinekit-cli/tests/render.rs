@@ -28,7 +28,7 @@ fn renders_a_mesh_with_the_asked_size() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("ico.png");
     let mesh = course_mesh("icosahedron.obj");
-    let run = splinekit(&[
+    let args: [&std::ffi::OsStr; 9] = [
         "render".as_ref(),
         mesh.as_os_str(),
         "-o".as_ref(),
@@ -38,24 +38,14 @@ fn renders_a_mesh_with_the_asked_size() {
         "--view".as_ref(),
         "front".as_ref(),
         "--wireframe".as_ref(),
-    ]);
+    ];
+    let run = splinekit(&args);
     let stdout = run.ok();
     assert!(stdout.ends_with(": 320x200, mesh of 20 triangles, front view\n"), "{stdout}");
     assert_eq!(png_size(&out), (320, 200));
     // The same bytes on a second run.
     let first = std::fs::read(&out).unwrap();
-    splinekit(&[
-        "render".as_ref(),
-        mesh.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-        "--size".as_ref(),
-        "320x200".as_ref(),
-        "--view".as_ref(),
-        "front".as_ref(),
-        "--wireframe".as_ref(),
-    ])
-    .ok();
+    splinekit(&args).ok();
     assert!(first == std::fs::read(&out).unwrap(), "two runs differ");
 }
 

@@ -603,15 +603,9 @@ impl LoopPyramid {
         let topo = level.topology.as_ref().expect("ensured");
         let table = Table { triangles: &level.triangles, topology: topo };
         let positions = refine_values(&table, &level.positions, rules);
-        let colors = if self.options.color_by_level {
-            let mut c = level.colors.clone();
-            c.resize(positions.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
-            c
-        } else if level.colors.is_empty() {
-            Vec::new()
-        } else {
-            refine_values(&table, &level.colors, rules)
-        };
+        let colors = child_colors(self.options.color_by_level, &level.colors, positions.len(), depth, |c| {
+            refine_values(&table, c, rules)
+        });
         let (triangles, topology) = topo.refine(&level.triangles, with_topology);
         let normals = level.normals.as_mut().map(|c| c.refine(rules, with_topology));
         let uvs = level.uvs.as_mut().map(|c| c.refine(rules, with_topology));
@@ -691,17 +685,8 @@ impl LoopPyramid {
         };
         let fine = values(&positions);
         drop(positions);
-        let fine_colors = if self.options.color_by_level {
-            let mut c = colors;
-            c.resize(fine.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
-            c
-        } else if colors.is_empty() {
-            colors
-        } else {
-            let fine_colors = values(&colors);
-            drop(colors);
-            fine_colors
-        };
+        let fine_colors = child_colors(self.options.color_by_level, &colors, fine.len(), depth, values);
+        drop(colors);
         // Made last, so that the memory of the inputs just dropped serves it (see the CLI's
         // allocator).
         let triangles = if great { great_grandchild_triangles(&table) } else { grandchild_triangles(&table) };
@@ -718,32 +703,42 @@ impl LoopPyramid {
         depth: usize,
     ) -> (Vec<DVec3>, Vec<DVec3>) {
         let fine = grandchild_values(s, positions, &self.rules);
-        let fine_colors = if self.options.color_by_level {
-            let mut c = colors;
-            c.resize(fine.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
-            c
-        } else if colors.is_empty() {
-            colors
-        } else {
-            grandchild_values(s, &colors, &self.rules)
-        };
+        let fine_colors = child_colors(self.options.color_by_level, &colors, fine.len(), depth, |c| {
+            grandchild_values(s, c, &self.rules)
+        });
         (fine, fine_colors)
     }
 
     /// The positions and colours of the child of `level`, whose topology `topo` is.
     fn child_values(&self, topo: &Table<'_>, level: &LoopLevel) -> (Vec<DVec3>, Vec<DVec3>) {
         let positions = refine_values(topo, &level.positions, &self.rules);
-        let colors = if self.options.color_by_level {
-            let mut c = Vec::with_capacity(positions.len());
-            c.extend_from_slice(&level.colors);
-            c.resize(positions.len(), LEVEL_COLORS[(level.depth + 1) % LEVEL_COLORS.len()]);
-            c
-        } else if level.colors.is_empty() {
-            Vec::new()
-        } else {
-            refine_values(topo, &level.colors, &self.rules)
-        };
+        let colors = child_colors(self.options.color_by_level, &level.colors, positions.len(), level.depth + 1, |c| {
+            refine_values(topo, c, &self.rules)
+        });
         (positions, colors)
+    }
+}
+
+/// The colours of a level of `n` vertices made at `depth` from its parent's `colors`: with
+/// `color_by_level`, the parent's followed by the level's colour ([`LEVEL_COLORS`]); none
+/// when the parent has none; else `subdivide(colors)`, the parent's carried with the
+/// positions' weights.
+fn child_colors(
+    color_by_level: bool,
+    colors: &[DVec3],
+    n: usize,
+    depth: usize,
+    subdivide: impl FnOnce(&[DVec3]) -> Vec<DVec3>,
+) -> Vec<DVec3> {
+    if color_by_level {
+        let mut c = Vec::with_capacity(n);
+        c.extend_from_slice(colors);
+        c.resize(n, LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
+        c
+    } else if colors.is_empty() {
+        Vec::new()
+    } else {
+        subdivide(colors)
     }
 }
 
