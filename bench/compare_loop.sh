@@ -2,8 +2,8 @@
 # Loop subdivision speed against the peers (issue #4): OpenSubdiv, CGAL, OpenMesh, libigl and
 # splinekit (1 and 2 threads) on three meshes, one line per (tool, mesh, levels), then the ratios.
 #
-#   bench/compare_loop.sh [--levels N] [--repeat R] [--rounds K] [--settle S] [--no-install] [--no-igl]
-#                         [--no-splinekit]
+#   bench/compare_loop.sh [--levels N] [--repeat R] [--sk-repeat Q] [--rounds K] [--settle S] [--no-install]
+#                         [--no-igl] [--no-splinekit]
 #
 # Installs the peers if missing (bench/install_peers.sh: Debian libosd-dev libcgal-dev
 # libopenmesh-dev, PyPI libigl in bench/.venv), builds the C++ drivers (bench/drivers/) and
@@ -11,10 +11,15 @@
 # target/bench-meshes/ (once), and runs every tool K times (default 3) per mesh with --repeat R,
 # each run after S seconds of rest (default 1: a peer's freed memory slows the next process).
 #
-# seconds  = median over K runs of the median of R repeats of the subdivision alone (no file I/O; see each driver's header
+# seconds  = median over K runs of the median of R repeats (splinekit: Q, default 25) of the subdivision alone (no file I/O; see each driver's header
 #            for exactly what is timed), levels N (default 3), peers on one thread;
 # rss_MB   = peak resident memory of the whole process (GNU time %M: input, output, everything);
 # out_MB   = size of the output arrays, V*3*8 + F*3*4 bytes (f64 positions, u32 triangles).
+#
+# Why splinekit repeats more: the first one or two subdivisions of a process run on memory the
+# virtual machine's host has not backed yet and take up to 7x longer (grid50k, one thread: 0.23 s
+# for the first run, 0.033 s for the next ones). A peer's median of 5 repeats of 0.3-0.6 s is past
+# that; splinekit's repeats take 10-30 ms, so 25 of them make the same ~1 s of steady state.
 #
 # Documentation and measurement only: never run by CI, asserts nothing. Takes about five minutes.
 set -euo pipefail
@@ -22,6 +27,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/.." && pwd)"
 levels=3
 repeat=5
+sk_repeat=25
 rounds=3
 settle=1
 install=1
@@ -31,12 +37,13 @@ while [ $# -gt 0 ]; do
     case "$1" in
     --levels) levels="$2"; shift 2 ;;
     --repeat) repeat="$2"; shift 2 ;;
+    --sk-repeat) sk_repeat="$2"; shift 2 ;;
     --rounds) rounds="$2"; shift 2 ;;
     --settle) settle="$2"; shift 2 ;;
     --no-install) install=0; shift ;;
     --no-igl) igl=0; shift ;;
     --no-splinekit) splinekit=0; shift ;;
-    *) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+    *) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
     esac
 done
 if [ "${CI:-}" = true ]; then
@@ -88,7 +95,7 @@ fi
 
 # ---- runs
 load="$(cut -d' ' -f1 /proc/loadavg)"
-echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; Loop, $levels levels; each line the median over $rounds runs of the median of $repeat repeats; peers on one thread"
+echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; Loop, $levels levels; each line the median over $rounds runs of the median of $repeat repeats ($sk_repeat for splinekit); peers on one thread"
 if ! python3 -c 'import sys; sys.exit(float(sys.argv[1]) >= 0.5)' "$load"; then
     notes+=("the machine was busy at the start (load average $load): other work inflates every time")
 fi
@@ -140,7 +147,7 @@ for m in "${meshes[@]}"; do
     fi
     if [ "$splinekit" = 1 ]; then
         for t in 1 2; do
-            run "splinekit-t$t" "$m" "$sk" subdivide "$in" -n "$levels" --json --repeat "$repeat" --threads "$t"
+            run "splinekit-t$t" "$m" "$sk" subdivide "$in" -n "$levels" --json --repeat "$sk_repeat" --threads "$t"
         done
     fi
 done
