@@ -1,15 +1,24 @@
-// OpenMesh Loop subdivision driver.
+// OpenMesh Loop (and modified butterfly) subdivision driver.
 //
-//   openmesh_loop IN.obj -n LEVELS [--repeat R] [-o OUT.obj]
+//   openmesh_loop IN.obj -n LEVELS [--scheme loop|butterfly] [--repeat R] [-o OUT.obj]
 //
-// OpenMesh::Subdivider::Uniform::LoopT<Mesh, double> on a TriMesh_ArrayKernelT with Vec3d
-// points: Loop's beta, boundary edges midpoint, boundary vertices (v_l + 6 v + v_r) / 8,
-// corners not fixed. Timed: attach, operator()(LEVELS) and detach, per repeat, on a fresh copy
-// of the input mesh (the copy is not timed); not timed: building the mesh, files.
+// On a TriMesh_ArrayKernelT with Vec3d points:
+//  - loop (default): OpenMesh::Subdivider::Uniform::LoopT<Mesh, double>: Loop's beta, boundary
+//    edges midpoint, boundary vertices (v_l + 6 v + v_r) / 8, corners not fixed;
+//  - butterfly: ModifiedButterflyT<Mesh, double> (Zorin, Schröder and Sweldens 1996):
+//    interpolating; edge points by the 8-point butterfly where both ends are regular (valence
+//    6) or on the boundary, wings missing at a boundary reflected; Zorin's valence-K masks
+//    around irregular interior ends (averaged when both are); the 4-point rule on boundary
+//    edges.
+// Timed: attach, operator()(LEVELS) and detach, per repeat, on a fresh copy of the input mesh
+// (the copy is not timed); not timed: building the mesh, files.
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/config.h>
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
+
+#include <string>
 
 #include "common.hpp"
 
@@ -19,8 +28,31 @@ struct Traits : public OpenMesh::DefaultTraits {
 };
 typedef OpenMesh::TriMesh_ArrayKernelT<Traits> Mesh;
 
+template <typename Subdivider>
+double run(Mesh& m, int levels) {
+    double t0 = now_seconds();
+    Subdivider sub;
+    sub.attach(m);
+    sub(size_t(levels));
+    sub.detach();
+    return now_seconds() - t0;
+}
+
 int main(int argc, char** argv) {
-    Args a = parse_args(argc, argv, "openmesh_loop IN.obj -n LEVELS [--repeat R] [-o OUT.obj]", false);
+    const char* usage = "openmesh_loop IN.obj -n LEVELS [--scheme loop|butterfly] [--repeat R] [-o OUT.obj]";
+    // --scheme is this driver's own; the rest is the common command line.
+    std::string scheme = "loop";
+    std::vector<char*> rest;
+    for (int i = 0; i < argc; ++i) {
+        if (std::string(argv[i]) == "--scheme" && i + 1 < argc) scheme = argv[++i];
+        else rest.push_back(argv[i]);
+    }
+    if (scheme != "loop" && scheme != "butterfly") {
+        std::fprintf(stderr, "usage: %s\n", usage);
+        return 2;
+    }
+    const bool loop = scheme == "loop";
+    Args a = parse_args(int(rest.size()), rest.data(), usage, false);
     Tri in = read_obj(a.input);
     Mesh base;
     std::vector<Mesh::VertexHandle> vh;
@@ -38,12 +70,8 @@ int main(int argc, char** argv) {
     for (int r = 0; r < a.repeat; ++r) {
         m = Mesh();
         m = base;
-        double t0 = now_seconds();
-        OpenMesh::Subdivider::Uniform::LoopT<Mesh, double> loop;
-        loop.attach(m);
-        loop(size_t(a.levels));
-        loop.detach();
-        times.push_back(now_seconds() - t0);
+        times.push_back(loop ? run<OpenMesh::Subdivider::Uniform::LoopT<Mesh, double>>(m, a.levels)
+                             : run<OpenMesh::Subdivider::Uniform::ModifiedButterflyT<Mesh, double>>(m, a.levels));
     }
 
     if (a.output) {
@@ -61,8 +89,8 @@ int main(int argc, char** argv) {
             if (c != 3) return 1;
         }
         char comment[256];
-        std::snprintf(comment, sizeof comment, "OpenMesh %d.%d Subdivider::Uniform::LoopT<Mesh, double>(%d)",
-                      OM_GET_VER, OM_GET_MAJ, a.levels);
+        std::snprintf(comment, sizeof comment, "OpenMesh %d.%d Subdivider::Uniform::%s<Mesh, double>(%d)",
+                      OM_GET_VER, OM_GET_MAJ, loop ? "LoopT" : "ModifiedButterflyT", a.levels);
         write_obj(a.output, out, comment);
     }
     print_json(long(m.n_vertices()), long(m.n_faces()), times);

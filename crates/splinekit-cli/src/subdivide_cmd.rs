@@ -1,5 +1,5 @@
-//! `splinekit subdivide`: Loop or √3 subdivision of a triangle mesh file, Catmull-Clark or
-//! Doo-Sabin of a polygon mesh file.
+//! `splinekit subdivide`: Loop, √3 or modified butterfly subdivision of a triangle mesh file,
+//! Catmull-Clark or Doo-Sabin of a polygon mesh file.
 
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
@@ -9,16 +9,16 @@ use anyhow::{Context, anyhow, bail};
 use clap::ValueEnum;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
-    BoundaryRule, CatmullClarkOptions, DooSabinOptions, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options,
-    SubdivError, catmull_clark_limit_positions, catmull_clark_subdivide, doo_sabin_subdivide, loop_limit_positions,
-    sqrt3_subdivide,
+    BoundaryRule, ButterflyOptions, CatmullClarkOptions, DooSabinOptions, LoopLevel, LoopOptions, LoopPyramid,
+    LoopWeights, Sqrt3Options, SubdivError, butterfly_subdivide, catmull_clark_limit_positions,
+    catmull_clark_subdivide, doo_sabin_subdivide, loop_limit_positions, sqrt3_subdivide,
 };
 use splinekit_io::mesh::{MeshFormat, load_mesh, save, save_poly};
 
 use crate::output::JsonNum;
 
-/// Subdivide a mesh (OBJ, glb, PLY or STL): Loop's scheme (default) or √3 (`--scheme sqrt3`)
-/// for triangle meshes, Catmull-Clark (`--scheme catmull-clark`) or Doo-Sabin (`--scheme
+/// Subdivide a mesh (OBJ, glb, PLY or STL): Loop's scheme (default), √3 (`--scheme sqrt3`) or
+/// modified butterfly (`--scheme butterfly`) for triangle meshes, Catmull-Clark (`--scheme catmull-clark`) or Doo-Sabin (`--scheme
 /// doo-sabin`) for any polygon mesh.
 ///
 /// Each level splits every triangle into four (SPEC §3.2); a closed mesh with V vertices,
@@ -46,8 +46,15 @@ use crate::output::JsonNum;
 /// `--limit` are refused, and so is `--color-by-level` for Doo-Sabin (every vertex is new at
 /// every level); `--weights` is refused for every scheme but Loop.
 ///
+/// Modified butterfly (Zorin, Schröder and Sweldens; OpenMesh's ModifiedButterflyT) is
+/// interpolating: old vertices stay, one new vertex per edge from the eight-point butterfly
+/// stencil (both ends of valence 6 or on the boundary; wings missing at a boundary
+/// reflected), Zorin's masks around irregular ends, the four-point rule along boundary edges;
+/// the counts are Loop's. Colours and seamless UVs are carried; `--boundary` is refused.
+///
 /// `--limit` moves every output vertex to its limit position (Loop or Catmull-Clark masks
-/// matching the weights and boundary rule; Catmull-Clark needs at least one level).
+/// matching the weights and boundary rule; Catmull-Clark needs at least one level). Butterfly
+/// vertices already lie on their limit surface, so `--limit` leaves them where they are.
 ///
 /// Writes the result by the extension of OUT (.obj, .ply, .stl, .glb) through a temporary
 /// file, so an error never leaves a partial file; without -o nothing is written (use it to
@@ -129,6 +136,8 @@ pub enum Scheme {
     Sqrt3,
     /// Doo-Sabin (any polygon mesh; CGAL's rules)
     DooSabin,
+    /// Modified butterfly (triangle meshes; interpolating; OpenMesh's rules)
+    Butterfly,
 }
 
 impl Scheme {
@@ -139,6 +148,7 @@ impl Scheme {
             Self::CatmullClark => "Catmull-Clark",
             Self::Sqrt3 => "√3",
             Self::DooSabin => "Doo-Sabin",
+            Self::Butterfly => "butterfly",
         }
     }
 }
@@ -167,16 +177,14 @@ fn check_options(args: &SubdivideArgs) -> anyhow::Result<()> {
     if scheme != Scheme::Loop && args.weights.is_some() {
         bail!("--weights chooses Loop's even-vertex weights; {name} subdivision has none to choose (drop --weights)");
     }
-    if matches!(scheme, Scheme::Sqrt3 | Scheme::DooSabin) {
-        if args.boundary.is_some() {
-            bail!(
-                "--boundary is for Loop and Catmull-Clark; {name} subdivision has CGAL's boundary rule only (drop \
-                 --boundary)"
-            );
-        }
-        if args.limit {
-            bail!("--limit: limit positions are computed for Loop and Catmull-Clark only, not {name} subdivision");
-        }
+    if matches!(scheme, Scheme::Sqrt3 | Scheme::DooSabin | Scheme::Butterfly) && args.boundary.is_some() {
+        let peer = if scheme == Scheme::Butterfly { "OpenMesh's" } else { "CGAL's" };
+        bail!(
+            "--boundary is for Loop and Catmull-Clark; {name} subdivision has {peer} boundary rule only (drop --boundary)"
+        );
+    }
+    if matches!(scheme, Scheme::Sqrt3 | Scheme::DooSabin) && args.limit {
+        bail!("--limit: limit positions are computed for Loop and Catmull-Clark only, not {name} subdivision");
     }
     if scheme == Scheme::DooSabin && args.color_by_level {
         bail!(
@@ -227,6 +235,11 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         Scheme::DooSabin => {
             let subdivide = |m: &PolyMesh| doo_sabin_subdivide(m, args.levels as usize, &DooSabinOptions::default());
             return run_polygons(args, &mesh, format, out, subdivide, "faces");
+        }
+        Scheme::Butterfly => {
+            let options = ButterflyOptions { color_by_level: args.color_by_level };
+            let subdivide = |m: &PolyMesh| butterfly_subdivide(m, args.levels as usize, &options);
+            return run_polygons(args, &mesh, format, out, subdivide, "triangles");
         }
     }
     let options = LoopOptions {

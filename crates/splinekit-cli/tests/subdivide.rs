@@ -240,6 +240,44 @@ fn sqrt3_and_doo_sabin_counts_and_output() {
 }
 
 #[test]
+fn butterfly_interpolates_with_loops_counts() {
+    let dir = temp_dir("butterfly");
+    let ico = shared("icosahedron.obj"); // V 12, E 30, F 20, closed
+    for (levels, v, f) in [(1, 42, 80), (2, 162, 320)] {
+        let json = splinekit(&["subdivide", &ico, "-n", &levels.to_string(), "--scheme", "butterfly", "--json"]).json();
+        assert_eq!((json["vertices"].as_u64(), json["faces"].as_u64()), (Some(v), Some(f)), "{json}");
+    }
+    // the input's vertices are the output's first ones, unmoved (--limit leaves them too)
+    let out = dir.join("ico-bf.obj");
+    let run =
+        splinekit(&["subdivide", &ico, "-n", "2", "--scheme", "butterfly", "--limit", "-o", out.to_str().unwrap()]);
+    assert!(run.ok().contains("162 vertices, 320 triangles after 2 levels of butterfly subdivision"), "{}", run.stdout);
+    let coords = |text: &str| -> Vec<[f64; 3]> {
+        text.lines()
+            .filter(|l| l.starts_with("v "))
+            .map(|l| {
+                let x: Vec<f64> = l.split_whitespace().skip(1).take(3).map(|t| t.parse().unwrap()).collect();
+                [x[0], x[1], x[2]]
+            })
+            .collect()
+    };
+    let (input, output) =
+        (coords(&std::fs::read_to_string(&ico).unwrap()), coords(&std::fs::read_to_string(&out).unwrap()));
+    assert_eq!(input.len(), 12);
+    for (k, (a, b)) in input.iter().zip(&output).enumerate() {
+        assert!((0..3).all(|i| (a[i] - b[i]).abs() <= 1e-15 * a[i].abs().max(1.0)), "vertex {k}: {a:?} became {b:?}");
+    }
+    // triangles only
+    let quad = dir.join("quad.obj");
+    std::fs::write(&quad, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+    let err = splinekit(&["subdivide", quad.to_str().unwrap(), "-n", "1", "--scheme", "butterfly"])
+        .fails_with_error()
+        .to_owned();
+    assert!(err.contains("face 0 has 4 corners; butterfly subdivision needs triangles"), "{err}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
 fn sqrt3_and_doo_sabin_refuse_bad_input_and_options() {
     let dir = temp_dir("sqrt3-doo-sabin-bad");
     let quad = dir.join("quad.obj");
@@ -256,7 +294,7 @@ fn sqrt3_and_doo_sabin_refuse_bad_input_and_options() {
 
     let bowtie = dir.join("bowtie.obj");
     std::fs::write(&bowtie, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n").unwrap();
-    for scheme in ["sqrt3", "doo-sabin"] {
+    for scheme in ["sqrt3", "doo-sabin", "butterfly"] {
         let err = splinekit(&["subdivide", bowtie.to_str().unwrap(), "-n", "1", "--scheme", scheme, "-o", out_s])
             .fails_with_error()
             .to_owned();
@@ -275,6 +313,8 @@ fn sqrt3_and_doo_sabin_refuse_bad_input_and_options() {
         ("sqrt3", &["--limit"], "--limit"),
         ("doo-sabin", &["--limit"], "--limit"),
         ("doo-sabin", &["--color-by-level"], "--color-by-level"),
+        ("butterfly", &["--weights", "warren"], "--weights"),
+        ("butterfly", &["--boundary", "corners"], "--boundary"),
     ] {
         let mut args = vec!["subdivide", &ico, "-n", "1", "--scheme", scheme, "-o", out_s];
         args.extend_from_slice(flags);

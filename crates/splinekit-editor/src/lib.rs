@@ -27,8 +27,8 @@ use std::path::{Path, PathBuf};
 
 use eframe::egui::{self, Key, Modifiers};
 use splinekit::subdiv::{
-    CatmullClarkOptions, DooSabinOptions, LoopOptions, LoopPyramid, Sqrt3Options, catmull_clark_step,
-    doo_sabin_subdivide, sqrt3_subdivide,
+    ButterflyOptions, CatmullClarkOptions, DooSabinOptions, LoopOptions, LoopPyramid, Sqrt3Options, butterfly_step,
+    catmull_clark_step, doo_sabin_subdivide, sqrt3_subdivide,
 };
 use splinekit::{PolyMesh, TriMesh};
 use splinekit_io::SwpDocument;
@@ -68,11 +68,13 @@ pub enum Scheme {
     Sqrt3,
     /// Doo-Sabin (any polygon mesh; a face per face, edge and vertex).
     DooSabin,
+    /// Modified butterfly (triangle meshes; interpolating: vertices stay where they are).
+    Butterfly,
 }
 
 impl Scheme {
     /// Every scheme, in the menu's order.
-    pub const ALL: [Self; 4] = [Self::Loop, Self::CatmullClark, Self::Sqrt3, Self::DooSabin];
+    pub const ALL: [Self; 5] = [Self::Loop, Self::CatmullClark, Self::Sqrt3, Self::DooSabin, Self::Butterfly];
 
     /// The name in the scheme menu.
     #[must_use]
@@ -82,6 +84,7 @@ impl Scheme {
             Self::CatmullClark => "Catmull-Clark",
             Self::Sqrt3 => "√3",
             Self::DooSabin => "Doo-Sabin",
+            Self::Butterfly => "Butterfly",
         }
     }
 
@@ -102,6 +105,7 @@ impl Scheme {
             // From the loaded mesh: the boundary rule depends on the level's parity.
             Self::Sqrt3 => sqrt3_subdivide(base, depth, &Sqrt3Options { color_by_level }),
             Self::DooSabin => doo_sabin_subdivide(coarse, 1, &DooSabinOptions::default()),
+            Self::Butterfly => butterfly_step(coarse, depth, &ButterflyOptions { color_by_level }),
         }
         .map_err(|e| e.to_string())
     }

@@ -449,7 +449,7 @@ fn catmull_clark_from_the_scheme_menu() {
 }
 
 #[test]
-fn sqrt3_and_doo_sabin_from_the_scheme_menu() {
+fn sqrt3_doo_sabin_and_butterfly_from_the_scheme_menu() {
     let mut h = harness(EditorApp::new(Some(&data("obj/icosahedron.obj"))));
     click(&mut h, "Scheme");
     click(&mut h, "√3");
@@ -473,6 +473,14 @@ fn sqrt3_and_doo_sabin_from_the_scheme_menu() {
     assert_eq!(h.state().view3d.num_triangles(), 116);
     click(&mut h, "Coarsen subdivision");
     h.get_by_label("Faces: 20");
+
+    // Butterfly: Loop's counts (V + E, 4F), the loaded vertices kept where they are
+    click(&mut h, "Scheme");
+    click(&mut h, "Butterfly");
+    click(&mut h, "Refine subdivision");
+    h.get_by_label("Faces: 80");
+    h.get_by_label("Level 1: 42 vertices");
+    assert_eq!(h.state().view3d.num_triangles(), 80);
 }
 
 #[test]

@@ -13,6 +13,9 @@
 //!   icosahedron with a hole, and `DooSabin_subdivision` on a cube, the prism, the icosahedron,
 //!   an open quad grid and the open triangle grid, in `tests/data/cgal/` (made by
 //!   `bench/make_cgal_references.sh` with `bench/drivers/cgal_sqrt3_doosabin.cpp`).
+//! - Modified butterfly (issue #7): OpenMesh 9's `ModifiedButterflyT` on closed meshes of
+//!   valences 3 to 7, two open meshes and the bunny's base mesh, in `tests/data/openmesh/`
+//!   (made by `bench/make_butterfly_references.sh` with `bench/drivers/openmesh_loop.cpp`).
 //!
 //! Our vertex numbering differs from the peers', so meshes are compared as point sets plus
 //! topology: every vertex of ours is matched to the reference vertex nearest to it, the
@@ -26,9 +29,9 @@ use std::fmt::Write as _;
 use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
-    BoundaryRule, CatmullClarkOptions, DooSabinOptions, LoopOptions, LoopWeights, Sqrt3Options,
-    catmull_clark_limit_positions, catmull_clark_subdivide, doo_sabin_subdivide, loop_limit_positions, loop_subdivide,
-    sqrt3_subdivide,
+    BoundaryRule, ButterflyOptions, CatmullClarkOptions, DooSabinOptions, LoopOptions, LoopWeights, Sqrt3Options,
+    butterfly_subdivide, catmull_clark_limit_positions, catmull_clark_subdivide, doo_sabin_subdivide,
+    loop_limit_positions, loop_subdivide, sqrt3_subdivide,
 };
 
 /// Largest distance allowed between a vertex of ours and its match in the reference, as a
@@ -388,6 +391,38 @@ fn doo_sabin_matches_cgal() {
         }
     }
     assert!(failures.is_empty(), "against CGAL (DooSabin_subdivision):\n{failures}");
+}
+
+/// Modified butterfly against OpenMesh's `ModifiedButterflyT`: levels 1 to 3 on closed meshes
+/// whose vertices have valence 3, 4, 5 and 7 (Zorin's irregular masks, then the regular
+/// butterfly next to them), on two open meshes (the four-point rule, reflected wings, boundary
+/// ends), and level 1 of the bunny's base mesh (four holes, valences 3 to 11).
+#[test]
+fn butterfly_matches_openmesh() {
+    let mut failures = String::new();
+    let cases = [
+        ("cgal/tetra4", 3),
+        ("openmesh/octahedron8", 3),
+        ("openmesh/bipyramid14", 3),
+        ("cgal/icosahedron20", 3),
+        ("cgal/trigrid18", 3),
+        ("cgal/icoopen15", 3),
+        ("loop/bunnybase883", 1),
+    ];
+    for (input, max_level) in cases {
+        let mesh = read_obj(&format!("{input}.in.obj")).to_poly();
+        let name = input.rsplit('/').next().unwrap();
+        for level in 1..=max_level {
+            let what = format!("{name}.openmesh-butterfly.l{level}");
+            let result = butterfly_subdivide(&mesh, level, &ButterflyOptions::default())
+                .map_err(|e| format!("butterfly_subdivide failed: {e}"))
+                .and_then(|ours| compare(&ours, &read_obj(&format!("openmesh/{what}.obj"))));
+            if let Err(e) = result {
+                writeln!(failures, "{what}: {e}").unwrap();
+            }
+        }
+    }
+    assert!(failures.is_empty(), "against OpenMesh (ModifiedButterflyT):\n{failures}");
 }
 
 /// Limit positions against OpenSubdiv's `PrimvarRefinerReal::Limit` after one level of Loop

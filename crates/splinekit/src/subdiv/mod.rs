@@ -1,7 +1,8 @@
 //! Subdivision surfaces: Loop subdivision of triangle meshes (SPEC §3.2) and Catmull-Clark
 //! subdivision of polygon meshes (SPEC §3.3), with OpenSubdiv's rules; √3 subdivision of
 //! triangle meshes ([`sqrt3_subdivide`]) and Doo-Sabin subdivision of polygon meshes
-//! ([`doo_sabin_subdivide`]), with CGAL's.
+//! ([`doo_sabin_subdivide`]), with CGAL's; the interpolating modified butterfly scheme
+//! ([`butterfly_subdivide`]), with OpenMesh's.
 //!
 //! ```
 //! use glam::DVec3;
@@ -17,6 +18,7 @@
 //! # Ok::<(), splinekit::subdiv::SubdivError>(())
 //! ```
 
+pub mod butterfly;
 mod catmull_clark;
 pub mod doo_sabin;
 mod grandchild;
@@ -27,6 +29,7 @@ mod matrix;
 pub mod sqrt3;
 pub mod topology;
 
+pub use butterfly::{ButterflyOptions, butterfly_step, butterfly_subdivide};
 pub use catmull_clark::{CatmullClarkOptions, catmull_clark_step, catmull_clark_subdivide};
 pub use doo_sabin::{DooSabinOptions, doo_sabin_subdivide};
 pub use limit::{catmull_clark_limit_positions, loop_limit_positions};

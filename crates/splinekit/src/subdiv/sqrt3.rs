@@ -105,8 +105,29 @@ pub(super) fn per_vertex_uvs(mesh: &PolyMesh) -> Option<Vec<DVec2>> {
 fn step(mesh: &PolyMesh, depth: usize, options: &Sqrt3Options) -> Result<PolyMesh, SubdivError> {
     let rings = Rings::new(mesh)?;
     let plan = Plan::new(&rings, depth.is_multiple_of(2));
+    Ok(triangle_level(mesh, depth, options.color_by_level, &plan))
+}
+
+/// How a level of a triangle scheme is made from its parent: its values from the parent's,
+/// and its triangles.
+pub(super) trait TriangleLevel {
+    /// The child values from the parent's values `p` (one per parent vertex).
+    fn refine<T: Attribute>(&self, p: &[T]) -> Vec<T>;
+    /// The child triangles, three vertex indices each.
+    fn child_triangles(&self) -> Vec<u32>;
+}
+
+/// Level `depth` made from `mesh` by `plan`: positions, colours (carried, or by level with
+/// `color_by_level`: at depth 1 the parent's vertices get [`LEVEL_COLORS`]`[0]`), seamless
+/// UVs carried, normals dropped.
+pub(super) fn triangle_level(
+    mesh: &PolyMesh,
+    depth: usize,
+    color_by_level: bool,
+    plan: &impl TriangleLevel,
+) -> PolyMesh {
     let positions = plan.refine(&mesh.positions);
-    let colors = if options.color_by_level {
+    let colors = if color_by_level {
         let mut c = if depth <= 1 { vec![LEVEL_COLORS[0]; mesh.positions.len()] } else { mesh.colors.clone() };
         c.resize(positions.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
         c
@@ -118,7 +139,7 @@ fn step(mesh: &PolyMesh, depth: usize, options: &Sqrt3Options) -> Result<PolyMes
     let face_vertices = plan.child_triangles();
     let uvs = per_vertex_uvs(mesh).map(|uv| FaceVarying { values: plan.refine(&uv), indices: face_vertices.clone() });
     let face_offsets = (0..=face_vertices.len() as u32).step_by(3).collect();
-    Ok(PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs })
+    PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs }
 }
 
 /// One level's numbering: which triangles have a boundary edge refined, and where their
@@ -163,6 +184,37 @@ impl<'r, 'a> Plan<'r, 'a> {
         if self.border { self.border_corner[f] } else { NONE }
     }
 
+    /// The new value of parent vertex `v`.
+    fn vertex_point<T: Attribute>(&self, p: &[T], v: usize) -> T {
+        let pv = p[v];
+        let corners = self.rings.adj.corners_of(v as u32);
+        if corners.is_empty() {
+            return pv;
+        }
+        if let Some((a, b)) = self.rings.boundary_neighbours(v as u32) {
+            if !self.border {
+                return pv;
+            }
+            return (p[a as usize] * 4.0 + pv * 19.0 + p[b as usize] * 4.0) * (1.0 / 27.0);
+        }
+        let n = corners.len() as f64;
+        let alpha = (4.0 - 2.0 * (core::f64::consts::TAU / n).cos()) / 9.0;
+        let ring = corners.iter().fold(T::default(), |s, &c| s + p[self.rings.adj.to[c as usize] as usize]);
+        pv * (1.0 - alpha) + ring * (alpha / n)
+    }
+
+    /// The child vertex on the side of corner `c`'s triangle across `c`'s edge: the face
+    /// point, or on a boundary level one of a boundary triangle's two boundary points.
+    #[inline]
+    fn apex(&self, c: u32) -> u32 {
+        let f = c / 3;
+        let point = self.rings.mesh.num_vertices() as u32 + f;
+        let b = self.boundary_corner(f as usize);
+        if b != NONE && c == next(b) { self.second[f as usize] } else { point }
+    }
+}
+
+impl TriangleLevel for Plan<'_, '_> {
     /// The child values: the parent's vertices, the face points, the second boundary points.
     fn refine<T: Attribute>(&self, p: &[T]) -> Vec<T> {
         let (nv, nf) = (self.rings.mesh.num_vertices(), self.rings.mesh.num_faces());
@@ -191,35 +243,6 @@ impl<'r, 'a> Plan<'r, 'a> {
         let mut out = Vec::new();
         vertices.chain(faces).chain(seconds).collect_into_vec(&mut out);
         out
-    }
-
-    /// The new value of parent vertex `v`.
-    fn vertex_point<T: Attribute>(&self, p: &[T], v: usize) -> T {
-        let pv = p[v];
-        let corners = self.rings.adj.corners_of(v as u32);
-        if corners.is_empty() {
-            return pv;
-        }
-        if let Some((a, b)) = self.rings.boundary_neighbours(v as u32) {
-            if !self.border {
-                return pv;
-            }
-            return (p[a as usize] * 4.0 + pv * 19.0 + p[b as usize] * 4.0) * (1.0 / 27.0);
-        }
-        let n = corners.len() as f64;
-        let alpha = (4.0 - 2.0 * (core::f64::consts::TAU / n).cos()) / 9.0;
-        let ring = corners.iter().fold(T::default(), |s, &c| s + p[self.rings.adj.to[c as usize] as usize]);
-        pv * (1.0 - alpha) + ring * (alpha / n)
-    }
-
-    /// The child vertex on the side of corner `c`'s triangle across `c`'s edge: the face
-    /// point, or on a boundary level one of a boundary triangle's two boundary points.
-    #[inline]
-    fn apex(&self, c: u32) -> u32 {
-        let f = c / 3;
-        let point = self.rings.mesh.num_vertices() as u32 + f;
-        let b = self.boundary_corner(f as usize);
-        if b != NONE && c == next(b) { self.second[f as usize] } else { point }
     }
 
     /// The child triangles, one per parent corner (see the module docs).
