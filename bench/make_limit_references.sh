@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Limit-position reference data for crates/splinekit/tests/subdivision_reference.rs:
 # OpenSubdiv's PrimvarRefinerReal::Limit of the finest level after uniform Loop and
-# Catmull-Clark refinement (bench/drivers/osd_loop.cpp, osd_catmark.cpp with --limit), on the
-# input meshes of tests/data/loop and tests/data/catmark, into tests/data/limit/. Needs the
-# peers (bench/install_peers.sh); CI does not run it. Deterministic.
+# Catmull-Clark refinement (bench/drivers/osd_loop.cpp, osd_catmark.cpp with --limit), with the
+# unit limit normals as `vn` lines (tan1 x tan2 of PrimvarRefinerReal::Limit), on the input
+# meshes of tests/data/loop and tests/data/catmark, the bunny's base mesh (Loop: boundary
+# vertices with up to 6 faces) and the icosahedron with a hole of tests/data/cgal (Catmull-Clark:
+# boundary vertices with 3 quads), into tests/data/limit/. Needs the peers
+# (bench/install_peers.sh); CI does not run it. Deterministic.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$here/.."
@@ -11,7 +14,7 @@ data="$root/crates/splinekit/tests/data"
 peers="$root/target/bench-peers"
 mkdir -p "$data/limit"
 bash "$here/drivers/build.sh" "$peers"
-for m in icosahedron20 torus96 grid32; do
+for m in icosahedron20 torus96 grid32 bunnybase883; do
     "$peers/osd_loop" "$data/loop/$m.in.obj" -n 1 --limit -o "$data/limit/$m.osd-loop.l1.obj" >/dev/null
 done
 "$peers/osd_loop" "$data/loop/grid32.in.obj" -n 1 --limit --corners -o "$data/limit/grid32.osd-loop-corners.l1.obj" >/dev/null
@@ -19,4 +22,5 @@ for m in cube6 torus48 prism8 grid16; do
     "$peers/osd_catmark" "$data/catmark/$m.in.obj" -n 1 --limit -o "$data/limit/$m.osd-catmark.l1.obj" >/dev/null
 done
 "$peers/osd_catmark" "$data/catmark/grid16.in.obj" -n 1 --limit --corners -o "$data/limit/grid16.osd-catmark-corners.l1.obj" >/dev/null
+"$peers/osd_catmark" "$data/cgal/icoopen15.in.obj" -n 1 --limit -o "$data/limit/icoopen15.osd-catmark.l1.obj" >/dev/null
 ls -l "$data/limit"

@@ -14,6 +14,7 @@ struct Tri {
     std::vector<double> xyz;  // 3 per vertex
     std::vector<int> tri;     // 3 per face (polygons: sizes[f] per face), 0-based
     std::vector<int> sizes;   // polygon meshes only: corners per face
+    std::vector<double> nxyz; // optional: 3 per vertex, written as `vn` lines
     int num_vertices() const { return int(xyz.size() / 3); }
     int num_faces() const { return sizes.empty() ? int(tri.size() / 3) : int(sizes.size()); }
 };
@@ -76,6 +77,8 @@ inline void write_obj(const char* path, const Tri& m, const std::string& comment
     std::fprintf(f, "# %s\n", comment.c_str());
     for (int v = 0; v < m.num_vertices(); ++v)
         std::fprintf(f, "v %.17g %.17g %.17g\n", m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]);
+    for (size_t v = 0; 3 * v < m.nxyz.size(); ++v)
+        std::fprintf(f, "vn %.17g %.17g %.17g\n", m.nxyz[3 * v], m.nxyz[3 * v + 1], m.nxyz[3 * v + 2]);
     if (m.sizes.empty()) {
         for (int t = 0; t < m.num_faces(); ++t)
             std::fprintf(f, "f %d %d %d\n", m.tri[3 * t] + 1, m.tri[3 * t + 1] + 1, m.tri[3 * t + 2] + 1);

@@ -1,11 +1,14 @@
 // The OpenSubdiv drivers' shared part: uniform refinement with Far and double-precision
-// primvar interpolation, timed per repeat; the finest level written as OBJ.
+// primvar interpolation, timed per repeat; the finest level written as OBJ (with --limit: its
+// limit positions, and as `vn` the unit limit normals, the normalized cross product of the two
+// limit tangents of PrimvarRefinerReal::Limit).
 #pragma once
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/version.h>
 
+#include <cmath>
 #include <memory>
 
 #include "common.hpp"
@@ -71,10 +74,18 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
         size_t first = buffer.size() - size_t(nv);
         out.xyz.resize(3 * nv);
         if (a.limit) {
-            // the limit positions of the finest level's vertices (not timed)
-            std::vector<Vertex> limit(nv);
-            Far::PrimvarRefinerReal<double>(*refiner).Limit(&buffer[first], limit);
+            // the limit positions of the finest level's vertices, and the unit limit normals
+            // tan1 x tan2 (not timed)
+            std::vector<Vertex> limit(nv), tan1(nv), tan2(nv);
+            Far::PrimvarRefinerReal<double>(*refiner).Limit(&buffer[first], limit, tan1, tan2);
             std::memcpy(out.xyz.data(), limit.data(), 3 * nv * sizeof(double));
+            for (long v = 0; v < nv; ++v) {
+                const double* s = tan1[v].p;
+                const double* t = tan2[v].p;
+                double n[3] = {s[1] * t[2] - s[2] * t[1], s[2] * t[0] - s[0] * t[2], s[0] * t[1] - s[1] * t[0]};
+                double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+                for (double x : n) out.nxyz.push_back(len > 0 ? x / len : 0.0);
+            }
         } else {
             std::memcpy(out.xyz.data(), &buffer[first], 3 * nv * sizeof(double));
         }

@@ -7,11 +7,14 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, anyhow, bail};
 use clap::ValueEnum;
+use glam::DVec3;
 use splinekit::PolyMesh;
+use splinekit::mesh::FaceVarying;
 use splinekit::subdiv::{
     BoundaryRule, ButterflyOptions, CatmullClarkOptions, DooSabinOptions, LoopLevel, LoopOptions, LoopPyramid,
-    LoopWeights, Sqrt3Options, SubdivError, butterfly_subdivide, catmull_clark_limit_positions,
-    catmull_clark_subdivide, doo_sabin_subdivide, loop_limit_positions, sqrt3_subdivide,
+    LoopWeights, Sqrt3Options, SubdivError, butterfly_subdivide, catmull_clark_limit_normals,
+    catmull_clark_limit_positions, catmull_clark_subdivide, doo_sabin_subdivide, loop_limit_normals,
+    loop_limit_positions, sqrt3_subdivide,
 };
 use splinekit_io::mesh::{MeshFormat, load_mesh, save, save_poly};
 
@@ -52,8 +55,9 @@ use crate::output::JsonNum;
 /// reflected), Zorin's masks around irregular ends, the four-point rule along boundary edges;
 /// the counts are Loop's. Colours and seamless UVs are carried; `--boundary` is refused.
 ///
-/// `--limit` moves every output vertex to its limit position (Loop or Catmull-Clark masks
-/// matching the weights and boundary rule; Catmull-Clark needs at least one level). Butterfly
+/// `--limit` moves every output vertex to its limit position and gives it the limit surface's
+/// normal there (Loop or Catmull-Clark masks matching the weights and boundary rule, as
+/// OpenSubdiv's; Catmull-Clark needs at least one level); OBJ, PLY and glb store the normals. Butterfly
 /// vertices already lie on their limit surface, so `--limit` leaves them where they are.
 ///
 /// Writes the result by the extension of OUT (.obj, .ply, .stl, .glb) through a temporary
@@ -273,12 +277,29 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     let (vertices, faces) = (finest.num_vertices(), finest.num_triangles());
 
     if let (Some(path), Some(format)) = (&args.output, format) {
-        let mut tri = finest.into_tri_mesh();
-        if args.limit {
-            let mesh = PolyMesh::from_triangles(std::mem::take(&mut tri.positions), &tri.triangles);
-            tri.positions =
-                loop_limit_positions(&mesh, &options).map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
-        }
+        let tri = if args.limit {
+            // Limit positions and normals of the subdivided surface's vertices, given to every
+            // vertex made from them (a seam splits a vertex in the triangle mesh): corner by
+            // corner, the triangles are the same.
+            let mesh = PolyMesh::from_triangles(finest.positions.clone(), &finest.triangles);
+            let limit = |e: SubdivError| anyhow!("{}: {e}", args.input.display());
+            let (positions, normals) = (
+                loop_limit_positions(&mesh, &options).map_err(limit)?,
+                loop_limit_normals(&mesh, &options).map_err(limit)?,
+            );
+            let corners = finest.triangles.clone();
+            let mut tri = finest.into_tri_mesh();
+            tri.normals = vec![DVec3::ZERO; tri.positions.len()];
+            for (out, within) in tri.triangles.iter().zip(&corners) {
+                for (&o, &w) in out.iter().zip(within) {
+                    tri.positions[o as usize] = positions[w as usize];
+                    tri.normals[o as usize] = normals[w as usize];
+                }
+            }
+            tri
+        } else {
+            finest.into_tri_mesh()
+        };
         save(&tri, path, format)?;
     }
     report(args, out, (vertices, faces, "triangles"), seconds, threads)
@@ -354,8 +375,10 @@ fn run_catmull_clark(
     let (mut fine, seconds) = timed(args, &pool, |m| catmull_clark_subdivide(m, args.levels as usize, &options), mesh)?;
     if let (Some(path), Some(format)) = (&args.output, format) {
         if args.limit {
-            fine.positions =
-                catmull_clark_limit_positions(&fine, &options).map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
+            let limit = |e: SubdivError| anyhow!("{}: {e}", args.input.display());
+            let normals = catmull_clark_limit_normals(&fine, &options).map_err(limit)?;
+            fine.positions = catmull_clark_limit_positions(&fine, &options).map_err(limit)?;
+            fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
         }
         save_poly(&fine, path, format)?;
     }

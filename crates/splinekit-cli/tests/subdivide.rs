@@ -157,6 +157,24 @@ fn catmull_clark_on_quads_and_a_mixed_mesh() {
     for x in first {
         assert!((x + 5.0 / 9.0).abs() < 1e-15, "{text}");
     }
+    // --limit: positions and limit normals, the quads' corners `v//n`; by symmetry the normal
+    // at a corner of the cube is its diagonal
+    let run =
+        splinekit(&["subdivide", cube, "-n", "1", "--scheme", "catmull-clark", "--limit", "-o", out.to_str().unwrap()]);
+    run.ok();
+    let text = std::fs::read_to_string(&out).unwrap();
+    let normals: Vec<Vec<f64>> = text
+        .lines()
+        .filter(|l| l.starts_with("vn "))
+        .map(|l| l.split_whitespace().skip(1).map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(normals.len(), 26);
+    for n in &normals[..8] {
+        assert!(n.iter().all(|x| (x.abs() - 3f64.sqrt().recip()).abs() < 1e-12), "{n:?}");
+    }
+    assert!(
+        text.lines().filter(|l| l.starts_with("f ")).all(|l| l.split_whitespace().skip(1).all(|c| c.contains("//")))
+    );
     // the triangle icosahedron: 12 + 30 + 20 vertices, 60 quads; STL gets two triangles a quad
     let stl = dir.join("ico.stl");
     let ico = shared("icosahedron.obj");
@@ -189,6 +207,29 @@ fn limit_moves_vertices_onto_the_limit_surface() {
     assert!(a.iter().zip(&b).all(|(x, y)| y < x), "{a:?} vs {b:?}");
     for group in [&b[..12], &b[12..]] {
         assert!(group.iter().all(|r| (r - group[0]).abs() < 1e-6 * group[0]), "{group:?}");
+    }
+    // --limit also writes the limit normals, one `vn` per vertex: unit, outward on this convex
+    // surface, and by symmetry along the radius at the 12 old vertices
+    let text = std::fs::read_to_string(&limit).unwrap();
+    let triples = |tag: &str| -> Vec<[f64; 3]> {
+        text.lines()
+            .filter(|l| l.split_whitespace().next() == Some(tag))
+            .map(|l| {
+                let x: Vec<f64> = l.split_whitespace().skip(1).map(|t| t.parse().unwrap()).collect();
+                [x[0], x[1], x[2]]
+            })
+            .collect()
+    };
+    let (points, normals) = (triples("v"), triples("vn"));
+    assert_eq!(normals.len(), points.len());
+    let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    for (k, (p, n)) in points.iter().zip(&normals).enumerate() {
+        assert!((dot(n, n) - 1.0).abs() < 1e-12, "normal {k} is not unit: {n:?}");
+        assert!(dot(n, p) > 0.0, "normal {k} points inwards: {n:?} at {p:?}");
+        if k < 12 {
+            let cos = dot(n, p) / dot(p, p).sqrt();
+            assert!(cos > 1.0 - 1e-10, "normal {k} is not radial: {n:?} at {p:?}");
+        }
     }
     let _ = std::fs::remove_dir_all(dir);
 }

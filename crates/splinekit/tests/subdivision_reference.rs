@@ -30,8 +30,8 @@ use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
     BoundaryRule, ButterflyOptions, CatmullClarkOptions, DooSabinOptions, LoopOptions, LoopWeights, Sqrt3Options,
-    butterfly_subdivide, catmull_clark_limit_positions, catmull_clark_subdivide, doo_sabin_subdivide,
-    loop_limit_positions, loop_subdivide, sqrt3_subdivide,
+    butterfly_subdivide, catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
+    doo_sabin_subdivide, loop_limit_normals, loop_limit_positions, loop_subdivide, sqrt3_subdivide,
 };
 
 /// Largest distance allowed between a vertex of ours and its match in the reference, as a
@@ -39,6 +39,10 @@ use splinekit::subdiv::{
 /// across). The peers agree with each other to 3e-16 of it, and any two reference vertices are
 /// more than 1e-3 of it apart.
 const MATCH_TOL: f64 = 1e-12;
+
+/// Largest distance allowed between our unit limit normal and OpenSubdiv's at a matched
+/// vertex (about the angle between them, in radians).
+const NORMAL_TOL: f64 = 1e-12;
 
 /// The reference meshes and the finest level stored for each (the bunny base only at level 1,
 /// to keep the data small).
@@ -48,6 +52,8 @@ const MESHES: [(&str, u32); 5] =
 /// A polygon mesh as read from an OBJ file.
 struct Obj {
     positions: Vec<DVec3>,
+    /// The `vn` lines (the limit references' unit limit normals, one per vertex).
+    normals: Vec<DVec3>,
     faces: Vec<Vec<u32>>,
     /// The faces as triangles, when they all are.
     triangles: Vec<[u32; 3]>,
@@ -75,17 +81,17 @@ fn read_obj(file: &str) -> Obj {
     let file = if file.contains('/') { file.to_owned() } else { format!("loop/{file}") };
     let path = format!("{}/tests/data/{file}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("reading {path}: {e}"));
-    let mut obj = Obj { positions: Vec::new(), faces: Vec::new(), triangles: Vec::new() };
+    let mut obj = Obj { positions: Vec::new(), normals: Vec::new(), faces: Vec::new(), triangles: Vec::new() };
     for (n, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         let bad = || -> ! { panic!("{path}:{}: cannot read {line:?}", n + 1) };
         match words.next() {
-            Some("v") => {
+            Some(kind @ ("v" | "vn")) => {
                 let mut c = [0.0; 3];
                 for x in &mut c {
                     *x = words.next().and_then(|w| w.parse().ok()).unwrap_or_else(|| bad());
                 }
-                obj.positions.push(DVec3::from_array(c));
+                if kind == "v" { &mut obj.positions } else { &mut obj.normals }.push(DVec3::from_array(c));
             }
             Some("f") => {
                 let corners: Vec<u32> = words
@@ -429,10 +435,33 @@ fn butterfly_matches_openmesh() {
 /// or Catmull-Clark (both boundary options), compared like the refined meshes: our level-1
 /// faces carrying our limit positions.
 #[test]
-fn limit_positions_match_opensubdiv() {
+fn limit_positions_and_normals_match_opensubdiv() {
     let mut failures = String::new();
-    let mut check = |what: String, result: Result<PolyMesh, String>| {
-        if let Err(e) = result.and_then(|ours| compare(&ours, &read_obj(&format!("limit/{what}.obj")))) {
+    // ours: the level-1 mesh carrying our limit positions, and our limit normals
+    let mut check = |what: String, result: Result<(PolyMesh, Vec<DVec3>), String>| {
+        let reference = read_obj(&format!("limit/{what}.obj"));
+        let result = result.and_then(|(ours, normals)| {
+            compare(&ours, &reference)?;
+            // the positions matched one to one: compare the normals of matched vertices
+            assert_eq!(reference.normals.len(), reference.positions.len(), "{what}: one vn per v");
+            let near = NearestByX::new(&reference.positions);
+            let (mut worst, mut at) = (0.0f64, 0);
+            for (i, (p, n)) in ours.positions.iter().zip(&normals).enumerate() {
+                let err = n.distance(reference.normals[near.nearest(*p).0]);
+                if !(err <= worst) {
+                    (worst, at) = (err, i);
+                }
+            }
+            if worst > NORMAL_TOL {
+                let r = reference.normals[near.nearest(ours.positions[at]).0];
+                return Err(format!(
+                    "our limit normal at vertex {at} is {}, OpenSubdiv's {r} ({worst:.1e} apart)",
+                    normals[at]
+                ));
+            }
+            Ok(())
+        });
+        if let Err(e) = result {
             writeln!(failures, "{what}: {e}").unwrap();
         }
     };
@@ -441,30 +470,35 @@ fn limit_positions_match_opensubdiv() {
         ("torus96", "osd-loop", BoundaryRule::Smooth),
         ("grid32", "osd-loop", BoundaryRule::Smooth),
         ("grid32", "osd-loop-corners", BoundaryRule::Corners),
+        ("bunnybase883", "osd-loop", BoundaryRule::Smooth),
     ] {
         let options = LoopOptions { boundary, ..LoopOptions::default() };
         let result = loop_subdivide(&input(name), 1, &options).map_err(|e| e.to_string()).and_then(|mut fine| {
+            let normals = loop_limit_normals(&fine, &options).map_err(|e| e.to_string())?;
             fine.positions = loop_limit_positions(&fine, &options).map_err(|e| e.to_string())?;
-            Ok(fine)
+            Ok((fine, normals))
         });
         check(format!("{name}.{peer}.l1"), result);
     }
-    for (name, peer, boundary) in [
-        ("cube6", "osd-catmark", BoundaryRule::Smooth),
-        ("torus48", "osd-catmark", BoundaryRule::Smooth),
-        ("prism8", "osd-catmark", BoundaryRule::Smooth),
-        ("grid16", "osd-catmark", BoundaryRule::Smooth),
-        ("grid16", "osd-catmark-corners", BoundaryRule::Corners),
+    for (input, peer, boundary) in [
+        ("catmark/cube6", "osd-catmark", BoundaryRule::Smooth),
+        ("catmark/torus48", "osd-catmark", BoundaryRule::Smooth),
+        ("catmark/prism8", "osd-catmark", BoundaryRule::Smooth),
+        ("catmark/grid16", "osd-catmark", BoundaryRule::Smooth),
+        ("catmark/grid16", "osd-catmark-corners", BoundaryRule::Corners),
+        ("cgal/icoopen15", "osd-catmark", BoundaryRule::Smooth),
     ] {
         let options = CatmullClarkOptions { boundary, ..CatmullClarkOptions::default() };
-        let mesh = read_obj(&format!("catmark/{name}.in.obj")).to_poly();
+        let mesh = read_obj(&format!("{input}.in.obj")).to_poly();
         let result = catmull_clark_subdivide(&mesh, 1, &options).map_err(|e| e.to_string()).and_then(|mut fine| {
+            let normals = catmull_clark_limit_normals(&fine, &options).map_err(|e| e.to_string())?;
             fine.positions = catmull_clark_limit_positions(&fine, &options).map_err(|e| e.to_string())?;
-            Ok(fine)
+            Ok((fine, normals))
         });
+        let name = input.rsplit('/').next().unwrap();
         check(format!("{name}.{peer}.l1"), result);
     }
-    assert!(failures.is_empty(), "limit positions against OpenSubdiv:\n{failures}");
+    assert!(failures.is_empty(), "limit positions and normals against OpenSubdiv:\n{failures}");
 }
 
 /// The comparison itself must notice a moved vertex and a reversed triangle.

@@ -3,6 +3,7 @@
 use std::io::{BufWriter, Write};
 
 use glam::{DVec2, DVec3};
+use splinekit::mesh::FaceVarying;
 use splinekit::{PolyMesh, TriMesh};
 
 use super::MeshIoError;
@@ -53,8 +54,10 @@ pub fn write_obj<W: Write + ?Sized>(mesh: &TriMesh, out: &mut W) -> Result<(), M
 }
 
 /// Writes a polygon mesh as Wavefront OBJ text: `v x y z` lines (`v x y z r g b` with one
-/// colour per vertex) and one `f` line per face with its corners (1-based), numbers as
-/// [`write_obj`]. Face-varying normals and UVs are not written.
+/// colour per vertex), `vn` and `vt` lines for normals and UVs given per vertex (a channel
+/// whose indices are the face corners' vertices), and one `f` line per face with its corners
+/// (1-based, `v/t/n` forms as needed), numbers as [`write_obj`]. Face-varying normals and UVs
+/// (with seams) are not written.
 ///
 /// # Errors
 ///
@@ -67,6 +70,7 @@ pub fn write_obj_poly<W: Write + ?Sized>(mesh: &PolyMesh, out: &mut W) -> Result
     let n = mesh.positions.len();
     let mut w = BufWriter::with_capacity(super::BUFFER_SIZE, out);
     let colors = mesh.colors.len() == n;
+    let (normals, uvs) = (per_vertex(mesh, mesh.normals.as_ref()), per_vertex(mesh, mesh.uvs.as_ref()));
     let body = |w: &mut BufWriter<&mut W>| -> std::io::Result<()> {
         for (i, p) in mesh.positions.iter().enumerate() {
             if colors {
@@ -76,10 +80,16 @@ pub fn write_obj_poly<W: Write + ?Sized>(mesh: &PolyMesh, out: &mut W) -> Result
                 write_vec3(w, "v", *p)?;
             }
         }
+        for &n in normals.iter().flat_map(|c| &c.values) {
+            write_vec3(w, "vn", n)?;
+        }
+        for &t in uvs.iter().flat_map(|c| &c.values) {
+            write_vec2(w, "vt", t)?;
+        }
         for face in mesh.faces() {
             w.write_all(b"f")?;
             for &v in face {
-                write!(w, " {}", u64::from(v) + 1)?;
+                write_corner(w, v, uvs.is_some(), normals.is_some())?;
             }
             w.write_all(b"\n")?;
         }
@@ -107,17 +117,28 @@ fn write_body<W: Write>(mesh: &TriMesh, w: &mut W) -> std::io::Result<()> {
     for tri in &mesh.triangles {
         w.write_all(b"f")?;
         for &v in tri {
-            let i = u64::from(v) + 1;
-            match (has_uv, has_normal) {
-                (true, true) => write!(w, " {i}/{i}/{i}")?,
-                (true, false) => write!(w, " {i}/{i}")?,
-                (false, true) => write!(w, " {i}//{i}")?,
-                (false, false) => write!(w, " {i}")?,
-            }
+            write_corner(w, v, has_uv, has_normal)?;
         }
         w.write_all(b"\n")?;
     }
     Ok(())
+}
+
+/// `channel` if it has one value per vertex of `mesh`, indexed by the face corners' vertices.
+fn per_vertex<'m, T>(mesh: &PolyMesh, channel: Option<&'m FaceVarying<T>>) -> Option<&'m FaceVarying<T>> {
+    channel.filter(|c| c.indices == mesh.face_vertices && c.values.len() == mesh.positions.len())
+}
+
+/// Writes face corner `v` (0-based) as ` i`, ` i/i`, ` i//i` or ` i/i/i` (1-based), the vertex
+/// also indexing its UV and normal.
+fn write_corner<W: Write + ?Sized>(w: &mut W, v: u32, has_uv: bool, has_normal: bool) -> std::io::Result<()> {
+    let i = u64::from(v) + 1;
+    match (has_uv, has_normal) {
+        (true, true) => write!(w, " {i}/{i}/{i}"),
+        (true, false) => write!(w, " {i}/{i}"),
+        (false, true) => write!(w, " {i}//{i}"),
+        (false, false) => write!(w, " {i}"),
+    }
 }
 
 /// Writes `KEY x y z`.

@@ -32,7 +32,7 @@ pub mod topology;
 pub use butterfly::{ButterflyOptions, butterfly_step, butterfly_subdivide};
 pub use catmull_clark::{CatmullClarkOptions, catmull_clark_step, catmull_clark_subdivide};
 pub use doo_sabin::{DooSabinOptions, doo_sabin_subdivide};
-pub use limit::{catmull_clark_limit_positions, loop_limit_positions};
+pub use limit::{catmull_clark_limit_normals, catmull_clark_limit_positions, loop_limit_normals, loop_limit_positions};
 pub use loop_scheme::{
     Attribute, BoundaryRule, LEVEL_COLORS, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
     loop_subdivide,
