@@ -12,28 +12,12 @@
 # here (%.17g). Needs libopenmesh-dev and g++ (bench/install_peers.sh); CI does not run it.
 # Running it twice gives identical bytes.
 set -euo pipefail
-if [ "${CI:-}" = true ]; then
-    echo "make_butterfly_references.sh: not for CI" >&2
-    exit 0
-fi
-here="$(cd "$(dirname "$0")" && pwd)"
-root="$here/.."
-tests="$root/crates/splinekit/tests/data"
+source "$(dirname "$0")/references_common.sh" openmesh
 data="$tests/openmesh"
-peers="${CARGO_TARGET_DIR:-$root/target}/bench-peers"
-mkdir -p "$data"
-bash "$here/drivers/build.sh" "$peers"
 python3 - "$data" <<'PY'
-import math, sys
-out = sys.argv[1]
-
-def write(name, comment, positions, faces):
-    with open(f"{out}/{name}.in.obj", "w") as f:
-        f.write(f"# {comment}\n")
-        for p in positions:
-            f.write("v %s %s %s\n" % tuple(repr(float(x)) for x in p))
-        for face in faces:
-            f.write("f " + " ".join(str(v + 1) for v in face) + "\n")
+import functools, math, sys
+from meshgen import write_input
+write = functools.partial(write_input, sys.argv[1])
 
 # the octahedron, counter-clockwise from outside
 octa = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]

@@ -4,23 +4,12 @@
 # and 2; the grid also with --corners) into crates/splinekit/tests/data/catmark/. Needs the
 # peers (bench/install_peers.sh); CI does not run it. Running it twice gives identical bytes.
 set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
-root="$here/.."
-data="$root/crates/splinekit/tests/data/catmark"
-peers="$root/target/bench-peers"
-mkdir -p "$data"
-bash "$here/drivers/build.sh" "$peers"
+source "$(dirname "$0")/references_common.sh" catmark
+data="$tests/catmark"
 python3 - "$data" <<'PY'
-import math, sys
-out = sys.argv[1]
-
-def write(name, comment, positions, faces):
-    with open(f"{out}/{name}.in.obj", "w") as f:
-        f.write(f"# {comment}\n")
-        for p in positions:
-            f.write("v %s %s %s\n" % tuple(repr(float(x)) for x in p))
-        for face in faces:
-            f.write("f " + " ".join(str(v + 1) for v in face) + "\n")
+import functools, math, sys
+from meshgen import write_input
+write = functools.partial(write_input, sys.argv[1])
 
 # the cube [-1, 1]^3, counter-clockwise from outside
 cube = [((i & 1) * 2 - 1, ((i >> 1) & 1) * 2 - 1, (i >> 2) * 2 - 1) for i in range(8)]

@@ -8,12 +8,8 @@
 # boundary vertices with 3 quads), into tests/data/limit/. Needs the peers
 # (bench/install_peers.sh); CI does not run it. Deterministic.
 set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
-root="$here/.."
-data="$root/crates/splinekit/tests/data"
-peers="$root/target/bench-peers"
-mkdir -p "$data/limit"
-bash "$here/drivers/build.sh" "$peers"
+source "$(dirname "$0")/references_common.sh" limit
+data="$tests"
 for m in icosahedron20 torus96 grid32 bunnybase883; do
     "$peers/osd_loop" "$data/loop/$m.in.obj" -n 1 --limit -o "$data/limit/$m.osd-loop.l1.obj" >/dev/null
 done

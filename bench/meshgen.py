@@ -42,6 +42,17 @@ def write_obj(path, positions, triangles, comment):
             out.write(f"f {t[0] + 1} {t[1] + 1} {t[2] + 1}\n")
 
 
+def write_input(folder, name, comment, positions, faces):
+    """`folder/name.in.obj` for the reference scripts (bench/make_*_references.sh): a comment line,
+    `v` lines with Python's shortest round-trip form, `f` lines of any size (0-based in `faces`)."""
+    with open(f"{folder}/{name}.in.obj", "w") as f:
+        f.write(f"# {comment}\n")
+        for p in positions:
+            f.write("v %s %s %s\n" % tuple(repr(float(x)) for x in p))
+        for face in faces:
+            f.write("f " + " ".join(str(v + 1) for v in face) + "\n")
+
+
 def read_obj(path):
     """Positions and faces (0-based corner vertex lists) of the `v` and `f` lines."""
     positions, faces = [], []

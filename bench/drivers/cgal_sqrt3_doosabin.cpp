@@ -1,6 +1,6 @@
 // CGAL √3 and Doo-Sabin subdivision driver.
 //
-//   cgal_sqrt3_doosabin IN.obj --scheme sqrt3|doo-sabin -n LEVELS [--repeat R] [-o OUT.obj]
+//   cgal_sqrt3_doosabin IN.obj -n LEVELS [--scheme sqrt3|doo-sabin] [--repeat R] [-o OUT.obj]
 //
 // CGAL::Subdivision_method_3::Sqrt3_subdivision (triangle meshes) or DooSabin_subdivision (any
 // polygon mesh) with number_of_iterations(LEVELS), on a CGAL::Surface_mesh<Epick::Point_3>:
@@ -26,20 +26,9 @@ typedef Kernel::Point_3 Point;
 typedef CGAL::Surface_mesh<Point> Mesh;
 
 int main(int argc, char** argv) {
-    const char* usage = "cgal_sqrt3_doosabin IN.obj --scheme sqrt3|doo-sabin -n LEVELS [--repeat R] [-o OUT.obj]";
-    // --scheme is this driver's own; the rest is the common command line.
-    std::string scheme;
-    std::vector<char*> rest;
-    for (int i = 0; i < argc; ++i) {
-        if (std::string(argv[i]) == "--scheme" && i + 1 < argc) scheme = argv[++i];
-        else rest.push_back(argv[i]);
-    }
-    if (scheme != "sqrt3" && scheme != "doo-sabin") {
-        std::fprintf(stderr, "usage: %s\n", usage);
-        return 2;
-    }
-    const bool sqrt3 = scheme == "sqrt3";
-    Args a = parse_args(int(rest.size()), rest.data(), usage, false);
+    const char* usage = "cgal_sqrt3_doosabin IN.obj -n LEVELS [--scheme sqrt3|doo-sabin] [--repeat R] [-o OUT.obj]";
+    Args a = parse_args(argc, argv, usage, false, {"sqrt3", "doo-sabin"});
+    const bool sqrt3 = a.scheme == "sqrt3";
     Tri in = read_obj(a.input, true);
     if (sqrt3 && !in.sizes.empty())
         for (int f = 0; f < in.num_faces(); ++f)

@@ -100,13 +100,22 @@ struct Args {
     int repeat = 1;
     bool corners = false;
     bool limit = false;  // OpenSubdiv drivers: write the limit positions of the finest level
+    std::string scheme;  // drivers of several schemes: the one of --scheme (default the first)
 };
 
-inline Args parse_args(int argc, char** argv, const char* usage, bool has_corners) {
+// The common command line; `schemes` lists the values --scheme takes (none: no --scheme).
+inline Args parse_args(int argc, char** argv, const char* usage, bool has_corners,
+                       const std::vector<std::string>& schemes = {}) {
     Args a;
+    if (!schemes.empty()) a.scheme = schemes[0];
+    bool scheme_ok = true;
     for (int i = 1; i < argc; ++i) {
         std::string s = argv[i];
         if (s == "-n" && i + 1 < argc) a.levels = std::atoi(argv[++i]);
+        else if (s == "--scheme" && !schemes.empty() && i + 1 < argc) {
+            a.scheme = argv[++i];
+            scheme_ok = std::find(schemes.begin(), schemes.end(), a.scheme) != schemes.end();
+        }
         else if (s == "--repeat" && i + 1 < argc) a.repeat = std::atoi(argv[++i]);
         else if (s == "-o" && i + 1 < argc) a.output = argv[++i];
         else if (s == "--corners" && has_corners) a.corners = true;
@@ -119,7 +128,7 @@ inline Args parse_args(int argc, char** argv, const char* usage, bool has_corner
             std::exit(2);
         }
     }
-    if (!a.input || a.levels < 0 || a.repeat < 1) {
+    if (!a.input || a.levels < 0 || a.repeat < 1 || !scheme_ok) {
         std::fprintf(stderr, "usage: %s\n", usage);
         std::exit(2);
     }

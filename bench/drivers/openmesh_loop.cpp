@@ -18,8 +18,6 @@
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
 
-#include <string>
-
 #include "common.hpp"
 
 struct Traits : public OpenMesh::DefaultTraits {
@@ -40,19 +38,8 @@ double run(Mesh& m, int levels) {
 
 int main(int argc, char** argv) {
     const char* usage = "openmesh_loop IN.obj -n LEVELS [--scheme loop|butterfly] [--repeat R] [-o OUT.obj]";
-    // --scheme is this driver's own; the rest is the common command line.
-    std::string scheme = "loop";
-    std::vector<char*> rest;
-    for (int i = 0; i < argc; ++i) {
-        if (std::string(argv[i]) == "--scheme" && i + 1 < argc) scheme = argv[++i];
-        else rest.push_back(argv[i]);
-    }
-    if (scheme != "loop" && scheme != "butterfly") {
-        std::fprintf(stderr, "usage: %s\n", usage);
-        return 2;
-    }
-    const bool loop = scheme == "loop";
-    Args a = parse_args(int(rest.size()), rest.data(), usage, false);
+    Args a = parse_args(argc, argv, usage, false, {"loop", "butterfly"});
+    const bool loop = a.scheme == "loop";
     Tri in = read_obj(a.input);
     Mesh base;
     std::vector<Mesh::VertexHandle> vh;

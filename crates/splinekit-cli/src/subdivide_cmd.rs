@@ -287,10 +287,9 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
                 loop_limit_positions(&mesh, &options).map_err(limit)?,
                 loop_limit_normals(&mesh, &options).map_err(limit)?,
             );
-            let corners = finest.triangles.clone();
             let mut tri = finest.into_tri_mesh();
             tri.normals = vec![DVec3::ZERO; tri.positions.len()];
-            for (out, within) in tri.triangles.iter().zip(&corners) {
+            for (out, within) in tri.triangles.iter().zip(mesh.face_vertices.chunks_exact(3)) {
                 for (&o, &w) in out.iter().zip(within) {
                     tri.positions[o as usize] = positions[w as usize];
                     tri.normals[o as usize] = normals[w as usize];

@@ -12,7 +12,8 @@
 //!   is refined on level 2 only) on a tetrahedron, an icosahedron, an open triangle grid and an
 //!   icosahedron with a hole, and `DooSabin_subdivision` on a cube, the prism, the icosahedron,
 //!   an open quad grid and the open triangle grid, in `tests/data/cgal/` (made by
-//!   `bench/make_cgal_references.sh` with `bench/drivers/cgal_sqrt3_doosabin.cpp`).
+//!   `bench/make_cgal_references.sh` with `bench/drivers/cgal_sqrt3_doosabin.cpp`; the cube,
+//!   prism and quad grid are Catmull-Clark's inputs, in `tests/data/catmark/`).
 //! - Modified butterfly (issue #7): OpenMesh 9's `ModifiedButterflyT` on closed meshes of
 //!   valences 3 to 7, two open meshes and the bunny's base mesh, in `tests/data/openmesh/`
 //!   (made by `bench/make_butterfly_references.sh` with `bench/drivers/openmesh_loop.cpp`).
@@ -384,8 +385,16 @@ fn sqrt3_matches_cgal() {
 #[test]
 fn doo_sabin_matches_cgal() {
     let mut failures = String::new();
-    for (name, max_level) in [("cube6", 3), ("prism8", 2), ("icosahedron20", 2), ("grid16", 2), ("trigrid18", 2)] {
-        let mesh = read_obj(&format!("cgal/{name}.in.obj")).to_poly();
+    let cases = [
+        ("catmark/cube6", 3),
+        ("catmark/prism8", 2),
+        ("cgal/icosahedron20", 2),
+        ("catmark/grid16", 2),
+        ("cgal/trigrid18", 2),
+    ];
+    for (input, max_level) in cases {
+        let mesh = read_obj(&format!("{input}.in.obj")).to_poly();
+        let name = input.rsplit('/').next().unwrap();
         for level in 1..=max_level {
             let what = format!("{name}.cgal-doosabin.l{level}");
             let result = doo_sabin_subdivide(&mesh, level, &DooSabinOptions::default())

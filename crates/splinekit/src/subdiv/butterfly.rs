@@ -38,10 +38,10 @@
 use rayon::prelude::*;
 
 use super::catmull_clark::Rings;
-use super::loop_scheme::{Attribute, SubdivError};
-use super::sqrt3::{TriangleLevel, per_vertex_uvs, triangle_level};
+use super::loop_scheme::{Attribute, SubdivError, triangles_only};
+use super::sqrt3::{TriangleLevel, triangle_level, triangle_levels};
 use super::topology::{MIN_LEN, MIN_RINGS};
-use crate::mesh::{FaceVarying, NONE, PolyMesh};
+use crate::mesh::{NONE, PolyMesh};
 
 /// Options of modified butterfly subdivision.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -65,24 +65,7 @@ pub fn butterfly_subdivide(
     levels: usize,
     options: &ButterflyOptions,
 ) -> Result<PolyMesh, SubdivError> {
-    if levels == 0 {
-        triangles_only(mesh)?;
-        let uvs = per_vertex_uvs(mesh).map(|values| FaceVarying { values, indices: mesh.face_vertices.clone() });
-        return Ok(PolyMesh { normals: None, uvs, ..mesh.clone() });
-    }
-    let mut level = butterfly_step(mesh, 1, options)?;
-    for depth in 2..=levels {
-        level = butterfly_step(&level, depth, options)?;
-    }
-    Ok(level)
-}
-
-/// An error for the first face of `mesh` that is not a triangle.
-fn triangles_only(mesh: &PolyMesh) -> Result<(), SubdivError> {
-    match mesh.faces().enumerate().find(|(_, f)| f.len() != 3) {
-        Some((face, f)) => Err(SubdivError::NotTriangles { face, corners: f.len(), scheme: "butterfly" }),
-        None => Ok(()),
-    }
+    triangle_levels(mesh, levels, "butterfly", |m, depth| step(m, depth, options))
 }
 
 /// One level of [`butterfly_subdivide`]: the child of `mesh`, which is level `depth − 1` of
@@ -94,7 +77,12 @@ fn triangles_only(mesh: &PolyMesh) -> Result<(), SubdivError> {
 ///
 /// As [`butterfly_subdivide`].
 pub fn butterfly_step(mesh: &PolyMesh, depth: usize, options: &ButterflyOptions) -> Result<PolyMesh, SubdivError> {
-    triangles_only(mesh)?;
+    triangles_only(mesh, "butterfly")?;
+    step(mesh, depth, options)
+}
+
+/// [`butterfly_step`] of a mesh known to be all triangles.
+fn step(mesh: &PolyMesh, depth: usize, options: &ButterflyOptions) -> Result<PolyMesh, SubdivError> {
     let rings = Rings::new(mesh)?;
     let plan = Plan::new(&rings);
     Ok(triangle_level(mesh, depth, options.color_by_level, &plan))

@@ -41,7 +41,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::catmull_clark::{CatmullClarkOptions, Rings};
-use super::loop_scheme::{BoundaryRule, LoopOptions, Rules, SubdivError};
+use super::loop_scheme::{BoundaryRule, LoopOptions, Rules, SubdivError, triangles_only};
 use super::topology::MIN_LEN;
 use crate::mesh::{NONE, PolyMesh};
 
@@ -62,9 +62,7 @@ fn boundary_limit(rings: &Rings<'_>, p: &[DVec3], v: usize, (a, b): (u32, u32), 
 /// [`SubdivError::NotTriangles`] for a face that is not a triangle, [`SubdivError::Topology`]
 /// for a non-manifold or inconsistently oriented edge or vertex.
 pub fn loop_limit_positions(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<DVec3>, SubdivError> {
-    if let Some((face, f)) = mesh.faces().enumerate().find(|(_, f)| f.len() != 3) {
-        return Err(SubdivError::NotTriangles { face, corners: f.len(), scheme: "Loop" });
-    }
+    triangles_only(mesh, "Loop")?;
     let rings = Rings::new(mesh)?;
     let rules = Rules::new(options);
     let p = &mesh.positions;
@@ -148,9 +146,7 @@ fn ccw_ring<'r>(rings: &'r Rings<'_>, v: u32) -> Option<(impl Iterator<Item = u3
 ///
 /// As [`loop_limit_positions`].
 pub fn loop_limit_normals(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<DVec3>, SubdivError> {
-    if let Some((face, f)) = mesh.faces().enumerate().find(|(_, f)| f.len() != 3) {
-        return Err(SubdivError::NotTriangles { face, corners: f.len(), scheme: "Loop" });
-    }
+    triangles_only(mesh, "Loop")?;
     let rings = Rings::new(mesh)?;
     let p = &mesh.positions;
     Ok((0..p.len() as u32)

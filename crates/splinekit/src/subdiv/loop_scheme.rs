@@ -98,14 +98,14 @@ pub const LEVEL_COLORS: [DVec3; 8] = [
 /// Why a mesh cannot be subdivided.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum SubdivError {
-    /// Loop and √3 subdivision need triangles.
+    /// Loop, √3 and butterfly subdivision need triangles.
     #[error("face {face} has {corners} corners; {scheme} subdivision needs triangles (triangulate the mesh first)")]
     NotTriangles {
         /// The face.
         face: usize,
         /// Its number of corners.
         corners: usize,
-        /// The scheme: `Loop` or `√3`.
+        /// The scheme: `Loop`, `√3` or `butterfly`.
         scheme: &'static str,
     },
     /// Catmull-Clark's limit mask needs quads around an interior vertex.
@@ -132,6 +132,15 @@ pub enum SubdivError {
         /// What is wrong.
         problem: String,
     },
+}
+
+/// [`SubdivError::NotTriangles`] for the first face of `mesh` that is not a triangle, naming
+/// `scheme`.
+pub(super) fn triangles_only(mesh: &PolyMesh, scheme: &'static str) -> Result<(), SubdivError> {
+    match mesh.faces().enumerate().find(|(_, f)| f.len() != 3) {
+        Some((face, f)) => Err(SubdivError::NotTriangles { face, corners: f.len(), scheme }),
+        None => Ok(()),
+    }
 }
 
 /// A value that can be subdivided: an affine combination of values is a value.

@@ -45,7 +45,7 @@ use glam::DVec2;
 use rayon::prelude::*;
 
 use super::catmull_clark::Rings;
-use super::loop_scheme::{Attribute, LEVEL_COLORS, SubdivError};
+use super::loop_scheme::{Attribute, LEVEL_COLORS, SubdivError, triangles_only};
 use super::topology::{MIN_LEN, MIN_RINGS};
 use crate::mesh::{FaceVarying, NONE, PolyMesh};
 
@@ -67,16 +67,26 @@ pub struct Sqrt3Options {
 /// for an edge used by more than two faces or twice in the same direction, or a vertex whose
 /// faces form several fans.
 pub fn sqrt3_subdivide(mesh: &PolyMesh, levels: usize, options: &Sqrt3Options) -> Result<PolyMesh, SubdivError> {
-    if let Some((face, f)) = mesh.faces().enumerate().find(|(_, f)| f.len() != 3) {
-        return Err(SubdivError::NotTriangles { face, corners: f.len(), scheme: "√3" });
-    }
+    triangle_levels(mesh, levels, "√3", |m, depth| step(m, depth, options))
+}
+
+/// Level `levels` of a triangle scheme whose level `depth` is `step(level depth − 1, depth)`;
+/// level 0 is `mesh` with seamless UVs per vertex and without normals, as the levels carry
+/// them. An error naming `scheme` if `mesh` has a face that is not a triangle.
+pub(super) fn triangle_levels(
+    mesh: &PolyMesh,
+    levels: usize,
+    scheme: &'static str,
+    step: impl Fn(&PolyMesh, usize) -> Result<PolyMesh, SubdivError>,
+) -> Result<PolyMesh, SubdivError> {
+    triangles_only(mesh, scheme)?;
     if levels == 0 {
         let uvs = per_vertex_uvs(mesh).map(|values| FaceVarying { values, indices: mesh.face_vertices.clone() });
         return Ok(PolyMesh { normals: None, uvs, ..mesh.clone() });
     }
-    let mut level = step(mesh, 1, options)?;
+    let mut level = step(mesh, 1)?;
     for depth in 2..=levels {
-        level = step(&level, depth, options)?;
+        level = step(&level, depth)?;
     }
     Ok(level)
 }
