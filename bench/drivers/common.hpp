@@ -15,12 +15,59 @@ struct Tri {
     std::vector<int> tri;     // 3 per face (polygons: sizes[f] per face), 0-based
     std::vector<int> sizes;   // polygon meshes only: corners per face
     std::vector<double> nxyz; // optional: 3 per vertex, written as `vn` lines
+    // sharpness tags (`t crease` / `t corner` lines): edge vertex pairs, vertices, sharpness
+    std::vector<int> crease_pairs;
+    std::vector<float> crease_sharpness;
+    std::vector<int> corner_vertices;
+    std::vector<float> corner_sharpness;
     int num_vertices() const { return int(xyz.size() / 3); }
     int num_faces() const { return sizes.empty() ? int(tri.size() / 3) : int(sizes.size()); }
 };
 
-// Reads `v x y z` and `f a b c` (also a/b/c forms and negative indices); other lines are skipped.
-// With `polygons`, faces of any size (recorded in `sizes`); otherwise triangles only.
+// Reads `t crease N/M v0 .. vN-1 s ..` (the chain v0-v1, v1-v2, ...; one sharpness for all or
+// one per edge) and `t corner N/M v.. s..` (0-based vertices), splinekit's and OpenSubdiv's OBJ
+// tags. Other tags are skipped.
+inline void read_tag(const char* path, long lineno, const char* line, Tri& m) {
+    char name[64];
+    int ni, nf, used;
+    if (std::sscanf(line, "t %63s %d/%d%n", name, &ni, &nf, &used) != 3) return;
+    std::string tag = name;
+    if (tag != "crease" && tag != "corner") return;
+    std::vector<long> ints;
+    std::vector<float> floats;
+    const char* s = line + used;
+    for (int k = 0; k < ni + nf; ++k) {
+        char* end;
+        double x = std::strtod(s, &end);
+        if (end == s) {
+            std::fprintf(stderr, "%s:%ld: bad tag\n", path, lineno);
+            std::exit(2);
+        }
+        if (k < ni) ints.push_back(long(x));
+        else floats.push_back(float(x));
+        s = end;
+    }
+    size_t items = tag == "crease" ? ints.size() - 1 : ints.size();
+    if (ints.size() < (tag == "crease" ? 2u : 1u) || (floats.size() != 1 && floats.size() != items)) {
+        std::fprintf(stderr, "%s:%ld: bad tag arguments\n", path, lineno);
+        std::exit(2);
+    }
+    for (size_t k = 0; k < items; ++k) {
+        float sharp = floats.size() == 1 ? floats[0] : floats[k];
+        if (tag == "crease") {
+            m.crease_pairs.push_back(int(ints[k]));
+            m.crease_pairs.push_back(int(ints[k + 1]));
+            m.crease_sharpness.push_back(sharp);
+        } else {
+            m.corner_vertices.push_back(int(ints[k]));
+            m.corner_sharpness.push_back(sharp);
+        }
+    }
+}
+
+// Reads `v x y z` and `f a b c` (also a/b/c forms and negative indices) and the crease tags of
+// read_tag; other lines are skipped. With `polygons`, faces of any size (recorded in `sizes`);
+// otherwise triangles only.
 inline Tri read_obj(const char* path, bool polygons = false) {
     FILE* f = std::fopen(path, "r");
     if (!f) {
@@ -61,6 +108,8 @@ inline Tri read_obj(const char* path, bool polygons = false) {
             }
             if (polygons) m.sizes.push_back(int(face.size()));
             m.tri.insert(m.tri.end(), face.begin(), face.end());
+        } else if (line[0] == 't' && line[1] == ' ') {
+            read_tag(path, lineno, line, m);
         }
     }
     std::fclose(f);
@@ -100,6 +149,7 @@ struct Args {
     int repeat = 1;
     bool corners = false;
     bool limit = false;  // OpenSubdiv drivers: write the limit positions of the finest level
+    bool uniform_creasing = false;  // OpenSubdiv drivers: --creasing uniform (default chaikin)
     std::string scheme;  // drivers of several schemes: the one of --scheme (default the first)
 };
 
@@ -120,6 +170,11 @@ inline Args parse_args(int argc, char** argv, const char* usage, bool has_corner
         else if (s == "-o" && i + 1 < argc) a.output = argv[++i];
         else if (s == "--corners" && has_corners) a.corners = true;
         else if (s == "--limit" && has_corners) a.limit = true;
+        else if (s == "--creasing" && has_corners && i + 1 < argc) {
+            std::string m = argv[++i];
+            scheme_ok = scheme_ok && (m == "uniform" || m == "chaikin");
+            a.uniform_creasing = m == "uniform";
+        }
         else if (s == "--json") {
         }  // always JSON
         else if (!a.input && s[0] != '-') a.input = argv[i];

@@ -15,6 +15,6 @@
 #include "osd_common.hpp"
 
 int main(int argc, char** argv) {
-    Args a = parse_args(argc, argv, "osd_catmark IN.obj -n LEVELS [--repeat R] [--corners] [--limit] [-o OUT.obj]", true);
+    Args a = parse_args(argc, argv, "osd_catmark IN.obj -n LEVELS [--repeat R] [--corners] [--limit] [--creasing chaikin|uniform] [-o OUT.obj]", true);
     return run_osd(a, read_obj(a.input, true), Sdc::SCHEME_CATMARK, "SCHEME_CATMARK");
 }

@@ -1,5 +1,6 @@
 // The OpenSubdiv drivers' shared part: uniform refinement with Far and double-precision
-// primvar interpolation, timed per repeat; the finest level written as OBJ (with --limit: its
+// primvar interpolation, timed per repeat; the input's crease and corner tags given to the
+// TopologyDescriptor (creasing method CREASE_CHAIKIN, or CREASE_UNIFORM with --creasing uniform); the finest level written as OBJ (with --limit: its
 // limit positions, and as `vn` the unit limit normals, the normalized cross product of the two
 // limit tangents of PrimvarRefinerReal::Limit).
 #pragma once
@@ -33,6 +34,7 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
     Sdc::Options sdc;
     sdc.SetVtxBoundaryInterpolation(a.corners ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
                                               : Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    sdc.SetCreasingMethod(a.uniform_creasing ? Sdc::Options::CREASE_UNIFORM : Sdc::Options::CREASE_CHAIKIN);
 
     std::vector<double> times;
     std::unique_ptr<Far::TopologyRefiner> refiner;
@@ -46,6 +48,12 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
         desc.numFaces = in.num_faces();
         desc.numVertsPerFace = in.sizes.data();
         desc.vertIndicesPerFace = in.tri.data();
+        desc.numCreases = int(in.crease_sharpness.size());
+        desc.creaseVertexIndexPairs = in.crease_pairs.data();
+        desc.creaseWeights = in.crease_sharpness.data();
+        desc.numCorners = int(in.corner_sharpness.size());
+        desc.cornerVertexIndices = in.corner_vertices.data();
+        desc.cornerWeights = in.corner_sharpness.data();
         refiner.reset(Far::TopologyRefinerFactory<Descriptor>::Create(
             desc, Far::TopologyRefinerFactory<Descriptor>::Options(scheme, sdc)));
         if (!refiner) {
@@ -98,10 +106,12 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
         }
         if (triangles) out.sizes.clear();  // the triangle form of write_obj
         char comment[512];
-        std::snprintf(comment, sizeof comment, "OpenSubdiv %d.%d.%d Far, %s, %s, RefineUniform(%d), PrimvarRefinerReal<double>%s",
+        std::snprintf(comment, sizeof comment, "OpenSubdiv %d.%d.%d Far, %s, %s, RefineUniform(%d), PrimvarRefinerReal<double>%s%s",
                       OPENSUBDIV_VERSION_MAJOR, OPENSUBDIV_VERSION_MINOR, OPENSUBDIV_VERSION_PATCH, scheme_name,
                       a.corners ? "VTX_BOUNDARY_EDGE_AND_CORNER" : "VTX_BOUNDARY_EDGE_ONLY", a.levels,
-                      a.limit ? ", Limit" : "");
+                      a.limit ? ", Limit" : "",
+                      in.crease_sharpness.empty() && in.corner_sharpness.empty() ? ""
+                      : a.uniform_creasing ? ", creases CREASE_UNIFORM" : ", creases CREASE_CHAIKIN");
         write_obj(a.output, out, comment);
     }
     print_json(nv, nf, times);

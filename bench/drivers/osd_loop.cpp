@@ -14,6 +14,6 @@
 #include "osd_common.hpp"
 
 int main(int argc, char** argv) {
-    Args a = parse_args(argc, argv, "osd_loop IN.obj -n LEVELS [--repeat R] [--corners] [--limit] [-o OUT.obj]", true);
+    Args a = parse_args(argc, argv, "osd_loop IN.obj -n LEVELS [--repeat R] [--corners] [--limit] [--creasing chaikin|uniform] [-o OUT.obj]", true);
     return run_osd(a, read_obj(a.input), Sdc::SCHEME_LOOP, "SCHEME_LOOP");
 }

@@ -30,9 +30,10 @@ use std::fmt::Write as _;
 use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
-    BoundaryRule, ButterflyOptions, CatmullClarkOptions, DooSabinOptions, LoopOptions, LoopWeights, Sqrt3Options,
-    butterfly_subdivide, catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
-    doo_sabin_subdivide, loop_limit_normals, loop_limit_positions, loop_subdivide, sqrt3_subdivide,
+    BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions, EdgeCrease,
+    LoopOptions, LoopWeights, Sqrt3Options, VertexCrease, butterfly_subdivide, catmull_clark_limit_normals,
+    catmull_clark_limit_positions, catmull_clark_subdivide, catmull_clark_subdivide_creased, doo_sabin_subdivide,
+    loop_limit_normals, loop_limit_positions, loop_subdivide, loop_subdivide_creased, sqrt3_subdivide,
 };
 
 /// Largest distance allowed between a vertex of ours and its match in the reference, as a
@@ -58,6 +59,8 @@ struct Obj {
     faces: Vec<Vec<u32>>,
     /// The faces as triangles, when they all are.
     triangles: Vec<[u32; 3]>,
+    /// The `t crease` and `t corner` tags.
+    creases: Creases,
 }
 
 impl Obj {
@@ -82,7 +85,13 @@ fn read_obj(file: &str) -> Obj {
     let file = if file.contains('/') { file.to_owned() } else { format!("loop/{file}") };
     let path = format!("{}/tests/data/{file}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("reading {path}: {e}"));
-    let mut obj = Obj { positions: Vec::new(), normals: Vec::new(), faces: Vec::new(), triangles: Vec::new() };
+    let mut obj = Obj {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        faces: Vec::new(),
+        triangles: Vec::new(),
+        creases: Creases::default(),
+    };
     for (n, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         let bad = || -> ! { panic!("{path}:{}: cannot read {line:?}", n + 1) };
@@ -109,6 +118,28 @@ fn read_obj(file: &str) -> Obj {
                     bad();
                 }
                 obj.faces.push(corners);
+            }
+            // `t crease N/M v0 .. s ..` (a chain of edges) and `t corner N/M v .. s ..`, 0-based
+            Some("t") => {
+                let name = words.next().unwrap_or_else(|| bad());
+                let (ni, nf) = words.next().and_then(|w| w.split_once('/')).unwrap_or_else(|| bad());
+                let (ni, nf): (usize, usize) =
+                    (ni.parse().unwrap_or_else(|_| bad()), nf.parse().unwrap_or_else(|_| bad()));
+                let args: Vec<&str> = words.collect();
+                let ints: Vec<u32> = args[..ni].iter().map(|w| w.parse().unwrap_or_else(|_| bad())).collect();
+                let floats: Vec<f32> = args[ni..ni + nf].iter().map(|w| w.parse().unwrap_or_else(|_| bad())).collect();
+                let sharpness = |k: usize| if floats.len() == 1 { floats[0] } else { floats[k] };
+                match name {
+                    "crease" => obj.creases.edges.extend(ints.windows(2).enumerate().map(|(k, w)| EdgeCrease {
+                        a: w[0],
+                        b: w[1],
+                        sharpness: sharpness(k),
+                    })),
+                    "corner" => obj.creases.vertices.extend(
+                        ints.iter().enumerate().map(|(k, &vertex)| VertexCrease { vertex, sharpness: sharpness(k) }),
+                    ),
+                    _ => bad(),
+                }
             }
             _ => {}
         }
@@ -358,6 +389,63 @@ fn catmull_clark_matches_opensubdiv_catmark() {
         }
     }
     assert!(failures.is_empty(), "against OpenSubdiv (catmark):\n{failures}");
+}
+
+/// Sharp and semi-sharp creases against OpenSubdiv (catmark and loop schemes): levels 1 to 3 of
+/// each creased input (`tests/data/crease/`, from `bench/make_crease_references.sh`) with
+/// Chaikin's creasing, two also with Uniform, two grids also with fixed corners; and the
+/// creases the subdivision returns carry on: one level at a time gives the same mesh.
+#[test]
+fn creases_match_opensubdiv() {
+    let mut failures = String::new();
+    let (chaikin, uniform) = (CreasingMethod::Chaikin, CreasingMethod::Uniform);
+    let (smooth, corners) = (BoundaryRule::Smooth, BoundaryRule::Corners);
+    let cases = [
+        ("cube6", "osd", chaikin, smooth, true),
+        ("cube6", "osd-uniform", uniform, smooth, true),
+        ("torus48", "osd", chaikin, smooth, true),
+        ("prism8", "osd", chaikin, smooth, true),
+        ("grid16", "osd", chaikin, smooth, true),
+        ("grid16", "osd-corners", chaikin, corners, true),
+        ("icosahedron20", "osd", chaikin, smooth, false),
+        ("icosahedron20", "osd-uniform", uniform, smooth, false),
+        ("grid32", "osd", chaikin, smooth, false),
+        ("grid32", "osd-corners", chaikin, corners, false),
+        ("torus96", "osd", chaikin, smooth, false),
+    ];
+    for (name, peer, method, boundary, catmark) in cases {
+        let obj = read_obj(&format!("crease/{name}.in.obj"));
+        assert!(!obj.creases.is_empty(), "{name}: no creases read");
+        let mesh = obj.to_poly();
+        let subdivide = |m: &PolyMesh, levels: u32, creases: &Creases| {
+            if catmark {
+                let options = CatmullClarkOptions { boundary, ..CatmullClarkOptions::default() };
+                catmull_clark_subdivide_creased(m, levels as usize, &options, creases, method)
+            } else {
+                let options = LoopOptions { boundary, ..LoopOptions::default() };
+                loop_subdivide_creased(m, levels, &options, creases, method)
+            }
+        };
+        let (mut stepped, mut creases) = (mesh.clone(), obj.creases.clone());
+        for level in 1..=3 {
+            let what = format!("{name}.{peer}.l{level}");
+            let reference = read_obj(&format!("crease/{what}.obj"));
+            let result = subdivide(&mesh, level, &obj.creases)
+                .map_err(|e| format!("subdivision failed: {e}"))
+                .and_then(|(ours, _)| compare(&ours, &reference));
+            if let Err(e) = result {
+                writeln!(failures, "{what}: {e}").unwrap();
+            }
+            // (Loop numbers a refined level's edges differently from a mesh read afresh: compare
+            // as meshes, not vertex by vertex)
+            let (next, next_creases) = subdivide(&stepped, 1, &creases).unwrap();
+            if let Err(e) = compare(&next, &reference) {
+                writeln!(failures, "{what}, one level at a time: {e}").unwrap();
+            }
+            (stepped, creases) = (next, next_creases);
+        }
+    }
+    assert!(failures.is_empty(), "creases against OpenSubdiv:\n{failures}");
 }
 
 /// √3 against CGAL's `Sqrt3_subdivision`: levels 1 to 3 of one call, so the boundary meshes

@@ -124,6 +124,14 @@ pub enum SubdivError {
     /// The triangles are not a manifold, consistently oriented surface.
     #[error("{0}")]
     Topology(#[from] TopologyError),
+    /// A crease names an edge or vertex the mesh does not have, or has a negative sharpness.
+    #[error("{what}: {problem}")]
+    Crease {
+        /// The crease, e.g. `crease on edge 3–7`.
+        what: String,
+        /// What is wrong.
+        problem: String,
+    },
     /// A face-varying attribute is malformed.
     #[error("{attribute}: {problem}")]
     Attribute {

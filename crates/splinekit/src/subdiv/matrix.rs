@@ -33,10 +33,11 @@
 
 use rayon::prelude::*;
 
-use super::catmull_clark::{CatmullClarkOptions, Rings};
-use super::loop_scheme::{Attribute, BoundaryRule, LoopOptions, Rules, SubdivError};
-use super::topology::{MIN_LEN, Table, Topology, next, prev};
-use crate::mesh::{NONE, PolyMesh};
+use super::catmull_clark::CatmullClarkOptions;
+use super::crease::{Creases, CreasingMethod, catmull_clark_levels, loop_levels};
+use super::loop_scheme::{Attribute, LoopOptions, SubdivError};
+use super::topology::MIN_LEN;
+use crate::mesh::PolyMesh;
 
 /// A sparse matrix in compressed rows: row `i` gives fine vertex `i` as a weighted sum of
 /// base vertices. See the [module docs](self).
@@ -58,25 +59,24 @@ impl SubdivisionMatrix {
     /// As [`loop_subdivide`](super::loop_subdivide): a face that is not a triangle, or
     /// non-manifold or inconsistently oriented topology, naming it.
     pub fn loop_scheme(mesh: &PolyMesh, levels: u32, options: &LoopOptions) -> Result<Self, SubdivError> {
-        let mut triangles = Vec::with_capacity(mesh.num_faces());
-        for (face, f) in mesh.faces().enumerate() {
-            match f {
-                &[a, b, c] => triangles.push([a, b, c]),
-                _ => return Err(SubdivError::NotTriangles { face, corners: f.len(), scheme: "Loop" }),
-            }
-        }
-        let rules = Rules::new(options);
-        let mut topology = Topology::build(&triangles, mesh.num_vertices())?;
+        Self::loop_creased(mesh, levels, options, &Creases::default(), CreasingMethod::default())
+    }
+
+    /// [`Self::loop_scheme`] with sharp and semi-sharp `creases` carried by `method`: row `i`
+    /// gives vertex `i` of [`loop_subdivide_creased`](super::loop_subdivide_creased).
+    ///
+    /// # Errors
+    /// As [`Self::loop_scheme`], and a crease on an edge or vertex the mesh does not have or
+    /// with a negative sharpness.
+    pub fn loop_creased(
+        mesh: &PolyMesh,
+        levels: u32,
+        options: &LoopOptions,
+        creases: &Creases,
+        method: CreasingMethod,
+    ) -> Result<Self, SubdivError> {
         let mut matrix = Self::identity(mesh.num_vertices());
-        for level in 0..levels {
-            let table = Table { triangles: &triangles, topology: &topology };
-            matrix = loop_level(&table, &rules).times(&matrix);
-            if level + 1 < levels {
-                let (child, child_topology) = topology.refine(&triangles, true);
-                triangles = child;
-                topology = child_topology.expect("asked for the child's tables");
-            }
-        }
+        loop_levels(mesh, levels, options, creases, method, |level| matrix = level.times(&matrix))?;
         Ok(matrix)
     }
 
@@ -89,19 +89,25 @@ impl SubdivisionMatrix {
     /// As [`catmull_clark_subdivide`](super::catmull_clark_subdivide): non-manifold or
     /// inconsistently oriented topology, naming it.
     pub fn catmull_clark(mesh: &PolyMesh, levels: usize, options: &CatmullClarkOptions) -> Result<Self, SubdivError> {
+        Self::catmull_clark_creased(mesh, levels, options, &Creases::default(), CreasingMethod::default())
+    }
+
+    /// [`Self::catmull_clark`] with sharp and semi-sharp `creases` carried by `method`: row `i`
+    /// gives vertex `i` of
+    /// [`catmull_clark_subdivide_creased`](super::catmull_clark_subdivide_creased).
+    ///
+    /// # Errors
+    /// As [`Self::catmull_clark`], and a crease on an edge or vertex the mesh does not have or
+    /// with a negative sharpness.
+    pub fn catmull_clark_creased(
+        mesh: &PolyMesh,
+        levels: usize,
+        options: &CatmullClarkOptions,
+        creases: &Creases,
+        method: CreasingMethod,
+    ) -> Result<Self, SubdivError> {
         let mut matrix = Self::identity(mesh.num_vertices());
-        let mut current: Option<PolyMesh> = None;
-        for level in 0..levels {
-            let m = current.as_ref().unwrap_or(mesh);
-            let rings = Rings::new(m)?;
-            matrix = catmull_clark_level(&rings, options.boundary).times(&matrix);
-            if level + 1 < levels {
-                // The child's connectivity only: its positions are never read.
-                let (face_offsets, face_vertices) = rings.child_faces();
-                let positions = vec![glam::DVec3::ZERO; matrix.num_rows()];
-                current = Some(PolyMesh { positions, face_offsets, face_vertices, ..PolyMesh::default() });
-            }
-        }
+        catmull_clark_levels(mesh, levels, options, creases, method, |level| matrix = level.times(&matrix))?;
         Ok(matrix)
     }
 
@@ -161,7 +167,7 @@ impl SubdivisionMatrix {
 
     /// `self · inner`: the rows of `self` (over `inner`'s rows) expanded into `inner`'s
     /// columns.
-    fn times(&self, inner: &Self) -> Self {
+    pub(super) fn times(&self, inner: &Self) -> Self {
         debug_assert_eq!(self.num_cols, inner.num_rows());
         let mut acc = Accumulator::new(inner.num_cols);
         let mut out = Self { num_cols: inner.num_cols, offsets: vec![0], entries: Vec::new() };
@@ -214,150 +220,33 @@ impl Accumulator {
 }
 
 /// Builds a matrix row by row.
-struct Builder {
+pub(super) struct Builder {
     acc: Accumulator,
     matrix: SubdivisionMatrix,
 }
 
 impl Builder {
-    fn new(num_cols: usize) -> Self {
+    pub(super) fn new(num_cols: usize) -> Self {
         Self {
             acc: Accumulator::new(num_cols),
             matrix: SubdivisionMatrix { num_cols, offsets: vec![0], entries: Vec::new() },
         }
     }
 
+    /// Adds `w` to the weight of column `j` in the current row.
     #[inline]
-    fn add(&mut self, j: u32, w: f64) {
+    pub(super) fn add(&mut self, j: u32, w: f64) {
         self.acc.add(j, w);
     }
 
-    fn end_row(&mut self) {
+    /// Ends the current row.
+    pub(super) fn end_row(&mut self) {
         self.acc.drain_into(&mut self.matrix.entries);
         self.matrix.offsets.push(self.matrix.entries.len());
     }
-}
 
-/// One level of Loop: even vertices (the rule of `even_ring`), then one odd vertex per edge.
-fn loop_level(topo: &Table<'_>, rules: &Rules) -> SubdivisionMatrix {
-    let nv = topo.num_vertices() as u32;
-    let mut b = Builder::new(nv as usize);
-    let mut ring = Vec::new();
-    for v in 0..nv {
-        let start = topo.vertex_start(v);
-        if start == NONE {
-            b.add(v, 1.0);
-            b.end_row();
-            continue;
-        }
-        let out = |h: u32| topo.tri(h / 3)[next(h % 3) as usize];
-        ring.clear();
-        let mut h = start;
-        let mut boundary = None;
-        loop {
-            ring.push(out(h));
-            let pr = h - h % 3 + prev(h % 3);
-            let tw = topo.twin(pr);
-            if tw == NONE {
-                boundary = Some(topo.tri(pr / 3)[(pr % 3) as usize]);
-                break;
-            }
-            if tw == start {
-                break;
-            }
-            h = tw;
-        }
-        match boundary {
-            Some(_) if rules.corners && ring.len() == 1 => b.add(v, 1.0),
-            Some(arriving) => {
-                b.add(v, 0.75);
-                b.add(out(start), 0.125);
-                b.add(arriving, 0.125);
-            }
-            None => {
-                let n = ring.len() as u32;
-                let beta = rules.beta(n);
-                b.add(v, 1.0 - f64::from(n) * beta);
-                for &r in &ring {
-                    b.add(r, beta);
-                }
-            }
-        }
-        b.end_row();
+    /// The matrix of the rows ended.
+    pub(super) fn finish(self) -> SubdivisionMatrix {
+        self.matrix
     }
-    for e in 0..topo.num_edges() as u32 {
-        let h = topo.edge_owner(e);
-        let i = h % 3;
-        let t = topo.tri(h / 3);
-        let tw = topo.twin(h);
-        if tw == NONE {
-            b.add(t[i as usize], 0.5);
-            b.add(t[next(i) as usize], 0.5);
-        } else {
-            b.add(t[i as usize], 0.375);
-            b.add(t[next(i) as usize], 0.375);
-            b.add(t[prev(i) as usize], 0.125);
-            b.add(topo.tri(tw / 3)[prev(tw % 3) as usize], 0.125);
-        }
-        b.end_row();
-    }
-    b.matrix
-}
-
-/// One level of Catmull-Clark: vertex points, edge points, face points (the rules of
-/// `Rings::refine`).
-fn catmull_clark_level(rings: &Rings<'_>, boundary: BoundaryRule) -> SubdivisionMatrix {
-    let (mesh, adj) = (rings.mesh, &rings.adj);
-    let nv = mesh.num_vertices();
-    let mut b = Builder::new(nv);
-    let face_point = |b: &mut Builder, f: usize, w: f64| {
-        let corners = mesh.face(f);
-        let share = w / corners.len() as f64;
-        for &v in corners {
-            b.add(v, share);
-        }
-    };
-    for v in 0..nv as u32 {
-        let corners = adj.corners_of(v);
-        if corners.is_empty() {
-            b.add(v, 1.0);
-        } else if let Some((a, c)) = rings.boundary_neighbours(v) {
-            if boundary == BoundaryRule::Corners && corners.len() == 1 {
-                b.add(v, 1.0);
-            } else {
-                b.add(v, 0.75);
-                b.add(a, 0.125);
-                b.add(c, 0.125);
-            }
-        } else {
-            let n = corners.len() as f64;
-            b.add(v, (n - 2.0) / n);
-            let w = 1.0 / (n * n);
-            for &c in corners {
-                b.add(adj.to[c as usize], w);
-                face_point(&mut b, adj.face_of[c as usize] as usize, w);
-            }
-        }
-        b.end_row();
-    }
-    for e in 0..adj.num_edges() {
-        let c = adj.edge_corner[e];
-        let (v0, v1) = (mesh.face_vertices[c as usize], adj.to[c as usize]);
-        let t = adj.twin[c as usize];
-        if t == NONE {
-            b.add(v0, 0.5);
-            b.add(v1, 0.5);
-        } else {
-            b.add(v0, 0.25);
-            b.add(v1, 0.25);
-            face_point(&mut b, adj.face_of[c as usize] as usize, 0.25);
-            face_point(&mut b, adj.face_of[t as usize] as usize, 0.25);
-        }
-        b.end_row();
-    }
-    for f in 0..mesh.num_faces() {
-        face_point(&mut b, f, 1.0);
-        b.end_row();
-    }
-    b.matrix
 }

@@ -20,6 +20,7 @@
 
 pub mod butterfly;
 mod catmull_clark;
+pub mod crease;
 pub mod doo_sabin;
 mod grandchild;
 mod great;
@@ -31,6 +32,9 @@ pub mod topology;
 
 pub use butterfly::{ButterflyOptions, butterfly_step, butterfly_subdivide};
 pub use catmull_clark::{CatmullClarkOptions, catmull_clark_step, catmull_clark_subdivide};
+pub use crease::{
+    Creases, CreasingMethod, EdgeCrease, VertexCrease, catmull_clark_subdivide_creased, loop_subdivide_creased,
+};
 pub use doo_sabin::{DooSabinOptions, doo_sabin_subdivide};
 pub use limit::{catmull_clark_limit_normals, catmull_clark_limit_positions, loop_limit_normals, loop_limit_positions};
 pub use loop_scheme::{
