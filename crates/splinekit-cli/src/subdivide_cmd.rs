@@ -11,12 +11,12 @@ use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::mesh::FaceVarying;
 use splinekit::subdiv::{
-    BoundaryRule, ButterflyOptions, CatmullClarkOptions, DooSabinOptions, LoopLevel, LoopOptions, LoopPyramid,
-    LoopWeights, Sqrt3Options, SubdivError, butterfly_subdivide, catmull_clark_limit_normals,
-    catmull_clark_limit_positions, catmull_clark_subdivide, doo_sabin_subdivide, loop_limit_normals,
-    loop_limit_positions, sqrt3_subdivide,
+    BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions, LoopLevel,
+    LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, butterfly_subdivide, catmull_clark_limit_normals,
+    catmull_clark_limit_positions, catmull_clark_subdivide, catmull_clark_subdivide_creased, doo_sabin_subdivide,
+    loop_limit_normals, loop_limit_positions, loop_subdivide_creased, sqrt3_subdivide,
 };
-use splinekit_io::mesh::{MeshFormat, load_mesh, save, save_poly};
+use splinekit_io::mesh::{MeshFormat, load_mesh, read_creases, save, save_poly, save_poly_creased};
 
 use crate::output::JsonNum;
 
@@ -60,6 +60,15 @@ use crate::output::JsonNum;
 /// OpenSubdiv's; Catmull-Clark needs at least one level); OBJ, PLY and glb store the normals. Butterfly
 /// vertices already lie on their limit surface, so `--limit` leaves them where they are.
 ///
+/// Creases (Loop and Catmull-Clark): sharp and semi-sharp edges and vertices, as OpenSubdiv
+/// defines them, from the input OBJ's tags or a side file (`--creases FILE`), lines like
+/// `t crease 2/1 A B S` (edge A–B, 0-based vertices, sharpness S: 0 smooth, 10 or more
+/// infinitely sharp; `t crease 3/1 A B C S` is the chain A–B–C) and `t corner 1/1 V S`. A
+/// semi-sharp edge is sharp for ⌊S⌋ levels, then blended towards smooth; `--creasing` picks how
+/// an edge's sharpness passes to its halves (Chaikin: averaged with the other creases at each
+/// end, the default; uniform: S − 1). OBJ output carries the child creases as tags, so that
+/// subdividing it again goes on where this run stopped. `--limit` is refused with creases.
+///
 /// Writes the result by the extension of OUT (.obj, .ply, .stl, .glb) through a temporary
 /// file, so an error never leaves a partial file; without -o nothing is written (use it to
 /// measure). Prints the counts and the time of the subdivision alone (no file I/O); with
@@ -75,7 +84,8 @@ use crate::output::JsonNum;
     splinekit subdivide torus.ply -n 3 --threads 1 --json --repeat 5\n  \
     splinekit subdivide patch.obj -n 4 --boundary corners --color-by-level -o patch4.ply\n  \
     splinekit subdivide bunny.obj -n 3 --scheme sqrt3 -o bunny3.obj\n  \
-    splinekit subdivide cube.obj -n 2 --scheme doo-sabin -o cube2.obj")]
+    splinekit subdivide cube.obj -n 2 --scheme doo-sabin -o cube2.obj\n  \
+    splinekit subdivide box.obj -n 3 --scheme catmull-clark --creases box-creases.txt -o box3.obj")]
 pub struct SubdivideArgs {
     /// Input mesh (.obj, .glb, .ply, .stl)
     #[arg(value_name = "IN")]
@@ -114,6 +124,15 @@ pub struct SubdivideArgs {
     /// levels; exact closed-form masks); not included in the time
     #[arg(long)]
     pub limit: bool,
+
+    /// Crease side file: `t crease …` / `t corner …` lines (0-based vertices), added to the
+    /// input OBJ's own tags (Loop and Catmull-Clark)
+    #[arg(long, value_name = "FILE")]
+    pub creases: Option<PathBuf>,
+
+    /// How a crease's sharpness passes to its halves (Loop and Catmull-Clark) [default: chaikin]
+    #[arg(long, value_enum)]
+    pub creasing: Option<Creasing>,
 
     /// Print one JSON object {"vertices", "faces", "seconds"}
     #[arg(long)]
@@ -175,6 +194,15 @@ pub enum Boundary {
     Corners,
 }
 
+/// How a crease's sharpness passes to the two halves of its edge.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Creasing {
+    /// 3/4 its own sharpness + 1/4 the average of the other creases at that end, minus 1
+    Chaikin,
+    /// Its sharpness minus 1 (OpenSubdiv's default)
+    Uniform,
+}
+
 /// Refuses the options that mean nothing for the chosen scheme.
 fn check_options(args: &SubdivideArgs) -> anyhow::Result<()> {
     let (scheme, name) = (args.scheme, args.scheme.title());
@@ -189,6 +217,9 @@ fn check_options(args: &SubdivideArgs) -> anyhow::Result<()> {
     }
     if matches!(scheme, Scheme::Sqrt3 | Scheme::DooSabin) && args.limit {
         bail!("--limit: limit positions are computed for Loop and Catmull-Clark only, not {name} subdivision");
+    }
+    if !matches!(scheme, Scheme::Loop | Scheme::CatmullClark) && (args.creases.is_some() || args.creasing.is_some()) {
+        bail!("--creases and --creasing are for Loop and Catmull-Clark; {name} subdivision has no creases");
     }
     if scheme == Scheme::DooSabin && args.color_by_level {
         bail!(
@@ -216,6 +247,34 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         eprintln!("warning: {w}");
     }
     let mut mesh = loaded.mesh;
+    let mut creases = loaded.creases;
+    if let Some(path) = &args.creases {
+        let file = std::fs::File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+        let origin = path.display().to_string();
+        let side = read_creases(std::io::BufReader::new(file), &origin, mesh.num_vertices())?;
+        creases.edges.extend(side.edges);
+        creases.vertices.extend(side.vertices);
+    }
+    let creased = !creases.is_empty();
+    if creased && !matches!(args.scheme, Scheme::Loop | Scheme::CatmullClark) {
+        eprintln!(
+            "warning: {}: its crease tags are ignored: {} subdivision has no creases",
+            args.input.display(),
+            args.scheme.title()
+        );
+    }
+    if creased && args.limit && matches!(args.scheme, Scheme::Loop | Scheme::CatmullClark) {
+        bail!(
+            "--limit: limit positions are computed for smooth surfaces and boundaries, not creases; {} has {} creased \
+             edges and {} creased vertices (drop --limit, or the tags)",
+            args.input.display(),
+            creases.edges.len(),
+            creases.vertices.len()
+        );
+    }
+    if args.split_nonmanifold && creased {
+        bail!("--split-nonmanifold renumbers vertices, so the creases would name the wrong ones; fix the mesh first");
+    }
     if args.split_nonmanifold {
         let (split, report) = splinekit::mesh::split_nonmanifold(&mesh);
         let (n_split, flipped) = (report.split_vertices.len(), report.flipped_faces.len());
@@ -230,6 +289,13 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     }
     match args.scheme {
         Scheme::Loop => {}
+        Scheme::CatmullClark if creased => {
+            let options = CatmullClarkOptions { boundary: boundary_rule(args), color_by_level: args.color_by_level };
+            let subdivide = |m: &PolyMesh| {
+                catmull_clark_subdivide_creased(m, args.levels as usize, &options, &creases, creasing(args))
+            };
+            return run_creased(args, &mesh, format, out, subdivide, "quads");
+        }
         Scheme::CatmullClark => return run_catmull_clark(args, &mesh, format, out),
         Scheme::Sqrt3 => {
             let options = Sqrt3Options { color_by_level: args.color_by_level };
@@ -254,6 +320,10 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         boundary: boundary_rule(args),
         color_by_level: args.color_by_level,
     };
+    if creased {
+        let subdivide = |m: &PolyMesh| loop_subdivide_creased(m, args.levels, &options, &creases, creasing(args));
+        return run_creased(args, &mesh, format, out, subdivide, "triangles");
+    }
     let pool = thread_pool(args)?;
     let threads = pool.current_num_threads();
 
@@ -309,6 +379,14 @@ fn boundary_rule(args: &SubdivideArgs) -> BoundaryRule {
     match args.boundary.unwrap_or(Boundary::Smooth) {
         Boundary::Smooth => BoundaryRule::Smooth,
         Boundary::Corners => BoundaryRule::Corners,
+    }
+}
+
+/// The creasing method of `--creasing`.
+fn creasing(args: &SubdivideArgs) -> CreasingMethod {
+    match args.creasing.unwrap_or(Creasing::Chaikin) {
+        Creasing::Chaikin => CreasingMethod::Chaikin,
+        Creasing::Uniform => CreasingMethod::Uniform,
     }
 }
 
@@ -402,13 +480,34 @@ fn run_polygons(
     report(args, out, (fine.num_vertices(), fine.num_faces(), noun), seconds, pool.current_num_threads())
 }
 
+/// Loop or Catmull-Clark with creases: time `--repeat` runs of `subdivide`, write the last
+/// with its creases.
+fn run_creased(
+    args: &SubdivideArgs,
+    mesh: &PolyMesh,
+    format: Option<MeshFormat>,
+    out: &mut impl Write,
+    subdivide: impl Fn(&PolyMesh) -> Result<(PolyMesh, Creases), SubdivError> + Sync,
+    noun: &str,
+) -> anyhow::Result<()> {
+    let pool = thread_pool(args)?;
+    let ((fine, creases), seconds) = timed(args, &pool, subdivide, mesh)?;
+    if let (Some(path), Some(format)) = (&args.output, format) {
+        if format != MeshFormat::Obj && !creases.is_empty() {
+            eprintln!("note: {} cannot hold crease tags; write .obj to keep the child creases", path.display());
+        }
+        save_poly_creased(&fine, &creases, path, format)?;
+    }
+    report(args, out, (fine.num_vertices(), fine.num_faces(), noun), seconds, pool.current_num_threads())
+}
+
 /// `--repeat` runs of `subdivide` on `mesh` in `pool`: the last result and the median time.
-fn timed(
+fn timed<T: Send>(
     args: &SubdivideArgs,
     pool: &rayon::ThreadPool,
-    subdivide: impl Fn(&PolyMesh) -> Result<PolyMesh, SubdivError> + Sync,
+    subdivide: impl Fn(&PolyMesh) -> Result<T, SubdivError> + Sync,
     mesh: &PolyMesh,
-) -> anyhow::Result<(PolyMesh, f64)> {
+) -> anyhow::Result<(T, f64)> {
     let mut times = Vec::with_capacity(args.repeat);
     let mut result = None;
     for _ in 0..args.repeat {

@@ -365,3 +365,129 @@ fn sqrt3_and_doo_sabin_refuse_bad_input_and_options() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// The `v` lines of an OBJ file.
+fn obj_points(path: &Path) -> Vec<[f64; 3]> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .map(|l| {
+            let x: Vec<f64> = l.split_whitespace().skip(1).map(|t| t.parse().unwrap()).collect();
+            [x[0], x[1], x[2]]
+        })
+        .collect()
+}
+
+const CUBE: &str = "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n\
+                    f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+
+/// The cube's top face (z = 1: vertices 4, 5, 7, 6, 0-based) as one infinitely sharp crease
+/// chain with infinitely sharp corners.
+const TOP_LOOP: &str = "t crease 5/1 4 5 7 6 4 10\nt corner 4/1 4 5 6 7 10\n";
+
+#[test]
+fn creases_from_tags_and_side_files_carry_on() {
+    let dir = temp_dir("creases");
+    let (tagged, plain, side) = (dir.join("tagged.obj"), dir.join("plain.obj"), dir.join("top.txt"));
+    std::fs::write(&tagged, format!("{CUBE}{TOP_LOOP}")).unwrap();
+    std::fs::write(&plain, CUBE).unwrap();
+    std::fs::write(&side, format!("# the top face's edges\n{TOP_LOOP}")).unwrap();
+    let path = |p: &Path| p.to_str().unwrap().to_owned();
+    for (scheme, levels) in [("catmull-clark", "3"), ("loop", "2")] {
+        let input = if scheme == "loop" {
+            // Loop needs triangles: split each quad a → b → c → d into a b c and a c d
+            let tri = dir.join("tri.obj");
+            let mut text = String::new();
+            for l in CUBE.lines() {
+                let w: Vec<&str> = l.split_whitespace().collect();
+                if w[0] == "f" {
+                    text += &format!("f {} {} {}\nf {} {} {}\n", w[1], w[2], w[3], w[1], w[3], w[4]);
+                } else {
+                    text += &format!("{l}\n");
+                }
+            }
+            std::fs::write(&tri, format!("{text}{TOP_LOOP}")).unwrap();
+            tri
+        } else {
+            tagged.clone()
+        };
+        let (whole, first, second) = (dir.join("whole.obj"), dir.join("first.obj"), dir.join("second.obj"));
+        let run = |args: &[&str]| splinekit(&[&["subdivide", "--scheme", scheme][..], args].concat()).ok().to_owned();
+        run(&[&path(&input), "-n", levels, "-o", &path(&whole)]);
+        // the infinitely sharp top loop with sharp corners stays a square: its vertices have
+        // |x| = 1 or |y| = 1 at z = 1
+        let points = obj_points(&whole);
+        let on_top_rim = points.iter().filter(|p| p[2] == 1.0 && (p[0].abs() == 1.0 || p[1].abs() == 1.0)).count();
+        let n: usize = levels.parse().unwrap();
+        assert_eq!(on_top_rim, 4 << n, "{scheme}: the top rim keeps {on_top_rim} vertices");
+        // the output carries the child creases: one more level of it is the same as all at once
+        let text = std::fs::read_to_string(&whole).unwrap();
+        assert_eq!(text.lines().filter(|l| l.starts_with("t crease 2/1 ")).count(), 4 << n);
+        run(&[&path(&input), "-n", &(n - 1).to_string(), "-o", &path(&first)]);
+        run(&[&path(&first), "-n", "1", "-o", &path(&second)]);
+        let mut a = obj_points(&whole);
+        let mut b = obj_points(&second);
+        let key = |p: &[f64; 3]| p.map(|x| (x * 1e9).round() as i64);
+        a.sort_by_key(key);
+        b.sort_by_key(key);
+        assert_eq!(a.len(), b.len());
+        assert!(a.iter().zip(&b).all(|(p, q)| (0..3).all(|k| (p[k] - q[k]).abs() < 1e-12)), "{scheme}");
+        // the side file gives the same surface as the tags
+        if scheme == "catmull-clark" {
+            let from_side = dir.join("side.obj");
+            run(&[&path(&plain), "-n", levels, "--creases", &path(&side), "-o", &path(&from_side)]);
+            assert_eq!(obj_points(&from_side), obj_points(&whole));
+            // and no creases is the smooth surface: the rim is rounded off
+            let smooth = dir.join("smooth.obj");
+            run(&[&path(&plain), "-n", levels, "-o", &path(&smooth)]);
+            assert!(obj_points(&smooth).iter().all(|p| p[2] < 1.0));
+            // uniform creasing is accepted (the same here: every crease is infinitely sharp)
+            let uniform = dir.join("uniform.obj");
+            run(&[&path(&input), "-n", levels, "--creasing", "uniform", "-o", &path(&uniform)]);
+            assert_eq!(obj_points(&uniform), obj_points(&whole));
+        }
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn bad_creases_fail_cleanly() {
+    let dir = temp_dir("bad-creases");
+    let path = |p: &Path| p.to_str().unwrap().to_owned();
+    let out = dir.join("out.obj");
+    let fails = |input: &str, extra: &[&str]| {
+        let f = dir.join("in.obj");
+        std::fs::write(&f, input).unwrap();
+        let (f, out) = (path(&f), path(&out));
+        let args = [&["subdivide", &f, "-n", "1", "--scheme", "catmull-clark", "-o", &out][..], extra].concat();
+        let run = splinekit(&args);
+        assert!(!Path::new(&out).exists(), "no output file after an error");
+        run.fails_with_error().to_owned()
+    };
+    let err = fails(&format!("{CUBE}t crease 2/1 0 9 1\n"), &[]);
+    assert!(err.contains("in.obj:15:16: found \"9\", expected a vertex index from 0 to 7"), "{err}");
+    let err = fails(&format!("{CUBE}t crease 2/1 0 7 1\n"), &[]);
+    assert!(err.contains("crease on edge 0–7: no face has this edge"), "{err}");
+    let err = fails(&format!("{CUBE}{TOP_LOOP}"), &["--limit"]);
+    assert!(err.contains("--limit") && err.contains("4 creased edges and 4 creased vertices"), "{err}");
+    let side = dir.join("side.txt");
+    std::fs::write(&side, "t corner 1/1 3 x\n").unwrap();
+    let err = fails(CUBE, &["--creases", &path(&side)]);
+    assert!(err.contains("side.txt:1:16: found \"x\", expected a sharpness"), "{err}");
+    let err = fails(CUBE, &["--creases", &path(&dir.join("missing.txt"))]);
+    assert!(err.contains("cannot open") && err.contains("missing.txt"), "{err}");
+    // the other schemes have no creases: a side file is refused, the tags of a file ignored
+    let f = dir.join("in.obj");
+    std::fs::write(&f, format!("{CUBE}{TOP_LOOP}")).unwrap();
+    let run = splinekit(&["subdivide", &path(&f), "-n", "1", "--scheme", "doo-sabin", "--creases", &path(&side)]);
+    assert!(
+        run.fails_with_error().contains("--creases and --creasing are for Loop and Catmull-Clark"),
+        "{}",
+        run.stderr
+    );
+    let run = splinekit(&["subdivide", &path(&f), "-n", "1", "--scheme", "doo-sabin"]);
+    run.ok();
+    assert!(run.stderr.contains("its crease tags are ignored"), "{}", run.stderr);
+    let _ = std::fs::remove_dir_all(dir);
+}

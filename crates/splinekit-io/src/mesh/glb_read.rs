@@ -11,6 +11,7 @@ use json::accessor::{ComponentType, Type};
 use json::mesh::{Mode, Semantic};
 use json::validation::Checked::{Invalid, Valid};
 use splinekit::mesh::{FaceVarying, PolyMesh};
+use splinekit::subdiv::Creases;
 
 use super::load::{self, LoadedMesh, MAX_WARNINGS, ReadWarningKind, Warnings};
 use super::{MeshIoError, MeshIoErrorKind};
@@ -942,7 +943,7 @@ impl Reader<'_> {
             normals,
             uvs,
         };
-        LoadedMesh { mesh, warnings: self.warnings.finish() }
+        LoadedMesh { mesh, warnings: self.warnings.finish(), creases: Creases::default() }
     }
 }
 

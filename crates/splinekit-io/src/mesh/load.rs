@@ -8,6 +8,7 @@ use std::io::Read;
 use std::path::Path;
 
 use splinekit::PolyMesh;
+use splinekit::subdiv::Creases;
 
 use super::{MeshFormat, MeshIoError, MeshIoErrorKind};
 use crate::swp::SourcePos;
@@ -27,6 +28,9 @@ pub struct LoadedMesh {
     pub mesh: PolyMesh,
     /// What was skipped or dropped, in file order.
     pub warnings: Vec<ReadWarning>,
+    /// Sharp and semi-sharp edges and vertices: an OBJ file's crease tags (see
+    /// [`read_creases`](super::read_creases)); none for the other formats.
+    pub creases: Creases,
 }
 
 /// Something a reader skipped or dropped without failing.
@@ -46,6 +50,11 @@ pub enum ReadWarningKind {
     UnknownStatement {
         /// The line's text (at most 60 characters, then `…`).
         text: String,
+    },
+    /// An OBJ tag line (`t NAME …`) other than `crease` and `corner`, skipped.
+    SkippedTag {
+        /// The tag's name.
+        name: String,
     },
     /// More warnings than [`MAX_WARNINGS`] of the previous kind were found; they are only
     /// counted.
@@ -110,6 +119,9 @@ impl fmt::Display for ReadWarning {
         }
         match &self.kind {
             ReadWarningKind::UnknownStatement { text } => write!(f, "skipped unknown statement {text:?}"),
+            ReadWarningKind::SkippedTag { name } => {
+                write!(f, "skipped tag {name:?} (only crease and corner tags are read)")
+            }
             ReadWarningKind::More { count } => write!(f, "… and {count} more warnings like the previous one"),
             ReadWarningKind::AttributeDropped { attribute, faces_with, faces_without, first_without } => write!(
                 f,

@@ -66,10 +66,12 @@ pub mod rebuild;
 pub mod revolution_obj;
 mod stl;
 mod stl_read;
+mod tags;
 
 use std::io::Write;
 use std::path::Path;
 
+use splinekit::subdiv::Creases;
 use splinekit::{PolyMesh, TriMesh};
 
 pub use error::{MeshIoError, MeshIoErrorKind};
@@ -86,6 +88,7 @@ pub use revolution_obj::{
 };
 pub use stl::write_stl;
 pub use stl_read::read_stl;
+pub use tags::{read_creases, write_creases};
 
 /// Size of the internal output buffer of the writers.
 const BUFFER_SIZE: usize = 1 << 16;
@@ -188,6 +191,28 @@ pub fn save_poly(mesh: &PolyMesh, path: impl AsRef<Path>, format: MeshFormat) ->
     }
     // write_obj_poly validates before writing a byte; on error the temporary file goes away
     atomic::write_file(path, |w| write_obj_poly(mesh, w).map_err(|e| e.with_origin(path)))
+}
+
+/// [`save_poly`] with the mesh's creases: an OBJ file gets them as tag lines after the faces
+/// ([`write_creases`]); the other formats cannot hold them and do not get them.
+///
+/// # Errors
+///
+/// As [`save`].
+pub fn save_poly_creased(
+    mesh: &PolyMesh,
+    creases: &Creases,
+    path: impl AsRef<Path>,
+    format: MeshFormat,
+) -> Result<(), MeshIoError> {
+    let path = path.as_ref();
+    if format != MeshFormat::Obj {
+        return save_poly(mesh, path, format);
+    }
+    atomic::write_file(path, |w| {
+        write_obj_poly(mesh, w).map_err(|e| e.with_origin(path))?;
+        write_creases(creases, w).map_err(|e| MeshIoError::from(e).with_origin(path))
+    })
 }
 
 /// Validates the mesh for writing.

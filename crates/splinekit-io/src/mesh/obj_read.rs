@@ -6,6 +6,7 @@ use glam::{DVec2, DVec3};
 use splinekit::mesh::{FaceVarying, PolyMesh};
 
 use super::load::{self, LoadedMesh, ReadWarningKind, Warnings, next_token, parse_f64, parse_i64};
+use super::tags::Tags;
 use super::{MeshIoError, MeshIoErrorKind};
 use crate::swp::SourcePos;
 
@@ -37,6 +38,10 @@ const VERTEX_VALUES: [&str; 6] =
 ///   and some do not, it is dropped with an
 ///   [`AttributeDropped`](ReadWarningKind::AttributeDropped) warning naming the first face
 ///   line without it.
+/// - `t crease …` and `t corner …`: sharp and semi-sharp edges and vertices (OpenSubdiv's tags,
+///   0-based vertices; see [`read_creases`](super::read_creases)) into
+///   [`LoadedMesh::creases`]; other `t` tags are skipped with a
+///   [`SkippedTag`](ReadWarningKind::SkippedTag) warning.
 /// - `o`, `g`, `s`, `usemtl`, `mtllib`, `l` and `p` are ignored, as are comments (`#` to the
 ///   end of the line, also after a statement) and empty lines. Any other statement —
 ///   including free-form geometry (`vp`, `curv`, `surf`, …) and the HTML lines around the
@@ -155,6 +160,7 @@ pub(crate) fn parse_obj(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
     let (mut tex_presence, mut normal_presence) = (Presence::default(), Presence::default());
     let mut forward: Vec<Forward> = Vec::new();
     let mut warnings = Warnings::default();
+    let mut tags = Tags::default();
 
     for (no, line) in load::lines(bytes) {
         let mut pos = 0;
@@ -234,6 +240,7 @@ pub(crate) fn parse_obj(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
                 normal_presence.face(no, with_normal, corners);
                 face_offsets.push(face_vertices.len() as u32);
             }
+            b"t" => tags.statement(origin, no, line, pos, &mut warnings)?,
             b"o" | b"g" | b"s" | b"usemtl" | b"mtllib" | b"l" | b"p" => {}
             _ => warnings.unknown(no, line),
         }
@@ -255,6 +262,7 @@ pub(crate) fn parse_obj(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
         }
     }
 
+    let creases = tags.finish(origin, positions.len())?;
     let keep_colors = colored > 0 && colored == positions.len();
     if colored > 0 && !keep_colors {
         warnings.push(
@@ -280,7 +288,7 @@ pub(crate) fn parse_obj(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
         normals,
         uvs,
     };
-    Ok(LoadedMesh { mesh, warnings: warnings.finish() })
+    Ok(LoadedMesh { mesh, warnings: warnings.finish(), creases })
 }
 
 /// The token of `line` starting at byte `at`.

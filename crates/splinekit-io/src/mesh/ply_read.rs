@@ -4,6 +4,7 @@ use std::io::Read;
 
 use glam::{DVec2, DVec3};
 use splinekit::mesh::{FaceVarying, PolyMesh};
+use splinekit::subdiv::Creases;
 
 use super::load::{self, LoadedMesh, ReadWarningKind, Warnings};
 use super::{MeshIoError, MeshIoErrorKind};
@@ -601,7 +602,7 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
     let normals = (!normals.is_empty()).then(|| FaceVarying { values: normals, indices: face_vertices.clone() });
     let uvs = (!tex.is_empty()).then(|| FaceVarying { values: tex, indices: face_vertices.clone() });
     let mesh = PolyMesh { positions, colors, face_offsets, face_vertices, normals, uvs };
-    Ok(LoadedMesh { mesh, warnings: warnings.finish() })
+    Ok(LoadedMesh { mesh, warnings: warnings.finish(), creases: Creases::default() })
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@ use std::io::Read;
 
 use glam::DVec3;
 use splinekit::mesh::PolyMesh;
+use splinekit::subdiv::Creases;
 
 use super::load::{self, LoadedMesh, ReadWarningKind, Warnings, parse_f64};
 use super::{MeshIoError, MeshIoErrorKind};
@@ -148,7 +149,7 @@ fn parse_binary(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIoError> {
 
 fn finish(welder: Welder, face_vertices: Vec<u32>, face_offsets: Vec<u32>, warnings: Warnings) -> LoadedMesh {
     let mesh = PolyMesh { positions: welder.positions, face_offsets, face_vertices, ..PolyMesh::default() };
-    LoadedMesh { mesh, warnings: warnings.finish() }
+    LoadedMesh { mesh, warnings: warnings.finish(), creases: Creases::default() }
 }
 
 /// Whitespace-separated tokens across lines, with their positions.
