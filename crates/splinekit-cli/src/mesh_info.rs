@@ -98,6 +98,10 @@ fn write_text(
     if !m.colors.is_empty() {
         attributes.push(String::from("vertex colours"));
     }
+    let c = &loaded.creases;
+    if !c.edges.is_empty() || !c.vertices.is_empty() {
+        attributes.push(format!("creases ({} edges, {} vertices)", c.edges.len(), c.vertices.len()));
+    }
     writeln!(out, "attributes: {}", if attributes.is_empty() { String::from("none") } else { attributes.join(", ") })?;
     writeln!(out, "topology:")?;
     for line in report.display_listing(DEFAULT_LISTED).to_string().lines() {

@@ -423,6 +423,8 @@ fn creases_from_tags_and_side_files_carry_on() {
         assert_eq!(on_top_rim, 4 << n, "{scheme}: the top rim keeps {on_top_rim} vertices");
         // the output carries the child creases: one more level of it is the same as all at once
         let text = std::fs::read_to_string(&whole).unwrap();
+        let info = splinekit(&["info", &path(&whole)]);
+        assert!(info.ok().contains(&format!("creases ({} edges, 4 vertices)", 4 << n)), "{}", info.stdout);
         assert_eq!(text.lines().filter(|l| l.starts_with("t crease 2/1 ")).count(), 4 << n);
         run(&[&path(&input), "-n", &(n - 1).to_string(), "-o", &path(&first)]);
         run(&[&path(&first), "-n", "1", "-o", &path(&second)]);
