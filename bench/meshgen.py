@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""Deterministic triangle meshes for the Loop subdivision comparisons (bench/compare_loop.sh)
-and the reference data (bench/make_loop_references.sh). Standard library only.
+"""Deterministic meshes for the subdivision comparisons (bench/compare_loop.sh) and the
+reference data (bench/make_loop_references.sh): triangles, and quads for Catmull-Clark. Standard
+library only.
 
     meshgen.py torus NU NV OUT.obj        2*NU*NV triangles, closed (genus 1), all valence 6
+    meshgen.py quadtorus NU NV OUT.obj    NU*NV quads, closed (genus 1), all valence 4
     meshgen.py icosphere K OUT.obj        20*4^K triangles, closed (genus 0), valences 5 and 6
     meshgen.py grid NX NY OUT.obj         2*NX*NY triangles, open (one boundary loop, 4 corners)
     meshgen.py copy IN.obj OUT.obj        the `v` and `f` lines of IN (first three coordinates,
@@ -13,13 +15,14 @@ and the reference data (bench/make_loop_references.sh). Standard library only.
                                           they use (in their order in IN)
 
 Every mesh is written as OBJ with `v x y z` lines (`%.17g`, so they read back exactly) and
-`f a b c` lines (1-based), counter-clockwise seen from the front (outside). No other lines
+`f a b c` lines (`f a b c d` for quads; 1-based), counter-clockwise seen from the front (outside). No other lines
 except a leading comment saying how the file was made.
 
 Shapes:
 - torus: R = 1, r = 0.4, vertex (i, j) at u = 2*pi*i/NU around +z and v = 2*pi*j/NV around
   the tube, index i*NV + j; quad (i, j) (i+1, j) (i+1, j+1) (i, j+1) split along its
-  (i, j)-(i+1, j+1) diagonal.
+  (i, j)-(i+1, j+1) diagonal. quadtorus: the same vertices, quad (i, j) (i+1, j) (i+1, j+1)
+  (i, j+1) kept whole.
 - icosphere: the icosahedron (+-1, +-phi, 0 and cyclic, scaled to the unit sphere), each level
   splitting every triangle into four at its edge midpoints, which are pushed out to the unit
   sphere. Vertex order: the 12 corners, then the new vertices in order of creation.
@@ -39,7 +42,7 @@ def write_obj(path, positions, triangles, comment):
         for p in positions:
             out.write("v %.17g %.17g %.17g\n" % (p[0], p[1], p[2]))
         for t in triangles:
-            out.write(f"f {t[0] + 1} {t[1] + 1} {t[2] + 1}\n")
+            out.write("f " + " ".join(str(v + 1) for v in t) + "\n")
 
 
 def write_input(folder, name, comment, positions, faces):
@@ -72,7 +75,7 @@ def read_obj(path):
     return positions, faces
 
 
-def torus(nu, nv, big_r=1.0, small_r=0.4):
+def torus(nu, nv, big_r=1.0, small_r=0.4, quads=False):
     positions = []
     for i in range(nu):
         u = 2.0 * math.pi * i / nu
@@ -88,8 +91,11 @@ def torus(nu, nv, big_r=1.0, small_r=0.4):
     for i in range(nu):
         for j in range(nv):
             a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
-            triangles.append((a, b, c))
-            triangles.append((a, c, d))
+            if quads:
+                triangles.append((a, b, c, d))
+            else:
+                triangles.append((a, b, c))
+                triangles.append((a, c, d))
     return positions, triangles
 
 
@@ -159,6 +165,11 @@ def main(argv):
         nu, nv = int(argv[2]), int(argv[3])
         p, t = torus(nu, nv)
         comment = f"torus R=1 r=0.4, {nu} x {nv} quads split into {len(t)} triangles (bench/meshgen.py torus {nu} {nv})"
+        out = argv[4]
+    elif kind == "quadtorus" and len(argv) == 5:
+        nu, nv = int(argv[2]), int(argv[3])
+        p, t = torus(nu, nv, quads=True)
+        comment = f"torus R=1 r=0.4, {nu} x {nv} = {len(t)} quads (bench/meshgen.py quadtorus {nu} {nv})"
         out = argv[4]
     elif kind == "icosphere" and len(argv) == 4:
         k = int(argv[2])

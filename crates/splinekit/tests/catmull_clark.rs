@@ -306,3 +306,72 @@ fn level_by_level_equals_one_call() {
         }
     }
 }
+
+/// Scattered positions, so that every rounding shows.
+fn jitter(k: u32) -> DVec3 {
+    let f = |a: u32| f64::from((k.wrapping_mul(a).wrapping_add(12345)) % 1000) / 997.0;
+    DVec3::new(f(7919), f(104_729), f(1_299_709))
+}
+
+/// A torus of `n × m` quads, or with `open` its first `m − 1` rows (a band with two
+/// boundary loops) plus an isolated vertex.
+fn torus(n: u32, m: u32, open: bool) -> PolyMesh {
+    let id = |i: u32, j: u32| (j % m) * n + (i % n);
+    let rows = if open { m - 1 } else { m };
+    let quads: Vec<[u32; 4]> =
+        (0..rows).flat_map(|j| (0..n).map(move |i| [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])).collect();
+    let faces: Vec<&[u32]> = quads.iter().map(|q| &q[..]).collect();
+    let extra = u32::from(open);
+    poly((0..n * m + extra).map(jitter).collect(), &faces)
+}
+
+/// A cone of `n` triangles over an `n`-gon (apex of valence `n`), and an open fan of
+/// pentagons and triangles around a boundary vertex.
+fn cone_and_fan(n: u32) -> PolyMesh {
+    let apex = n;
+    let tris: Vec<[u32; 3]> = (0..n).map(|i| [i, (i + 1) % n, apex]).collect();
+    let base: Vec<u32> = (0..n).rev().collect();
+    let mut faces: Vec<&[u32]> = tris.iter().map(|t| &t[..]).collect();
+    faces.push(&base);
+    let c = n + 1;
+    let fan: [&[u32]; 3] = [&[c, c + 1, c + 2, c + 3, c + 4], &[c, c + 4, c + 5], &[c, c + 5, c + 6, c + 7]];
+    faces.extend(fan);
+    poly((0..c + 8).map(jitter).collect(), &faces)
+}
+
+/// Subdividing in one call (levels below the first from closed-form quad tables) gives, to the
+/// bit, what level after level gives (the general adjacency rebuilt each time): tori, open
+/// bands, an isolated vertex, a valence above eight, n-gons, both boundary rules, colours, on
+/// one thread and three.
+#[test]
+fn closed_form_levels_equal_level_by_level() {
+    use splinekit::subdiv::catmull_clark_step;
+    let meshes = [
+        ("closed torus", torus(7, 5, false)),
+        ("open band", torus(6, 4, true)),
+        ("cones", cone_and_fan(11)),
+        ("large torus", torus(40, 30, false)),
+    ];
+    for (name, mut mesh) in meshes {
+        for (colors, color_by_level) in [(false, false), (true, false), (false, true)] {
+            mesh.colors = if colors {
+                mesh.positions.iter().map(|p| DVec3::new(p.z, p.x, p.y) * 2.0).collect()
+            } else {
+                Vec::new()
+            };
+            for boundary in [BoundaryRule::Smooth, BoundaryRule::Corners] {
+                let options = CatmullClarkOptions { boundary, color_by_level };
+                let mut level = mesh.clone();
+                let deepest = if name == "large torus" { 3 } else { 4 };
+                for depth in 1..=deepest {
+                    level = catmull_clark_step(&level, depth, &options).unwrap();
+                    for threads in [1, 3] {
+                        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                        let once = pool.install(|| catmull_clark_subdivide(&mesh, depth, &options)).unwrap();
+                        assert!(once == level, "{name}, {options:?}, level {depth}, {threads} threads");
+                    }
+                }
+            }
+        }
+    }
+}

@@ -22,7 +22,10 @@
 
 use rayon::prelude::*;
 
+use glam::DVec3;
+
 use super::loop_scheme::{Attribute, BoundaryRule, LEVEL_COLORS, SubdivError};
+use super::quads::{self, QuadLevel};
 use super::topology::{MIN_LEN, MIN_RINGS, TopologyError};
 use crate::mesh::{Adjacency, EdgeProblem, NONE, PolyMesh};
 
@@ -51,11 +54,30 @@ pub fn catmull_clark_subdivide(
     if levels == 0 {
         return Ok(PolyMesh { normals: None, uvs: None, ..mesh.clone() });
     }
-    let mut level = catmull_clark_step(mesh, 1, options)?;
-    for depth in 2..=levels {
-        level = catmull_clark_step(&level, depth, options)?;
+    let rings = Rings::new(mesh)?;
+    let positions = rings.refine(&mesh.positions, options.boundary);
+    let colors = first_colors(&rings, positions.len(), options);
+    if levels == 1 {
+        let (face_offsets, face_vertices) = rings.child_faces();
+        return Ok(PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs: None });
     }
-    Ok(level)
+    // Every level below the first is all quads: closed-form tables from here on.
+    let level = QuadLevel::from_rings(&rings);
+    Ok(quads::subdivide(level, positions, colors, levels, options))
+}
+
+/// The colours of the child of `rings`' mesh, level 1, of `n` vertices.
+fn first_colors(rings: &Rings<'_>, n: usize, options: &CatmullClarkOptions) -> Vec<DVec3> {
+    let mesh = rings.mesh;
+    if options.color_by_level {
+        let mut c = vec![LEVEL_COLORS[0]; mesh.positions.len()];
+        c.resize(n, LEVEL_COLORS[1]);
+        c
+    } else if mesh.colors.len() == mesh.positions.len() {
+        rings.refine(&mesh.colors, options.boundary)
+    } else {
+        Vec::new()
+    }
 }
 
 /// One level of [`catmull_clark_subdivide`]: the child of `mesh`, which is level `depth − 1`

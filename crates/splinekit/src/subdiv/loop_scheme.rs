@@ -740,7 +740,7 @@ impl LoopPyramid {
 /// `color_by_level`, the parent's followed by the level's colour ([`LEVEL_COLORS`]); none
 /// when the parent has none; else `subdivide(colors)`, the parent's carried with the
 /// positions' weights.
-fn child_colors(
+pub(super) fn child_colors(
     color_by_level: bool,
     colors: &[DVec3],
     n: usize,

@@ -27,6 +27,7 @@ mod great;
 mod limit;
 mod loop_scheme;
 mod matrix;
+mod quads;
 pub mod sqrt3;
 pub mod topology;
 
