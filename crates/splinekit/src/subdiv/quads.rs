@@ -110,6 +110,8 @@ pub(super) struct QuadLevel {
     twin: Vec<u32>,
     /// Per face, and one more: the edges owned by the corners of the faces before it.
     edge_base: Vec<u32>,
+    /// Per corner: its edge (looked up far more often than made).
+    edge_of: Vec<u32>,
     /// Per vertex: a corner leaving it (the boundary one on a boundary), or [`NONE`].
     vertex_start: Vec<u32>,
 }
@@ -171,7 +173,24 @@ impl QuadLevel {
                 }
             })
             .collect_into_vec(&mut vertex_start);
-        Self { corners, twin: bytemuck::cast_vec(twin), edge_base, vertex_start }
+        Self::with_edges(corners, bytemuck::cast_vec(twin), edge_base, vertex_start)
+    }
+
+    /// The tables, with each corner's edge from the twins and the counts per face.
+    fn with_edges(corners: Vec<u32>, twin: Vec<u32>, edge_base: Vec<u32>, vertex_start: Vec<u32>) -> Self {
+        let mut level = Self { corners, twin, edge_base, edge_of: Vec::new(), vertex_start };
+        let mut edge_of = Vec::new();
+        (0..level.twin.len() as u32)
+            .into_par_iter()
+            .with_min_len(MIN_LEN)
+            .map(|c| {
+                let o = c.min(level.twin[c as usize]);
+                let q = o / 4;
+                level.edge_base[q as usize] + (level.owners(q) & ((1 << (o % 4)) - 1)).count_ones()
+            })
+            .collect_into_vec(&mut edge_of);
+        level.edge_of = edge_of;
+        level
     }
 
     /// The owner bits of the corners of face `q` (bit `k` for corner `4q + k`).
@@ -184,9 +203,7 @@ impl QuadLevel {
     /// The edge of corner `c`.
     #[inline]
     fn edge(&self, c: u32) -> u32 {
-        let o = c.min(self.twin[c as usize]);
-        let q = o / 4;
-        self.edge_base[q as usize] + (self.owners(q) & ((1 << (o % 4)) - 1)).count_ones()
+        self.edge_of[c as usize]
     }
 
     /// Writes `fill(o)` for every owner corner `o`, in edge order, into `edges` (one slot per
@@ -368,7 +385,7 @@ impl QuadLevel {
         });
         self.for_owners(edges, |o| edge_start(self, o));
         faces.par_iter_mut().enumerate().with_min_len(MIN_LEN).for_each(|(q, o)| *o = 16 * q as u32 + 2);
-        Self { corners, twin: bytemuck::cast_vec(twin), edge_base, vertex_start }
+        Self::with_edges(corners, bytemuck::cast_vec(twin), edge_base, vertex_start)
     }
 }
 
