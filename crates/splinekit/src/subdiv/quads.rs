@@ -448,6 +448,35 @@ impl Grandchild<'_> {
         self.base[q] + (self.masks[q] & ((1 << (o % 16)) - 1)).count_ones()
     }
 
+    /// The `M` edges of the `M` corners `16q .. 16q + 16` (as [`Self::m_edge`], the twins of
+    /// `S` face `q` read once): the halves of `S` edges may be owned across them, the `M`
+    /// edges inside are owned inside.
+    #[inline]
+    fn m_edges(&self, q: u32) -> [u32; 16] {
+        let i = q as usize;
+        let tw = &self.s.twin[4 * i..4 * i + 4];
+        let (mask, base) = (self.masks[i], self.base[i]);
+        let local = |b: u32| base + (mask & ((1 << b) - 1)).count_ones();
+        let far = |o: u32| {
+            let g = (o / 16) as usize;
+            self.base[g] + (self.masks[g] & ((1 << (o % 16)) - 1)).count_ones()
+        };
+        let mut e = [0u32; 16];
+        for k in 0..4u32 {
+            let x = 16 * q + 4 * k;
+            let (t, tp) = (tw[k as usize], tw[((k + 3) % 4) as usize]);
+            let first = if t == NONE { NONE } else { 4 * next(t) + 3 };
+            let second = if tp == NONE { NONE } else { 4 * tp };
+            let e4 = &mut e[4 * k as usize..4 * k as usize + 4];
+            e4[0] = if x < first { local(4 * k) } else { far(first) };
+            e4[1] = local(if k < 3 { 4 * k + 1 } else { 2 });
+            e4[2] = local(if k > 0 { 4 * k - 3 } else { 2 });
+            e4[3] = if x + 3 < second { local(4 * k + 3) } else { far(second) };
+        }
+        debug_assert!((0..16).all(|j| e[j as usize] == self.m_edge(16 * q + j)));
+        e
+    }
+
     /// The `M` vertices of the corners of `M` faces `4q .. 4q + 4`.
     #[inline]
     fn m_faces(&self, q: u32) -> [[u32; 4]; 4] {
@@ -580,7 +609,7 @@ impl Grandchild<'_> {
             .with_min_len(FACES / 4)
             .map(|q| {
                 let mv = self.m_faces(q);
-                let e: [u32; 16] = core::array::from_fn(|i| nvm + self.m_edge(16 * q + i as u32));
+                let e = self.m_edges(q).map(|e| nvm + e);
                 let mut quads = [0u32; 64];
                 for k in 0..4 {
                     for j in 0..4 {
