@@ -193,6 +193,31 @@ impl QuadLevel {
         level
     }
 
+    /// The tables of a manifold all-quad level (its adjacency numbers edges as quad levels do).
+    pub(super) fn from_quad_rings(rings: &Rings<'_>) -> Self {
+        let adj = &rings.adj;
+        let edge_base = counts_before(rings.mesh.num_faces(), |q| {
+            (4 * q..4 * q + 4).map(|c| u32::from(c < adj.twin[c as usize])).sum()
+        });
+        let mut vertex_start = Vec::new();
+        (0..rings.mesh.num_vertices() as u32)
+            .into_par_iter()
+            .with_min_len(MIN_LEN)
+            .map(|v| {
+                let corners = adj.corners_of(v);
+                let boundary = corners.iter().copied().find(|&c| adj.twin[c as usize] == NONE);
+                boundary.or_else(|| corners.first().copied()).unwrap_or(NONE)
+            })
+            .collect_into_vec(&mut vertex_start);
+        Self {
+            corners: rings.mesh.face_vertices.clone(),
+            twin: adj.twin.clone(),
+            edge_base,
+            edge_of: adj.edge_of.clone(),
+            vertex_start,
+        }
+    }
+
     /// The owner bits of the corners of face `q` (bit `k` for corner `4q + k`).
     #[inline]
     fn owners(&self, q: u32) -> u32 {
@@ -625,14 +650,16 @@ impl Grandchild<'_> {
     }
 }
 
-/// Levels 2 to `levels` of a Catmull-Clark subdivision, from level 1: its tables `level`,
-/// positions and colours (empty, carried, or coloured by level as `options` says). The last
-/// level is made from the tables two levels above it ([`Grandchild`]), so for three levels
-/// only level 1 gets tables.
+/// Levels `from + 1` to `levels` (at least `from + 1`) of a Catmull-Clark subdivision, from
+/// level `from`: its tables `level`, positions and colours (empty, carried, or coloured by
+/// level as `options` says). The last level is made from the tables two levels above it
+/// ([`Grandchild`]), so for three levels of a quad mesh only the base level and level 1 get
+/// tables.
 pub(super) fn subdivide(
     mut level: QuadLevel,
     mut positions: Vec<DVec3>,
     mut colors: Vec<DVec3>,
+    from: usize,
     levels: usize,
     options: &CatmullClarkOptions,
 ) -> PolyMesh {
@@ -641,7 +668,7 @@ pub(super) fn subdivide(
         child_colors(options.color_by_level, colors, n, depth, refine)
     };
     // `level` holds the tables of level `depth − 1`, `positions` and `colors` its values.
-    for depth in 2..levels {
+    for depth in from + 1..levels {
         let fine = level.refine(&positions, b);
         colors = colours(&colors, fine.len(), depth, &|c| level.refine(c, b));
         positions = fine;
@@ -655,7 +682,7 @@ pub(super) fn subdivide(
         let corners = level.child_corners();
         level = level.child(corners);
     }
-    // two levels: the last from level 1's tables
+    // one level: from `level`'s tables
     let fine = level.refine(&positions, b);
     drop(positions);
     colors = colours(&colors, fine.len(), levels, &|c| level.refine(c, b));
