@@ -55,6 +55,20 @@ pub fn catmull_clark_subdivide(
         return Ok(PolyMesh { normals: None, uvs: None, ..mesh.clone() });
     }
     let rings = Rings::new(mesh)?;
+    let all_quads = mesh.face_vertices.len() == 4 * mesh.num_faces()
+        && mesh.face_offsets.iter().enumerate().all(|(f, &o)| o as usize == 4 * f);
+    if all_quads && levels > 1 {
+        // Quads from the start: the base level's tables are the adjacency's.
+        let colors = if options.color_by_level {
+            vec![LEVEL_COLORS[0]; mesh.num_vertices()]
+        } else if mesh.colors.len() == mesh.positions.len() {
+            mesh.colors.clone()
+        } else {
+            Vec::new()
+        };
+        let level = QuadLevel::from_quad_rings(&rings);
+        return Ok(quads::subdivide(level, mesh.positions.clone(), colors, 0, levels, options));
+    }
     let positions = rings.refine(&mesh.positions, options.boundary);
     let colors = first_colors(&rings, positions.len(), options);
     if levels == 1 {
@@ -63,7 +77,7 @@ pub fn catmull_clark_subdivide(
     }
     // Every level below the first is all quads: closed-form tables from here on.
     let level = QuadLevel::from_rings(&rings);
-    Ok(quads::subdivide(level, positions, colors, levels, options))
+    Ok(quads::subdivide(level, positions, colors, 1, levels, options))
 }
 
 /// The colours of the child of `rings`' mesh, level 1, of `n` vertices.

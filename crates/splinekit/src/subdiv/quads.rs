@@ -110,6 +110,8 @@ pub(super) struct QuadLevel {
     twin: Vec<u32>,
     /// Per face, and one more: the edges owned by the corners of the faces before it.
     edge_base: Vec<u32>,
+    /// Per corner: its edge (looked up far more often than made).
+    edge_of: Vec<u32>,
     /// Per vertex: a corner leaving it (the boundary one on a boundary), or [`NONE`].
     vertex_start: Vec<u32>,
 }
@@ -171,7 +173,49 @@ impl QuadLevel {
                 }
             })
             .collect_into_vec(&mut vertex_start);
-        Self { corners, twin: bytemuck::cast_vec(twin), edge_base, vertex_start }
+        Self::with_edges(corners, bytemuck::cast_vec(twin), edge_base, vertex_start)
+    }
+
+    /// The tables, with each corner's edge from the twins and the counts per face.
+    fn with_edges(corners: Vec<u32>, twin: Vec<u32>, edge_base: Vec<u32>, vertex_start: Vec<u32>) -> Self {
+        let mut level = Self { corners, twin, edge_base, edge_of: Vec::new(), vertex_start };
+        let mut edge_of = Vec::new();
+        (0..level.twin.len() as u32)
+            .into_par_iter()
+            .with_min_len(MIN_LEN)
+            .map(|c| {
+                let o = c.min(level.twin[c as usize]);
+                let q = o / 4;
+                level.edge_base[q as usize] + (level.owners(q) & ((1 << (o % 4)) - 1)).count_ones()
+            })
+            .collect_into_vec(&mut edge_of);
+        level.edge_of = edge_of;
+        level
+    }
+
+    /// The tables of a manifold all-quad level (its adjacency numbers edges as quad levels do).
+    pub(super) fn from_quad_rings(rings: &Rings<'_>) -> Self {
+        let adj = &rings.adj;
+        let edge_base = counts_before(rings.mesh.num_faces(), |q| {
+            (4 * q..4 * q + 4).map(|c| u32::from(c < adj.twin[c as usize])).sum()
+        });
+        let mut vertex_start = Vec::new();
+        (0..rings.mesh.num_vertices() as u32)
+            .into_par_iter()
+            .with_min_len(MIN_LEN)
+            .map(|v| {
+                let corners = adj.corners_of(v);
+                let boundary = corners.iter().copied().find(|&c| adj.twin[c as usize] == NONE);
+                boundary.or_else(|| corners.first().copied()).unwrap_or(NONE)
+            })
+            .collect_into_vec(&mut vertex_start);
+        Self {
+            corners: rings.mesh.face_vertices.clone(),
+            twin: adj.twin.clone(),
+            edge_base,
+            edge_of: adj.edge_of.clone(),
+            vertex_start,
+        }
     }
 
     /// The owner bits of the corners of face `q` (bit `k` for corner `4q + k`).
@@ -184,9 +228,7 @@ impl QuadLevel {
     /// The edge of corner `c`.
     #[inline]
     fn edge(&self, c: u32) -> u32 {
-        let o = c.min(self.twin[c as usize]);
-        let q = o / 4;
-        self.edge_base[q as usize] + (self.owners(q) & ((1 << (o % 4)) - 1)).count_ones()
+        self.edge_of[c as usize]
     }
 
     /// Writes `fill(o)` for every owner corner `o`, in edge order, into `edges` (one slot per
@@ -368,7 +410,7 @@ impl QuadLevel {
         });
         self.for_owners(edges, |o| edge_start(self, o));
         faces.par_iter_mut().enumerate().with_min_len(MIN_LEN).for_each(|(q, o)| *o = 16 * q as u32 + 2);
-        Self { corners, twin: bytemuck::cast_vec(twin), edge_base, vertex_start }
+        Self::with_edges(corners, bytemuck::cast_vec(twin), edge_base, vertex_start)
     }
 }
 
@@ -429,6 +471,35 @@ impl Grandchild<'_> {
         let o = x.min(self.s.child_twins(x / 4)[(x % 4) as usize]);
         let q = (o / 16) as usize;
         self.base[q] + (self.masks[q] & ((1 << (o % 16)) - 1)).count_ones()
+    }
+
+    /// The `M` edges of the `M` corners `16q .. 16q + 16` (as [`Self::m_edge`], the twins of
+    /// `S` face `q` read once): the halves of `S` edges may be owned across them, the `M`
+    /// edges inside are owned inside.
+    #[inline]
+    fn m_edges(&self, q: u32) -> [u32; 16] {
+        let i = q as usize;
+        let tw = &self.s.twin[4 * i..4 * i + 4];
+        let (mask, base) = (self.masks[i], self.base[i]);
+        let local = |b: u32| base + (mask & ((1 << b) - 1)).count_ones();
+        let far = |o: u32| {
+            let g = (o / 16) as usize;
+            self.base[g] + (self.masks[g] & ((1 << (o % 16)) - 1)).count_ones()
+        };
+        let mut e = [0u32; 16];
+        for k in 0..4u32 {
+            let x = 16 * q + 4 * k;
+            let (t, tp) = (tw[k as usize], tw[((k + 3) % 4) as usize]);
+            let first = if t == NONE { NONE } else { 4 * next(t) + 3 };
+            let second = if tp == NONE { NONE } else { 4 * tp };
+            let e4 = &mut e[4 * k as usize..4 * k as usize + 4];
+            e4[0] = if x < first { local(4 * k) } else { far(first) };
+            e4[1] = local(if k < 3 { 4 * k + 1 } else { 2 });
+            e4[2] = local(if k > 0 { 4 * k - 3 } else { 2 });
+            e4[3] = if x + 3 < second { local(4 * k + 3) } else { far(second) };
+        }
+        debug_assert!((0..16).all(|j| e[j as usize] == self.m_edge(16 * q + j)));
+        e
     }
 
     /// The `M` vertices of the corners of `M` faces `4q .. 4q + 4`.
@@ -563,7 +634,7 @@ impl Grandchild<'_> {
             .with_min_len(FACES / 4)
             .map(|q| {
                 let mv = self.m_faces(q);
-                let e: [u32; 16] = core::array::from_fn(|i| nvm + self.m_edge(16 * q + i as u32));
+                let e = self.m_edges(q).map(|e| nvm + e);
                 let mut quads = [0u32; 64];
                 for k in 0..4 {
                     for j in 0..4 {
@@ -579,14 +650,16 @@ impl Grandchild<'_> {
     }
 }
 
-/// Levels 2 to `levels` of a Catmull-Clark subdivision, from level 1: its tables `level`,
-/// positions and colours (empty, carried, or coloured by level as `options` says). The last
-/// level is made from the tables two levels above it ([`Grandchild`]), so for three levels
-/// only level 1 gets tables.
+/// Levels `from + 1` to `levels` (at least `from + 1`) of a Catmull-Clark subdivision, from
+/// level `from`: its tables `level`, positions and colours (empty, carried, or coloured by
+/// level as `options` says). The last level is made from the tables two levels above it
+/// ([`Grandchild`]), so for three levels of a quad mesh only the base level and level 1 get
+/// tables.
 pub(super) fn subdivide(
     mut level: QuadLevel,
     mut positions: Vec<DVec3>,
     mut colors: Vec<DVec3>,
+    from: usize,
     levels: usize,
     options: &CatmullClarkOptions,
 ) -> PolyMesh {
@@ -595,7 +668,7 @@ pub(super) fn subdivide(
         child_colors(options.color_by_level, colors, n, depth, refine)
     };
     // `level` holds the tables of level `depth − 1`, `positions` and `colors` its values.
-    for depth in 2..levels {
+    for depth in from + 1..levels {
         let fine = level.refine(&positions, b);
         colors = colours(&colors, fine.len(), depth, &|c| level.refine(c, b));
         positions = fine;
@@ -609,7 +682,7 @@ pub(super) fn subdivide(
         let corners = level.child_corners();
         level = level.child(corners);
     }
-    // two levels: the last from level 1's tables
+    // one level: from `level`'s tables
     let fine = level.refine(&positions, b);
     drop(positions);
     colors = colours(&colors, fine.len(), levels, &|c| level.refine(c, b));
