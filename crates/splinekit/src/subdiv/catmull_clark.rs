@@ -66,7 +66,7 @@ pub fn catmull_clark_subdivide(
         } else {
             Vec::new()
         };
-        let level = QuadLevel::from_quad_rings(&rings);
+        let level = QuadLevel::from_quad_rings(rings);
         return Ok(quads::subdivide(level, mesh.positions.clone(), colors, 0, levels, options));
     }
     let positions = rings.refine(&mesh.positions, options.boundary);
