@@ -1,20 +1,24 @@
 #!/usr/bin/env bash
-# Loop subdivision speed against the peers (issue #4): OpenSubdiv, CGAL, OpenMesh, libigl and
-# splinekit (1 and 2 threads) on three meshes, one line per (tool, mesh, levels), then the ratios.
+# Subdivision speed against the peers, one line per (tool, mesh, levels), then the ratios:
+# Loop (issue #4): OpenSubdiv, CGAL, OpenMesh, libigl and splinekit (1 and 2 threads) on three
+# triangle meshes; Catmull-Clark (issue #7): OpenSubdiv's catmark and splinekit (1 and 2 threads)
+# on a 100k-quad torus.
 #
-#   bench/compare_loop.sh [--levels N] [--repeat R] [--sk-repeat Q] [--rounds K] [--settle S] [--no-install]
-#                         [--no-igl] [--no-splinekit]
+#   bench/compare_loop.sh [--scheme loop|catmull-clark|all] [--levels N] [--repeat R] [--sk-repeat Q]
+#                         [--rounds K] [--settle S] [--no-install] [--no-igl] [--no-splinekit]
 #
+# --scheme picks the comparisons (default all: Loop, then Catmull-Clark).
 # Installs the peers if missing (bench/install_peers.sh: Debian libosd-dev libcgal-dev
 # libopenmesh-dev, PyPI libigl in bench/.venv), builds the C++ drivers (bench/drivers/) and
 # `cargo build --release -p splinekit-cli`, generates the meshes with bench/meshgen.py into
-# target/bench-meshes/ (once), and runs every tool K times (default 3) per mesh with --repeat R,
+# target/bench-meshes/ (once; target is $CARGO_TARGET_DIR when set, as for cargo), and runs every tool K times (default 3) per mesh with --repeat R,
 # each run after S seconds of rest (default 1: a peer's freed memory slows the next process).
 #
 # seconds  = median over K runs of the median of R repeats (splinekit: Q, default 25) of the subdivision alone (no file I/O; see each driver's header
 #            for exactly what is timed), levels N (default 3), peers on one thread;
 # rss_MB   = peak resident memory of the whole process (GNU time %M: input, output, everything);
-# out_MB   = size of the output arrays, V*3*8 + F*3*4 bytes (f64 positions, u32 triangles).
+# out_MB   = size of the output arrays, V*3*8 + F*k*4 bytes (f64 positions, u32 corners: k = 3 for
+#            triangles, 4 for quads; splinekit's quads also carry F*4 bytes of face offsets).
 #
 # Why splinekit repeats more: the first one or two subdivisions of a process run on memory the
 # virtual machine's host has not backed yet and take up to 7x longer (grid50k, one thread: 0.23 s
@@ -25,6 +29,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/.." && pwd)"
+scheme=all
 levels=3
 repeat=5
 sk_repeat=25
@@ -35,6 +40,7 @@ igl=1
 splinekit=1
 while [ $# -gt 0 ]; do
     case "$1" in
+    --scheme) scheme="$2"; shift 2 ;;
     --levels) levels="$2"; shift 2 ;;
     --repeat) repeat="$2"; shift 2 ;;
     --sk-repeat) sk_repeat="$2"; shift 2 ;;
@@ -43,16 +49,21 @@ while [ $# -gt 0 ]; do
     --no-install) install=0; shift ;;
     --no-igl) igl=0; shift ;;
     --no-splinekit) splinekit=0; shift ;;
-    *) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+    *) sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
     esac
 done
+case "$scheme" in
+loop | catmull-clark | all) ;;
+*) echo "compare_loop.sh: --scheme is loop, catmull-clark or all, not '$scheme'" >&2; exit 2 ;;
+esac
 if [ "${CI:-}" = true ]; then
     echo "compare_loop.sh: a measurement for people, not for CI" >&2
     exit 0
 fi
 
-peers="$root/target/bench-peers"
-meshdir="$root/target/bench-meshes"
+target="${CARGO_TARGET_DIR:-$root/target}"
+peers="$target/bench-peers"
+meshdir="$target/bench-meshes"
 py="${BENCH_VENV:-$here/.venv}/bin/python"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
@@ -65,11 +76,16 @@ export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 # ---- meshes (bench/meshgen.py; deterministic, generated once)
 mkdir -p "$meshdir"
 declare -A gen_args=(
-    [torus100k]="torus 250 200"    # 100000 triangles, closed, genus 1, valence 6
-    [icosphere20k]="icosphere 5"   # 20480 triangles, closed, valences 5 and 6
-    [grid50k]="grid 250 100"       # 50000 triangles, open: one boundary loop, 4 corners
+    [torus100k]="torus 250 200"        # 100000 triangles, closed, genus 1, valence 6
+    [icosphere20k]="icosphere 5"       # 20480 triangles, closed, valences 5 and 6
+    [grid50k]="grid 250 100"           # 50000 triangles, open: one boundary loop, 4 corners
+    [quadtorus100k]="quadtorus 500 200" # 100000 quads, closed, genus 1, valence 4
 )
-meshes=(torus100k icosphere20k grid50k)
+loop_meshes=(torus100k icosphere20k grid50k)
+cc_meshes=(quadtorus100k)
+meshes=()
+[ "$scheme" = catmull-clark ] || meshes+=("${loop_meshes[@]}")
+[ "$scheme" = loop ] || meshes+=("${cc_meshes[@]}")
 for m in "${meshes[@]}"; do
     if [ ! -s "$meshdir/$m.obj" ]; then
         # shellcheck disable=SC2086
@@ -79,7 +95,7 @@ for m in "${meshes[@]}"; do
 done
 
 # ---- splinekit
-sk="$root/target/release/splinekit"
+sk="$target/release/splinekit"
 notes=()
 if [ "$splinekit" = 1 ]; then
     echo "compare_loop.sh: cargo build --release -p splinekit-cli" >&2
@@ -95,7 +111,7 @@ fi
 
 # ---- runs
 load="$(cut -d' ' -f1 /proc/loadavg)"
-echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; Loop, $levels levels; each line the median over $rounds runs of the median of $repeat repeats ($sk_repeat for splinekit); peers on one thread"
+echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; $levels levels; each line the median over $rounds runs of the median of $repeat repeats ($sk_repeat for splinekit); peers on one thread"
 if ! python3 -c 'import sys; sys.exit(float(sys.argv[1]) >= 0.5)' "$load"; then
     notes+=("the machine was busy at the start (load average $load): other work inflates every time")
 fi
@@ -118,14 +134,17 @@ run() { # tool mesh command...
         { tail -n 1 "$tmp/out"; tail -n 1 "$tmp/rss"; } >>"$tmp/rounds"
     done
     local line
-    line="$(python3 - "$tmp/rounds" <<'PY'
+    local k=3 # corners per output face
+    case " ${cc_meshes[*]} " in *" $mesh "*) k=4 ;; esac
+    line="$(python3 - "$tmp/rounds" "$k" <<'PY'
 import json, statistics, sys
+k = int(sys.argv[2])
 lines = open(sys.argv[1]).read().strip().splitlines()
 runs = [(json.loads(lines[k]), int(lines[k + 1].split()[-1])) for k in range(0, len(lines), 2)]
 v, f = int(runs[0][0]["vertices"]), int(runs[0][0]["faces"])
 s = statistics.median(float(j["seconds"]) for j, _ in runs)
 rss_kb = max(kb for _, kb in runs)
-print("%.6f" % s, v, f, "%.1f" % (rss_kb / 1024), "%.1f" % ((24 * v + 12 * f) / 1e6))
+print("%.6f" % s, v, f, "%.1f" % (rss_kb / 1024), "%.1f" % ((24 * v + 4 * k * f) / 1e6))
 PY
 )"
     read -r s v f rss outmb <<<"$line"
@@ -137,22 +156,38 @@ PY
     fi
     printf "$fmt" "$tool" "$mesh" "$levels" "$s" "$v" "$f" "$rss" "$outmb"
 }
-for m in "${meshes[@]}"; do
-    in="$meshdir/$m.obj"
-    [ -x "$peers/osd_loop" ] && run opensubdiv "$m" "$peers/osd_loop" "$in" -n "$levels" --repeat "$repeat"
-    [ -x "$peers/cgal_loop" ] && run cgal "$m" "$peers/cgal_loop" "$in" -n "$levels" --repeat "$repeat"
-    [ -x "$peers/openmesh_loop" ] && run openmesh "$m" "$peers/openmesh_loop" "$in" -n "$levels" --repeat "$repeat"
-    if [ "$igl" = 1 ] && [ -x "$py" ]; then
-        run libigl "$m" "$py" "$here/drivers/igl_loop.py" "$in" -n "$levels" --repeat "$repeat"
-    fi
-    if [ "$splinekit" = 1 ]; then
-        for t in 1 2; do
-            run "splinekit-t$t" "$m" "$sk" subdivide "$in" -n "$levels" --json --repeat "$sk_repeat" --threads "$t"
-        done
-    fi
-done
+if [ "$scheme" != catmull-clark ]; then
+    echo "# Loop"
+    for m in "${loop_meshes[@]}"; do
+        in="$meshdir/$m.obj"
+        [ -x "$peers/osd_loop" ] && run opensubdiv "$m" "$peers/osd_loop" "$in" -n "$levels" --repeat "$repeat"
+        [ -x "$peers/cgal_loop" ] && run cgal "$m" "$peers/cgal_loop" "$in" -n "$levels" --repeat "$repeat"
+        [ -x "$peers/openmesh_loop" ] && run openmesh "$m" "$peers/openmesh_loop" "$in" -n "$levels" --repeat "$repeat"
+        if [ "$igl" = 1 ] && [ -x "$py" ]; then
+            run libigl "$m" "$py" "$here/drivers/igl_loop.py" "$in" -n "$levels" --repeat "$repeat"
+        fi
+        if [ "$splinekit" = 1 ]; then
+            for t in 1 2; do
+                run "splinekit-t$t" "$m" "$sk" subdivide "$in" -n "$levels" --json --repeat "$sk_repeat" --threads "$t"
+            done
+        fi
+    done
+fi
+if [ "$scheme" != loop ]; then
+    echo "# Catmull-Clark"
+    for m in "${cc_meshes[@]}"; do
+        in="$meshdir/$m.obj"
+        [ -x "$peers/osd_catmark" ] && run opensubdiv "$m" "$peers/osd_catmark" "$in" -n "$levels" --repeat "$repeat"
+        if [ "$splinekit" = 1 ]; then
+            for t in 1 2; do
+                run "splinekit-t$t" "$m" "$sk" subdivide "$in" -n "$levels" --scheme catmull-clark --json \
+                    --repeat "$sk_repeat" --threads "$t"
+            done
+        fi
+    done
+fi
 
-# ---- ratios (issue #4 targets: OpenSubdiv / splinekit-t1 >= 8, splinekit t1 / t2 >= 1.7)
+# ---- ratios (issue #4 and #7 targets: OpenSubdiv / splinekit-t1 >= 8, splinekit t1 / t2 >= 1.7)
 echo
 if [ "$splinekit" = 1 ]; then
     printf '%-13s %22s %22s %20s\n' mesh "opensubdiv/splinekit-t1" "opensubdiv/splinekit-t2" "splinekit t1/t2"

@@ -341,8 +341,8 @@ fn cone_and_fan(n: u32) -> PolyMesh {
 
 /// Subdividing in one call (levels below the first from closed-form quad tables) gives, to the
 /// bit, what level after level gives (the general adjacency rebuilt each time): tori, open
-/// bands, an isolated vertex, a valence above eight, n-gons, both boundary rules, colours, on
-/// one thread and three.
+/// bands, an isolated vertex, a valence above eight, n-gons, no faces at all, both boundary
+/// rules, colours, on one thread and three.
 #[test]
 fn closed_form_levels_equal_level_by_level() {
     use splinekit::subdiv::catmull_clark_step;
@@ -351,6 +351,7 @@ fn closed_form_levels_equal_level_by_level() {
         ("open band", torus(6, 4, true)),
         ("cones", cone_and_fan(11)),
         ("large torus", torus(40, 30, false)),
+        ("no faces", poly((0..3).map(jitter).collect(), &[])),
     ];
     for (name, mut mesh) in meshes {
         for (colors, color_by_level) in [(false, false), (true, false), (false, true)] {

@@ -15,6 +15,14 @@
 //! `(vertex point cₖ, edge point cₖcₖ₊₁, face point f, edge point cₖ₋₁cₖ)`, counter-clockwise
 //! like its parent; the children of face 0 come first. Colours follow the same weights.
 //!
+//! **Speed.** [`catmull_clark_subdivide`] builds the general adjacency once, for the base mesh;
+//! every level below is all quads, whose adjacency follows from its parent's in closed form
+//! (`quads`), and the finest level is made straight from the tables two levels above it, so
+//! for three levels only the base level and level 1 (or, for a base that is not all quads,
+//! level 1 alone) get tables. Every pass is a parallel map (rayon) writing its own output
+//! slots; the results are the same to the bit as level by level with [`catmull_clark_step`],
+//! on any number of threads.
+//!
 //! The mesh must be manifold and consistently oriented (split non-manifold edges and
 //! vertices first, e.g. with [`crate::mesh::split_nonmanifold`]); the error names the first
 //! edge or vertex that is not. Face-varying normals and UVs are not carried (a subdivided
@@ -66,7 +74,7 @@ pub fn catmull_clark_subdivide(
         } else {
             Vec::new()
         };
-        let level = QuadLevel::from_quad_rings(&rings);
+        let level = QuadLevel::from_quad_rings(rings);
         return Ok(quads::subdivide(level, mesh.positions.clone(), colors, 0, levels, options));
     }
     let positions = rings.refine(&mesh.positions, options.boundary);

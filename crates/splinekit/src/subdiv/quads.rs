@@ -193,14 +193,14 @@ impl QuadLevel {
         level
     }
 
-    /// The tables of a manifold all-quad level (its adjacency numbers edges as quad levels do).
-    pub(super) fn from_quad_rings(rings: &Rings<'_>) -> Self {
-        let adj = &rings.adj;
-        let edge_base = counts_before(rings.mesh.num_faces(), |q| {
-            (4 * q..4 * q + 4).map(|c| u32::from(c < adj.twin[c as usize])).sum()
-        });
+    /// The tables of a manifold all-quad level (its adjacency numbers edges as quad levels do),
+    /// taking over the adjacency's twins and edges.
+    pub(super) fn from_quad_rings(rings: Rings<'_>) -> Self {
+        let Rings { mesh, mut adj } = rings;
+        let edge_base =
+            counts_before(mesh.num_faces(), |q| (4 * q..4 * q + 4).map(|c| u32::from(c < adj.twin[c as usize])).sum());
         let mut vertex_start = Vec::new();
-        (0..rings.mesh.num_vertices() as u32)
+        (0..mesh.num_vertices() as u32)
             .into_par_iter()
             .with_min_len(MIN_LEN)
             .map(|v| {
@@ -210,10 +210,10 @@ impl QuadLevel {
             })
             .collect_into_vec(&mut vertex_start);
         Self {
-            corners: rings.mesh.face_vertices.clone(),
-            twin: adj.twin.clone(),
+            corners: mesh.face_vertices.clone(),
+            twin: core::mem::take(&mut adj.twin),
             edge_base,
-            edge_of: adj.edge_of.clone(),
+            edge_of: core::mem::take(&mut adj.edge_of),
             vertex_start,
         }
     }
