@@ -462,8 +462,7 @@ fn run_catmull_clark(
     report(args, out, (fine.num_vertices(), fine.num_faces(), "quads"), seconds, pool.current_num_threads())
 }
 
-/// `--scheme sqrt3` and `--scheme doo-sabin`: time `--repeat` runs of `subdivide`, write the
-/// last.
+/// √3, Doo-Sabin and butterfly: time `--repeat` runs of `subdivide`, write the last.
 fn run_polygons(
     args: &SubdivideArgs,
     mesh: &PolyMesh,
@@ -472,16 +471,11 @@ fn run_polygons(
     subdivide: impl Fn(&PolyMesh) -> Result<PolyMesh, SubdivError> + Sync,
     noun: &str,
 ) -> anyhow::Result<()> {
-    let pool = thread_pool(args)?;
-    let (fine, seconds) = timed(args, &pool, subdivide, mesh)?;
-    if let (Some(path), Some(format)) = (&args.output, format) {
-        save_poly(&fine, path, format)?;
-    }
-    report(args, out, (fine.num_vertices(), fine.num_faces(), noun), seconds, pool.current_num_threads())
+    run_creased(args, mesh, format, out, |m| subdivide(m).map(|fine| (fine, Creases::default())), noun)
 }
 
-/// Loop or Catmull-Clark with creases: time `--repeat` runs of `subdivide`, write the last
-/// with its creases.
+/// Time `--repeat` runs of `subdivide` (a polygon mesh and its creases: Loop or
+/// Catmull-Clark with creases, or none), write the last with its creases.
 fn run_creased(
     args: &SubdivideArgs,
     mesh: &PolyMesh,

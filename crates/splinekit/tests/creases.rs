@@ -119,6 +119,19 @@ fn no_creases_change_nothing() {
     assert!(max_distance(&plain.positions, &creased.positions) < 1e-14);
     assert_eq!(plain.face_vertices, creased.face_vertices);
     assert!(child.is_empty());
+    // colours carried by the weights, and by level, as the plain subdivision gives them
+    let mut colored = cube.clone();
+    colored.colors = cube.positions.iter().map(|p| (*p + DVec3::ONE) * 0.5).collect();
+    for color_by_level in [false, true] {
+        let options = CatmullClarkOptions { color_by_level, ..CatmullClarkOptions::default() };
+        for levels in 0..3 {
+            let plain = catmull_clark_subdivide(&colored, levels, &options).unwrap();
+            let (creased, _) =
+                catmull_clark_subdivide_creased(&colored, levels, &options, &none, CreasingMethod::Chaikin).unwrap();
+            assert!(max_distance(&plain.colors, &creased.colors) < 1e-14, "{levels} levels, {color_by_level}");
+            assert_eq!((&plain.face_offsets, &plain.face_vertices), (&creased.face_offsets, &creased.face_vertices));
+        }
+    }
     let ico = common::icosahedron();
     let plain = loop_subdivide(&ico, 3, &LoopOptions::default()).unwrap();
     let (creased, _) =

@@ -185,12 +185,7 @@ pub fn save(mesh: &TriMesh, path: impl AsRef<Path>, format: MeshFormat) -> Resul
 ///
 /// As [`save`].
 pub fn save_poly(mesh: &PolyMesh, path: impl AsRef<Path>, format: MeshFormat) -> Result<(), MeshIoError> {
-    let path = path.as_ref();
-    if format != MeshFormat::Obj {
-        return save(&mesh.to_tri_mesh(), path, format);
-    }
-    // write_obj_poly validates before writing a byte; on error the temporary file goes away
-    atomic::write_file(path, |w| write_obj_poly(mesh, w).map_err(|e| e.with_origin(path)))
+    save_poly_creased(mesh, &Creases::default(), path, format)
 }
 
 /// [`save_poly`] with the mesh's creases: an OBJ file gets them as tag lines after the faces
@@ -207,8 +202,9 @@ pub fn save_poly_creased(
 ) -> Result<(), MeshIoError> {
     let path = path.as_ref();
     if format != MeshFormat::Obj {
-        return save_poly(mesh, path, format);
+        return save(&mesh.to_tri_mesh(), path, format);
     }
+    // write_obj_poly validates before writing a byte; on error the temporary file goes away
     atomic::write_file(path, |w| {
         write_obj_poly(mesh, w).map_err(|e| e.with_origin(path))?;
         write_creases(creases, w).map_err(|e| MeshIoError::from(e).with_origin(path))

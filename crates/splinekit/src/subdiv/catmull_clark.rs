@@ -30,9 +30,7 @@
 
 use rayon::prelude::*;
 
-use glam::DVec3;
-
-use super::loop_scheme::{Attribute, BoundaryRule, LEVEL_COLORS, SubdivError};
+use super::loop_scheme::{Attribute, BoundaryRule, SubdivError, child_colors, parent_colors};
 use super::quads::{self, QuadLevel};
 use super::topology::{MIN_LEN, MIN_RINGS, TopologyError};
 use crate::mesh::{Adjacency, EdgeProblem, NONE, PolyMesh};
@@ -42,7 +40,7 @@ use crate::mesh::{Adjacency, EdgeProblem, NONE, PolyMesh};
 pub struct CatmullClarkOptions {
     /// Boundary vertices: crease rule everywhere, or with one-face corners kept fixed.
     pub boundary: BoundaryRule,
-    /// Colour the vertices by the level they were born at ([`LEVEL_COLORS`]).
+    /// Colour the vertices by the level they were born at ([`LEVEL_COLORS`](super::LEVEL_COLORS)).
     pub color_by_level: bool,
 }
 
@@ -67,18 +65,14 @@ pub fn catmull_clark_subdivide(
         && mesh.face_offsets.iter().enumerate().all(|(f, &o)| o as usize == 4 * f);
     if all_quads && levels > 1 {
         // Quads from the start: the base level's tables are the adjacency's.
-        let colors = if options.color_by_level {
-            vec![LEVEL_COLORS[0]; mesh.num_vertices()]
-        } else if mesh.colors.len() == mesh.positions.len() {
-            mesh.colors.clone()
-        } else {
-            Vec::new()
-        };
+        let colors = parent_colors(mesh, options.color_by_level, 1).into_owned();
         let level = QuadLevel::from_quad_rings(rings);
         return Ok(quads::subdivide(level, mesh.positions.clone(), colors, 0, levels, options));
     }
     let positions = rings.refine(&mesh.positions, options.boundary);
-    let colors = first_colors(&rings, positions.len(), options);
+    let parent = parent_colors(mesh, options.color_by_level, 1);
+    let colors =
+        child_colors(options.color_by_level, &parent, positions.len(), 1, |c| rings.refine(c, options.boundary));
     if levels == 1 {
         let (face_offsets, face_vertices) = rings.child_faces();
         return Ok(PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs: None });
@@ -88,24 +82,10 @@ pub fn catmull_clark_subdivide(
     Ok(quads::subdivide(level, positions, colors, 1, levels, options))
 }
 
-/// The colours of the child of `rings`' mesh, level 1, of `n` vertices.
-fn first_colors(rings: &Rings<'_>, n: usize, options: &CatmullClarkOptions) -> Vec<DVec3> {
-    let mesh = rings.mesh;
-    if options.color_by_level {
-        let mut c = vec![LEVEL_COLORS[0]; mesh.positions.len()];
-        c.resize(n, LEVEL_COLORS[1]);
-        c
-    } else if mesh.colors.len() == mesh.positions.len() {
-        rings.refine(&mesh.colors, options.boundary)
-    } else {
-        Vec::new()
-    }
-}
-
 /// One level of [`catmull_clark_subdivide`]: the child of `mesh`, which is level `depth − 1`
 /// of the subdivision (`depth` picks the colour of the new vertices with
 /// [`CatmullClarkOptions::color_by_level`]; at depth 1 the mesh's own vertices get
-/// [`LEVEL_COLORS`]`[0]`). Refining level by level gives the same meshes as one call.
+/// [`LEVEL_COLORS`](super::LEVEL_COLORS)`[0]`). Refining level by level gives the same meshes as one call.
 ///
 /// # Errors
 ///
@@ -117,15 +97,9 @@ pub fn catmull_clark_step(
 ) -> Result<PolyMesh, SubdivError> {
     let rings = Rings::new(mesh)?;
     let positions = rings.refine(&mesh.positions, options.boundary);
-    let colors = if options.color_by_level {
-        let mut c = if depth <= 1 { vec![LEVEL_COLORS[0]; mesh.positions.len()] } else { mesh.colors.clone() };
-        c.resize(positions.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
-        c
-    } else if mesh.colors.len() == mesh.positions.len() {
-        rings.refine(&mesh.colors, options.boundary)
-    } else {
-        Vec::new()
-    };
+    let parent = parent_colors(mesh, options.color_by_level, depth);
+    let colors =
+        child_colors(options.color_by_level, &parent, positions.len(), depth, |c| rings.refine(c, options.boundary));
     let (face_offsets, face_vertices) = rings.child_faces();
     Ok(PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs: None })
 }

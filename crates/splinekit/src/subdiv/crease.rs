@@ -31,7 +31,7 @@
 use glam::DVec3;
 
 use super::catmull_clark::{CatmullClarkOptions, Rings, catmull_clark_subdivide};
-use super::loop_scheme::{LoopOptions, Rules, loop_subdivide, triangles_only};
+use super::loop_scheme::{LoopOptions, Rules, child_colors, loop_subdivide, parent_colors, triangles_only};
 use super::matrix::{Builder, SubdivisionMatrix};
 use super::topology::{Table, Topology, next, prev};
 use super::{BoundaryRule, SubdivError};
@@ -208,7 +208,7 @@ pub(super) trait Level {
 /// Loop's level: a triangle table and the weights.
 pub(super) struct LoopLevelRules<'a> {
     pub(super) table: Table<'a>,
-    pub(super) beta: &'a dyn Fn(u32) -> f64,
+    pub(super) rules: &'a Rules,
 }
 
 impl Level for LoopLevelRules<'_> {
@@ -266,7 +266,7 @@ impl Level for LoopLevelRules<'_> {
                 break;
             }
         }
-        let beta = (self.beta)(n);
+        let beta = self.rules.beta(n);
         b.add(v, scale * (1.0 - f64::from(n) * beta));
         let mut h = start;
         loop {
@@ -303,9 +303,9 @@ struct Sharpness {
     vertex: Vec<f32>,
 }
 
-/// The sharpness of every edge and vertex of `level`: boundary edges and (with `corners`)
-/// one-face boundary vertices infinitely sharp, then `creases`.
-fn sharpness(level: &impl Level, creases: &Creases, corners: bool) -> Result<Sharpness, SubdivError> {
+/// The sharpness of every edge and vertex of `level` given by `creases`, boundary edges
+/// infinitely sharp (one-face corners are made sharp by [`creased_level`]'s vertex pass).
+fn sharpness(level: &impl Level, creases: &Creases) -> Result<Sharpness, SubdivError> {
     let (nv, ne) = (level.num_vertices(), level.num_edges());
     let mut edge: Vec<f32> =
         (0..ne as u32).map(|e| if level.is_boundary(e) { INFINITELY_SHARP } else { 0.0 }).collect();
@@ -337,13 +337,6 @@ fn sharpness(level: &impl Level, creases: &Creases, corners: bool) -> Result<Sha
         }
         vertex[c.vertex as usize] = c.sharpness;
     }
-    if corners {
-        for v in 0..nv as u32 {
-            if level.edges_at(v, &mut around) == 1 {
-                vertex[v as usize] = INFINITELY_SHARP;
-            }
-        }
-    }
     Ok(Sharpness { edge, vertex })
 }
 
@@ -356,7 +349,8 @@ pub(super) fn creased_level(
     boundary: BoundaryRule,
     method: CreasingMethod,
 ) -> Result<CreasedLevel, SubdivError> {
-    let sharp = sharpness(level, creases, boundary == BoundaryRule::Corners)?;
+    let sharp = sharpness(level, creases)?;
+    let corners = boundary == BoundaryRule::Corners;
     let (nv, ne) = (level.num_vertices(), level.num_edges());
     // the sharpness of each edge's two halves, at its first and second end
     let mut halves = vec![[0.0f32; 2]; ne];
@@ -376,7 +370,8 @@ pub(super) fn creased_level(
             let end = usize::from(level.edge_ends(e)[0] != v);
             halves[e as usize][end] = c;
         }
-        let pv = sharp.vertex[v as usize];
+        // with fixed corners, a vertex of one face (on the boundary) is infinitely sharp
+        let pv = if corners && faces == 1 { INFINITELY_SHARP } else { sharp.vertex[v as usize] };
         let cv = decrement(pv);
         let ends = || around.iter().map(|&(_, far)| far);
         let p_rule = rule(pv, ends().zip(parent.iter().copied()));
@@ -437,13 +432,9 @@ pub(super) fn creased_level(
             out.edges.push(EdgeCrease { a: m, b, sharpness: hb });
         }
     }
-    // the vertices' own sharpness (not the corners made by the boundary rule)
-    let mut given = vec![0.0f32; nv];
-    for c in &creases.vertices {
-        given[c.vertex as usize] = c.sharpness;
-    }
     out.vertices.extend(
-        given
+        sharp
+            .vertex
             .iter()
             .enumerate()
             .map(|(v, &s)| VertexCrease { vertex: v as u32, sharpness: decrement(s) })
@@ -536,12 +527,11 @@ pub(super) fn loop_levels(
     triangles_only(mesh, "Loop")?;
     let mut triangles: Vec<[u32; 3]> = mesh.face_vertices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
     let rules = Rules::new(options);
-    let beta = |n: u32| rules.beta(n);
     let mut topology = Topology::build(&triangles, mesh.num_vertices())?;
     let mut creases = creases.clone();
     for level in 0..levels {
-        let rules = LoopLevelRules { table: Table { triangles: &triangles, topology: &topology }, beta: &beta };
-        let CreasedLevel { matrix, child } = creased_level(&rules, &creases, options.boundary, method)?;
+        let this = LoopLevelRules { table: Table { triangles: &triangles, topology: &topology }, rules: &rules };
+        let CreasedLevel { matrix, child } = creased_level(&this, &creases, options.boundary, method)?;
         visit(matrix);
         creases = child;
         if level + 1 < levels {
@@ -554,7 +544,8 @@ pub(super) fn loop_levels(
 }
 
 /// Walks `levels` levels of Catmull-Clark subdivision of `mesh` with `creases`, giving each
-/// level's matrix to `visit`; returns the finest level's creases.
+/// level's matrix to `visit`; returns the finest level's creases and faces (a mesh whose
+/// positions are all zero; `None` for no levels).
 pub(super) fn catmull_clark_levels(
     mesh: &PolyMesh,
     levels: usize,
@@ -562,53 +553,42 @@ pub(super) fn catmull_clark_levels(
     creases: &Creases,
     method: CreasingMethod,
     mut visit: impl FnMut(SubdivisionMatrix),
-) -> Result<Creases, SubdivError> {
+) -> Result<(Creases, Option<PolyMesh>), SubdivError> {
     let mut creases = creases.clone();
     let mut current: Option<PolyMesh> = None;
-    for level in 0..levels {
+    for _ in 0..levels {
         let m = current.as_ref().unwrap_or(mesh);
         let rings = Rings::new(m)?;
         let CreasedLevel { matrix, child } = creased_level(&rings, &creases, options.boundary, method)?;
         creases = child;
-        if level + 1 < levels {
-            // the child's connectivity only: its positions are never read
-            let (face_offsets, face_vertices) = rings.child_faces();
-            let positions = vec![DVec3::ZERO; matrix.num_rows()];
-            current = Some(PolyMesh { positions, face_offsets, face_vertices, ..PolyMesh::default() });
-        }
+        // the child's connectivity only: its positions are never read
+        let (face_offsets, face_vertices) = rings.child_faces();
+        let positions = vec![DVec3::ZERO; matrix.num_rows()];
+        current = Some(PolyMesh { positions, face_offsets, face_vertices, ..PolyMesh::default() });
         visit(matrix);
     }
-    Ok(creases)
+    Ok((creases, current))
 }
 
-/// Carries positions and (unless colouring by level) colours through the level matrices.
+/// Carries positions and colours (by the level matrices, or by level) through the levels.
 struct Values {
     positions: Vec<DVec3>,
     colors: Vec<DVec3>,
-    carry_colors: bool,
+    color_by_level: bool,
+    depth: usize,
 }
 
 impl Values {
     fn new(mesh: &PolyMesh, color_by_level: bool) -> Self {
-        let carry_colors = !color_by_level && mesh.colors.len() == mesh.positions.len();
-        let colors = if carry_colors { mesh.colors.clone() } else { Vec::new() };
-        Self { positions: mesh.positions.clone(), colors, carry_colors }
+        let colors = parent_colors(mesh, color_by_level, 1).into_owned();
+        Self { positions: mesh.positions.clone(), colors, color_by_level, depth: 0 }
     }
 
     fn step(&mut self, matrix: &SubdivisionMatrix) {
+        self.depth += 1;
         self.positions = matrix.apply(&self.positions).expect("one value per column");
-        if self.carry_colors {
-            self.colors = matrix.apply(&self.colors).expect("one value per column");
-        }
-    }
-
-    /// Puts the values into `fine`, which has the same vertices.
-    fn into(self, fine: &mut PolyMesh) {
-        debug_assert_eq!(fine.positions.len(), self.positions.len());
-        fine.positions = self.positions;
-        if self.carry_colors {
-            fine.colors = self.colors;
-        }
+        let apply = |c: &[DVec3]| matrix.apply(c).expect("one value per column");
+        self.colors = child_colors(self.color_by_level, &self.colors, self.positions.len(), self.depth, apply);
     }
 }
 
@@ -629,8 +609,12 @@ pub fn loop_subdivide_creased(
 ) -> Result<(PolyMesh, Creases), SubdivError> {
     let mut values = Values::new(mesh, options.color_by_level);
     let child = loop_levels(mesh, levels, options, creases, method, |m| values.step(&m))?;
+    // the faces and the face-varying channels (and colours by level) of the plain subdivision
     let mut fine = loop_subdivide(mesh, levels, options)?;
-    values.into(&mut fine);
+    fine.positions = values.positions;
+    if !options.color_by_level && !values.colors.is_empty() {
+        fine.colors = values.colors;
+    }
     Ok((fine, child))
 }
 
@@ -649,8 +633,10 @@ pub fn catmull_clark_subdivide_creased(
     method: CreasingMethod,
 ) -> Result<(PolyMesh, Creases), SubdivError> {
     let mut values = Values::new(mesh, options.color_by_level);
-    let child = catmull_clark_levels(mesh, levels, options, creases, method, |m| values.step(&m))?;
-    let mut fine = catmull_clark_subdivide(mesh, levels, options)?;
-    values.into(&mut fine);
+    let (child, faces) = catmull_clark_levels(mesh, levels, options, creases, method, |m| values.step(&m))?;
+    let Some(mut fine) = faces else {
+        return Ok((catmull_clark_subdivide(mesh, 0, options)?, child));
+    };
+    (fine.positions, fine.colors) = (values.positions, values.colors);
     Ok((fine, child))
 }

@@ -38,6 +38,7 @@
 //! level's triangles and values are written straight from them.
 
 use core::ops::{Add, Mul};
+use std::borrow::Cow;
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -733,6 +734,20 @@ impl LoopPyramid {
             refine_values(topo, c, &self.rules)
         });
         (positions, colors)
+    }
+}
+
+/// The colours of `mesh` as the parent of level `depth` (≥ 1) of a subdivision, for
+/// [`child_colors`]: with `color_by_level`, [`LEVEL_COLORS`]`[0]` at depth 1 (the base level's
+/// own colour) and the mesh's colours below; else the mesh's colours when every vertex has
+/// one, none otherwise.
+pub(super) fn parent_colors(mesh: &PolyMesh, color_by_level: bool, depth: usize) -> Cow<'_, [DVec3]> {
+    if color_by_level && depth <= 1 {
+        Cow::Owned(vec![LEVEL_COLORS[0]; mesh.positions.len()])
+    } else if color_by_level || mesh.colors.len() == mesh.positions.len() {
+        Cow::Borrowed(&mesh.colors)
+    } else {
+        Cow::Borrowed(&[])
     }
 }
 

@@ -34,7 +34,7 @@
 //!
 //! **Attributes.** Colours (per vertex) follow the position weights; with
 //! [`Sqrt3Options::color_by_level`] new vertices are coloured by their level instead
-//! ([`LEVEL_COLORS`]). UVs are carried the same way where every vertex has one UV (no seams);
+//! ([`LEVEL_COLORS`](super::LEVEL_COLORS)). UVs are carried the same way where every vertex has one UV (no seams);
 //! UVs with seams, and normals, are dropped (a subdivided surface's normals are computed from
 //! it).
 //!
@@ -45,14 +45,14 @@ use glam::DVec2;
 use rayon::prelude::*;
 
 use super::catmull_clark::Rings;
-use super::loop_scheme::{Attribute, LEVEL_COLORS, SubdivError, triangles_only};
+use super::loop_scheme::{Attribute, SubdivError, child_colors, parent_colors, triangles_only};
 use super::topology::{MIN_LEN, MIN_RINGS};
 use crate::mesh::{FaceVarying, NONE, PolyMesh};
 
 /// Options of √3 subdivision.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Sqrt3Options {
-    /// Colour the vertices by the level they were born at ([`LEVEL_COLORS`]), replacing any
+    /// Colour the vertices by the level they were born at ([`LEVEL_COLORS`](super::LEVEL_COLORS)), replacing any
     /// input colours.
     pub color_by_level: bool,
 }
@@ -128,7 +128,7 @@ pub(super) trait TriangleLevel {
 }
 
 /// Level `depth` made from `mesh` by `plan`: positions, colours (carried, or by level with
-/// `color_by_level`: at depth 1 the parent's vertices get [`LEVEL_COLORS`]`[0]`), seamless
+/// `color_by_level`: at depth 1 the parent's vertices get [`LEVEL_COLORS`](super::LEVEL_COLORS)`[0]`), seamless
 /// UVs carried, normals dropped.
 pub(super) fn triangle_level(
     mesh: &PolyMesh,
@@ -137,15 +137,8 @@ pub(super) fn triangle_level(
     plan: &impl TriangleLevel,
 ) -> PolyMesh {
     let positions = plan.refine(&mesh.positions);
-    let colors = if color_by_level {
-        let mut c = if depth <= 1 { vec![LEVEL_COLORS[0]; mesh.positions.len()] } else { mesh.colors.clone() };
-        c.resize(positions.len(), LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
-        c
-    } else if mesh.colors.len() == mesh.positions.len() {
-        plan.refine(&mesh.colors)
-    } else {
-        Vec::new()
-    };
+    let parent = parent_colors(mesh, color_by_level, depth);
+    let colors = child_colors(color_by_level, &parent, positions.len(), depth, |c| plan.refine(c));
     let face_vertices = plan.child_triangles();
     let uvs = per_vertex_uvs(mesh).map(|uv| FaceVarying { values: plan.refine(&uv), indices: face_vertices.clone() });
     let face_offsets = (0..=face_vertices.len() as u32).step_by(3).collect();
