@@ -3,7 +3,8 @@
 # and Loop's reference inputs with sharp and semi-sharp creases added as OBJ tags (`t crease
 # N/M v0 .. vN-1 s ..`: the chain v0-v1, v1-v2, ... with one sharpness or one per edge; `t corner
 # N/M v .. s ..`; 0-based vertices, see the README), and OpenSubdiv's subdivision of each at
-# levels 1-3 (Chaikin creasing; some also Uniform, some with --corners) into
+# levels 1-3 (Chaikin creasing; some also Uniform, some with --corners), and its limit positions
+# and normals (PrimvarRefinerReal::Limit, `vn` lines) of the finest level at levels 1 and 2, into
 # crates/splinekit/tests/data/crease/. Needs the peers (bench/install_peers.sh); CI does not run
 # it. Running it twice gives identical bytes.
 set -euo pipefail
@@ -55,4 +56,20 @@ for m in icosahedron20 grid32 torus96; do
 done
 run osd_loop icosahedron20 osd-uniform --creasing uniform
 run osd_loop grid32 osd-corners --corners
+# limit positions and normals of the finest level (PrimvarRefinerReal::Limit)
+limit() { # driver name suffix options...
+    local driver="$1" name="$2" suffix="$3"
+    shift 3
+    for l in 1 2; do
+        "$peers/$driver" "$data/$name.in.obj" -n "$l" --limit "$@" -o "$data/$name.$suffix.limit.l$l.obj" >/dev/null
+    done
+}
+for m in cube6 torus48 prism8 grid16; do
+    limit osd_catmark "$m" osd
+done
+limit osd_catmark grid16 osd-corners --corners
+for m in icosahedron20 grid32 torus96; do
+    limit osd_loop "$m" osd
+done
+limit osd_loop grid32 osd-corners --corners
 ls -l "$data"

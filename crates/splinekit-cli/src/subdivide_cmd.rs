@@ -12,9 +12,10 @@ use splinekit::PolyMesh;
 use splinekit::mesh::FaceVarying;
 use splinekit::subdiv::{
     BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions, LoopLevel,
-    LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, butterfly_subdivide, catmull_clark_limit_normals,
-    catmull_clark_limit_positions, catmull_clark_subdivide, catmull_clark_subdivide_creased, doo_sabin_subdivide,
-    loop_limit_normals, loop_limit_positions, loop_subdivide_creased, sqrt3_subdivide,
+    LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, butterfly_subdivide, catmull_clark_limit_creased,
+    catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
+    catmull_clark_subdivide_creased, doo_sabin_subdivide, loop_limit_creased, loop_limit_normals, loop_limit_positions,
+    loop_subdivide_creased, sqrt3_subdivide,
 };
 use splinekit_io::mesh::{MeshFormat, load_mesh, read_creases, save, save_poly, save_poly_creased};
 
@@ -67,7 +68,8 @@ use crate::output::JsonNum;
 /// semi-sharp edge is sharp for ⌊S⌋ levels, then blended towards smooth; `--creasing` picks how
 /// an edge's sharpness passes to its halves (Chaikin: averaged with the other creases at each
 /// end, the default; uniform: S − 1). OBJ output carries the child creases as tags, so that
-/// subdividing it again goes on where this run stopped. `--limit` is refused with creases.
+/// subdividing it again goes on where this run stopped. With `--limit`, a vertex on a sharp
+/// crease goes to the crease's limit curve and a sharp corner stays (OpenSubdiv's limit rules).
 ///
 /// Writes the result by the extension of OUT (.obj, .ply, .stl, .glb) through a temporary
 /// file, so an error never leaves a partial file; without -o nothing is written (use it to
@@ -263,15 +265,6 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
             args.scheme.title()
         );
     }
-    if creased && args.limit && matches!(args.scheme, Scheme::Loop | Scheme::CatmullClark) {
-        bail!(
-            "--limit: limit positions are computed for smooth surfaces and boundaries, not creases; {} has {} creased \
-             edges and {} creased vertices (drop --limit, or the tags)",
-            args.input.display(),
-            creases.edges.len(),
-            creases.vertices.len()
-        );
-    }
     if args.split_nonmanifold && creased {
         bail!("--split-nonmanifold renumbers vertices, so the creases would name the wrong ones; fix the mesh first");
     }
@@ -294,7 +287,8 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
             let subdivide = |m: &PolyMesh| {
                 catmull_clark_subdivide_creased(m, args.levels as usize, &options, &creases, creasing(args))
             };
-            return run_creased(args, &mesh, format, out, subdivide, "quads");
+            let limit = |m: &PolyMesh, c: &Creases| catmull_clark_limit_creased(m, &options, c);
+            return run_creased(args, &mesh, format, out, subdivide, Some(&limit), "quads");
         }
         Scheme::CatmullClark => return run_catmull_clark(args, &mesh, format, out),
         Scheme::Sqrt3 => {
@@ -322,7 +316,8 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     };
     if creased {
         let subdivide = |m: &PolyMesh| loop_subdivide_creased(m, args.levels, &options, &creases, creasing(args));
-        return run_creased(args, &mesh, format, out, subdivide, "triangles");
+        let limit = |m: &PolyMesh, c: &Creases| loop_limit_creased(m, &options, c);
+        return run_creased(args, &mesh, format, out, subdivide, Some(&limit), "triangles");
     }
     let pool = thread_pool(args)?;
     let threads = pool.current_num_threads();
@@ -471,22 +466,33 @@ fn run_polygons(
     subdivide: impl Fn(&PolyMesh) -> Result<PolyMesh, SubdivError> + Sync,
     noun: &str,
 ) -> anyhow::Result<()> {
-    run_creased(args, mesh, format, out, |m| subdivide(m).map(|fine| (fine, Creases::default())), noun)
+    run_creased(args, mesh, format, out, |m| subdivide(m).map(|fine| (fine, Creases::default())), None, noun)
 }
 
+/// Limit positions and normals of a subdivided mesh with its creases.
+type LimitFn<'a> = dyn Fn(&PolyMesh, &Creases) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> + Sync + 'a;
+
 /// Time `--repeat` runs of `subdivide` (a polygon mesh and its creases: Loop or
-/// Catmull-Clark with creases, or none), write the last with its creases.
+/// Catmull-Clark with creases, or none), write the last with its creases; with `--limit`, moved
+/// to the positions `limit` gives, with its normals.
 fn run_creased(
     args: &SubdivideArgs,
     mesh: &PolyMesh,
     format: Option<MeshFormat>,
     out: &mut impl Write,
     subdivide: impl Fn(&PolyMesh) -> Result<(PolyMesh, Creases), SubdivError> + Sync,
+    limit: Option<&LimitFn<'_>>,
     noun: &str,
 ) -> anyhow::Result<()> {
     let pool = thread_pool(args)?;
-    let ((fine, creases), seconds) = timed(args, &pool, subdivide, mesh)?;
+    let ((mut fine, creases), seconds) = timed(args, &pool, subdivide, mesh)?;
     if let (Some(path), Some(format)) = (&args.output, format) {
+        if let (true, Some(limit)) = (args.limit, limit) {
+            let (positions, normals) =
+                pool.install(|| limit(&fine, &creases)).map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
+            fine.positions = positions;
+            fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
+        }
         if format != MeshFormat::Obj && !creases.is_empty() {
             eprintln!("note: {} cannot hold crease tags; write .obj to keep the child creases", path.display());
         }

@@ -31,9 +31,10 @@ use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
     BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions, EdgeCrease,
-    LoopOptions, LoopWeights, Sqrt3Options, VertexCrease, butterfly_subdivide, catmull_clark_limit_normals,
-    catmull_clark_limit_positions, catmull_clark_subdivide, catmull_clark_subdivide_creased, doo_sabin_subdivide,
-    loop_limit_normals, loop_limit_positions, loop_subdivide, loop_subdivide_creased, sqrt3_subdivide,
+    LoopOptions, LoopWeights, Sqrt3Options, VertexCrease, butterfly_subdivide, catmull_clark_limit_creased,
+    catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
+    catmull_clark_subdivide_creased, doo_sabin_subdivide, loop_limit_creased, loop_limit_normals, loop_limit_positions,
+    loop_subdivide, loop_subdivide_creased, sqrt3_subdivide,
 };
 
 /// Largest distance allowed between a vertex of ours and its match in the reference, as a
@@ -446,6 +447,114 @@ fn creases_match_opensubdiv() {
         }
     }
     assert!(failures.is_empty(), "creases against OpenSubdiv:\n{failures}");
+}
+
+/// Limit positions and normals with creases against OpenSubdiv's `PrimvarRefinerReal::Limit`
+/// of the finest level, after 1 and 2 levels of each creased input (so semi-sharp edges meet
+/// the limit both still sharp and decayed): our finest level with its child creases, moved to
+/// our limit positions, must be OpenSubdiv's; the normals must match too, except that at a
+/// vertex inside the surface with a crease or corner OpenSubdiv may pick the other side (its
+/// own ordering of the vertex's edges decides): there its normal must still be a normal of
+/// the limit surface at that point — for a crease, at right angles to the crease, for a corner,
+/// the normal of one of the faces around it.
+#[test]
+fn creased_limit_matches_opensubdiv() {
+    let mut failures = String::new();
+    let (smooth, corners) = (BoundaryRule::Smooth, BoundaryRule::Corners);
+    let cases = [
+        ("cube6", "osd", smooth, true),
+        ("torus48", "osd", smooth, true),
+        ("prism8", "osd", smooth, true),
+        ("grid16", "osd", smooth, true),
+        ("grid16", "osd-corners", corners, true),
+        ("icosahedron20", "osd", smooth, false),
+        ("grid32", "osd", smooth, false),
+        ("grid32", "osd-corners", corners, false),
+        ("torus96", "osd", smooth, false),
+    ];
+    let (mut exact, mut other_side) = (0usize, 0usize);
+    for (name, peer, boundary, catmark) in cases {
+        let obj = read_obj(&format!("crease/{name}.in.obj"));
+        let mesh = obj.to_poly();
+        for level in 1..=2 {
+            let what = format!("{name}.{peer}.limit.l{level}");
+            let reference = read_obj(&format!("crease/{what}.obj"));
+            let method = CreasingMethod::Chaikin;
+            let (mut fine, creases) = if catmark {
+                let options = CatmullClarkOptions { boundary, ..CatmullClarkOptions::default() };
+                catmull_clark_subdivide_creased(&mesh, level, &options, &obj.creases, method).unwrap()
+            } else {
+                let options = LoopOptions { boundary, ..LoopOptions::default() };
+                loop_subdivide_creased(&mesh, level as u32, &options, &obj.creases, method).unwrap()
+            };
+            let (positions, normals) = if catmark {
+                let options = CatmullClarkOptions { boundary, ..CatmullClarkOptions::default() };
+                catmull_clark_limit_creased(&fine, &options, &creases).unwrap()
+            } else {
+                let options = LoopOptions { boundary, ..LoopOptions::default() };
+                loop_limit_creased(&fine, &options, &creases).unwrap()
+            };
+            let unmoved = fine.positions.clone();
+            fine.positions = positions;
+            if let Err(e) = compare(&fine, &reference) {
+                writeln!(failures, "{what}: {e}").unwrap();
+                continue;
+            }
+            assert_eq!(reference.normals.len(), reference.positions.len(), "{what}: one vn per v");
+            let near = NearestByX::new(&reference.positions);
+            // the edges and faces around each vertex, and which edges are sharp
+            let sharp: HashSet<(u32, u32)> =
+                creases.edges.iter().filter(|e| e.sharpness > 0.0).map(|e| (e.a.min(e.b), e.a.max(e.b))).collect();
+            let mut around: Vec<Vec<(u32, u32)>> = vec![Vec::new(); fine.num_vertices()];
+            let mut edge_faces = std::collections::HashMap::<(u32, u32), usize>::new();
+            for f in 0..fine.num_faces() {
+                let face = fine.face(f);
+                for (j, &v) in face.iter().enumerate() {
+                    let (prev, next) = (face[(j + face.len() - 1) % face.len()], face[(j + 1) % face.len()]);
+                    around[v as usize].push((next, prev));
+                    *edge_faces.entry((v.min(next), v.max(next))).or_default() += 1;
+                }
+            }
+            for (v, (p, n)) in fine.positions.iter().zip(&normals).enumerate() {
+                let r = reference.normals[near.nearest(*p).0];
+                if n.distance(r) <= NORMAL_TOL {
+                    exact += 1;
+                    continue;
+                }
+                let boundary_vertex = around[v]
+                    .iter()
+                    .any(|&(next, _)| edge_faces[&(v.min(next as usize) as u32, v.max(next as usize) as u32)] == 1);
+                let ends: Vec<u32> = around[v]
+                    .iter()
+                    .map(|&(next, _)| next)
+                    .filter(|&q| sharp.contains(&((v as u32).min(q), (v as u32).max(q))))
+                    .collect();
+                let vertex_sharp = creases.vertices.iter().any(|c| c.vertex as usize == v && c.sharpness > 0.0);
+                let at = unmoved[v];
+                let ok = if boundary_vertex {
+                    false
+                } else if vertex_sharp || ends.len() >= 3 {
+                    around[v].iter().any(|&(next, prev)| {
+                        let face = (unmoved[next as usize] - at).cross(unmoved[prev as usize] - at).normalize();
+                        face.distance(r) <= 1e-9
+                    })
+                } else if ends.len() == 2 {
+                    let along = (unmoved[ends[0] as usize] - unmoved[ends[1] as usize]).normalize();
+                    (r.length() - 1.0).abs() <= 1e-9 && r.dot(along).abs() <= 1e-9
+                } else {
+                    false
+                };
+                if ok {
+                    other_side += 1;
+                } else {
+                    writeln!(failures, "{what}: our limit normal at vertex {v} is {n}, OpenSubdiv's {r}").unwrap();
+                    break;
+                }
+            }
+        }
+    }
+    println!("creased limit normals: {exact} as OpenSubdiv's, {other_side} on the other side of a crease or corner");
+    assert!(failures.is_empty(), "creased limit against OpenSubdiv:\n{failures}");
 }
 
 /// √3 against CGAL's `Sqrt3_subdivision`: levels 1 to 3 of one call, so the boundary meshes

@@ -298,14 +298,14 @@ pub(super) struct CreasedLevel {
 }
 
 /// Per-level sharpness of every edge and vertex.
-struct Sharpness {
-    edge: Vec<f32>,
-    vertex: Vec<f32>,
+pub(super) struct Sharpness {
+    pub(super) edge: Vec<f32>,
+    pub(super) vertex: Vec<f32>,
 }
 
 /// The sharpness of every edge and vertex of `level` given by `creases`, boundary edges
 /// infinitely sharp (one-face corners are made sharp by [`creased_level`]'s vertex pass).
-fn sharpness(level: &impl Level, creases: &Creases) -> Result<Sharpness, SubdivError> {
+pub(super) fn sharpness(level: &impl Level, creases: &Creases) -> Result<Sharpness, SubdivError> {
     let (nv, ne) = (level.num_vertices(), level.num_edges());
     let mut edge: Vec<f32> =
         (0..ne as u32).map(|e| if level.is_boundary(e) { INFINITELY_SHARP } else { 0.0 }).collect();

@@ -34,6 +34,21 @@
 //!   Biermann, Levin and Zorin's boundary masks.
 //! - A one-face corner kept fixed ([`BoundaryRule::Corners`]): the two edges, `q₀ − p` and
 //!   `q₁ − p` (the face's normal). A vertex without faces gets the zero vector.
+//!
+//! **With creases** ([`loop_limit_creased`], [`catmull_clark_limit_creased`]; see
+//! [`crease`](super::crease)) each vertex takes OpenSubdiv's limit rule from the sharpness left
+//! at this level (`Sdc::Scheme::ComputeVertexLimitMask`): a sharp vertex, or three or more sharp
+//! edges (boundary edges count as infinitely sharp), is a *corner* — it stays, and its normal
+//! is that of its first two edges; exactly two sharp edges make a *crease* — the limit is
+//! `(a + 4·P + b)/6` with `a`, `b` the far ends of the sharp edges (the cubic B-spline of the
+//! crease), and the normal uses the boundary masks above over the faces between the two sharp
+//! edges, counter-clockwise from the leading one; fewer sharp edges are smooth (a dart too).
+//! A boundary vertex is the crease of its two boundary edges, as above. At an interior crease
+//! the surface has two normals, one per side: the side taken is the one counter-clockwise
+//! from the first sharp edge met turning counter-clockwise from the vertex's first corner
+//! (the corner of its lowest-numbered face), and the first two edges of a corner are counted
+//! from that corner too (OpenSubdiv makes the same choice from its own ordering of a vertex's
+//! edges, so the other side can come out there).
 
 use core::f64::consts::{PI, TAU};
 
@@ -41,17 +56,79 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::catmull_clark::{CatmullClarkOptions, Rings};
+use super::crease::{Creases, Sharpness, sharpness};
 use super::loop_scheme::{BoundaryRule, LoopOptions, Rules, SubdivError, triangles_only};
 use super::topology::MIN_LEN;
 use crate::mesh::{NONE, PolyMesh};
 
-/// The limit of a boundary vertex `p` between boundary neighbours `a` and `b`, or `p` itself
-/// for a fixed corner.
-fn boundary_limit(rings: &Rings<'_>, p: &[DVec3], v: usize, (a, b): (u32, u32), boundary: BoundaryRule) -> DVec3 {
-    if boundary == BoundaryRule::Corners && rings.adj.corners_of(v as u32).len() == 1 {
-        return p[v];
+/// The limit rule of a vertex, with the part of its ring the masks use (see the [module
+/// docs](self)).
+#[derive(Clone, Copy, Debug)]
+enum Feature {
+    /// No faces: the vertex stays, without a normal.
+    Isolated,
+    /// The scheme's smooth masks over the whole ring, counter-clockwise from corner `start`.
+    Smooth { start: u32 },
+    /// The crease masks over the `faces` faces counter-clockwise from corner `start` (the
+    /// leading sharp edge); `last` is the far end of the trailing sharp edge.
+    Crease { start: u32, faces: usize, last: u32 },
+    /// The vertex stays; `e0` and `e1` are the far ends of its first two edges.
+    Corner { e0: u32, e1: u32 },
+}
+
+/// The limit rule of vertex `v` of `rings` with edge and vertex sharpness `sharp` (boundary
+/// edges infinitely sharp).
+fn feature(rings: &Rings<'_>, sharp: &Sharpness, boundary: BoundaryRule, v: u32) -> Feature {
+    let adj = &rings.adj;
+    let corners = adj.corners_of(v);
+    let Some(&first) = corners.first() else { return Feature::Isolated };
+    let to = |c: u32| adj.to[c as usize];
+    let is_sharp = |c: u32| sharp.edge[adj.edge_of[c as usize] as usize] > 0.0;
+    let vertex_sharp = sharp.vertex[v as usize] > 0.0;
+    let k = corners.len();
+    if let Some(start) = corners.iter().copied().find(|&c| adj.twin[c as usize] == NONE) {
+        // the two boundary edges are sharp; a third sharp edge, a sharp vertex or a fixed
+        // one-face corner make a corner
+        let arriving = rings.boundary_neighbours(v).map_or(v, |(_, arriving)| arriving);
+        let third = rings.fan(start).skip(1).any(is_sharp);
+        if vertex_sharp || third || (boundary == BoundaryRule::Corners && k == 1) {
+            let e1 = rings.fan(start).nth(1).map_or(arriving, to);
+            return Feature::Corner { e0: to(start), e1 };
+        }
+        return Feature::Crease { start, faces: k, last: arriving };
     }
-    (p[a as usize] + p[v] * 4.0 + p[b as usize]) * (1.0 / 6.0)
+    let count = corners.iter().filter(|&&c| is_sharp(c)).count();
+    if vertex_sharp || count >= 3 {
+        let e1 = rings.fan(first).nth(1).unwrap_or(first);
+        return Feature::Corner { e0: to(first), e1: to(e1) };
+    }
+    if count < 2 {
+        return Feature::Smooth { start: first };
+    }
+    let mut sharp_at = rings.fan(first).enumerate().filter(|&(_, c)| is_sharp(c));
+    let (Some((i0, lead)), Some((i1, trail))) = (sharp_at.next(), sharp_at.next()) else {
+        return Feature::Smooth { start: first };
+    };
+    Feature::Crease { start: lead, faces: i1 - i0, last: to(trail) }
+}
+
+/// The rings of `mesh` and the sharpness of its edges and vertices given by `creases`.
+fn rings_and_sharpness<'m>(mesh: &'m PolyMesh, creases: &Creases) -> Result<(Rings<'m>, Sharpness), SubdivError> {
+    let rings = Rings::new(mesh)?;
+    let sharp = sharpness(&rings, creases)?;
+    Ok((rings, sharp))
+}
+
+/// The limit position of vertex `v` for a crease or corner `feature`, `None` for a smooth one.
+fn sharp_position(rings: &Rings<'_>, p: &[DVec3], v: usize, feature: Feature) -> Option<DVec3> {
+    match feature {
+        Feature::Smooth { .. } => None,
+        Feature::Isolated | Feature::Corner { .. } => Some(p[v]),
+        Feature::Crease { start, last, .. } => {
+            let a = p[rings.adj.to[start as usize] as usize];
+            Some((a + p[v] * 4.0 + p[last as usize]) * (1.0 / 6.0))
+        }
+    }
 }
 
 /// The Loop limit positions of the vertices of the triangle mesh `mesh` (see the [module
@@ -62,27 +139,97 @@ fn boundary_limit(rings: &Rings<'_>, p: &[DVec3], v: usize, (a, b): (u32, u32), 
 /// [`SubdivError::NotTriangles`] for a face that is not a triangle, [`SubdivError::Topology`]
 /// for a non-manifold or inconsistently oriented edge or vertex.
 pub fn loop_limit_positions(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<DVec3>, SubdivError> {
+    loop_limit_creased(mesh, options, &Creases::default()).map(|(positions, _)| positions)
+}
+
+/// The unit Loop limit normals of the vertices of the triangle mesh `mesh` (see the [module
+/// docs](self)): the normal of the limit surface at each vertex's limit position, on the side
+/// the triangles turn counter-clockwise around.
+///
+/// # Errors
+///
+/// As [`loop_limit_positions`].
+pub fn loop_limit_normals(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<DVec3>, SubdivError> {
+    loop_limit_creased(mesh, options, &Creases::default()).map(|(_, normals)| normals)
+}
+
+/// The Loop limit positions and unit limit normals of the vertices of the triangle mesh
+/// `mesh` with `creases` (on its vertices, as returned by
+/// [`loop_subdivide_creased`](super::loop_subdivide_creased) for its finest level); see the
+/// [module docs](self).
+///
+/// # Errors
+///
+/// As [`loop_limit_positions`], and [`SubdivError::Crease`] for a crease on an edge the mesh
+/// does not have, a vertex it does not have, or a sharpness that is not a number ≥ 0.
+pub fn loop_limit_creased(
+    mesh: &PolyMesh,
+    options: &LoopOptions,
+    creases: &Creases,
+) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
     triangles_only(mesh, "Loop")?;
-    let rings = Rings::new(mesh)?;
+    let (rings, sharp) = rings_and_sharpness(mesh, creases)?;
     let rules = Rules::new(options);
     let p = &mesh.positions;
-    Ok((0..p.len())
+    Ok((0..p.len() as u32)
         .into_par_iter()
         .with_min_len(MIN_LEN)
         .map(|v| {
-            let corners = rings.adj.corners_of(v as u32);
-            if corners.is_empty() {
-                return p[v];
-            }
-            if let Some(ends) = rings.boundary_neighbours(v as u32) {
-                return boundary_limit(&rings, p, v, ends, options.boundary);
-            }
-            let n = corners.len() as f64;
-            let chi = 1.0 / (n + 3.0 / (8.0 * rules.beta(corners.len() as u32)));
-            let ring: DVec3 = corners.iter().map(|&c| p[rings.adj.to[c as usize] as usize]).sum();
-            p[v] * (1.0 - n * chi) + ring * chi
+            let feature = feature(&rings, &sharp, options.boundary, v);
+            (loop_position(&rings, &rules, p, v, feature), loop_normal(&rings, p, v, feature))
         })
-        .collect())
+        .unzip())
+}
+
+/// The Loop limit position of vertex `v` (see the [module docs](self)).
+fn loop_position(rings: &Rings<'_>, rules: &Rules, p: &[DVec3], v: u32, feature: Feature) -> DVec3 {
+    if let Some(position) = sharp_position(rings, p, v as usize, feature) {
+        return position;
+    }
+    let corners = rings.adj.corners_of(v);
+    let n = corners.len() as f64;
+    let chi = 1.0 / (n + 3.0 / (8.0 * rules.beta(corners.len() as u32)));
+    let ring: DVec3 = corners.iter().map(|&c| p[rings.adj.to[c as usize] as usize]).sum();
+    p[v as usize] * (1.0 - n * chi) + ring * chi
+}
+
+/// The unit Loop limit normal of vertex `v` (see the [module docs](self)).
+fn loop_normal(rings: &Rings<'_>, p: &[DVec3], v: u32, feature: Feature) -> DVec3 {
+    let pv = p[v as usize];
+    let to = |c: u32| p[rings.adj.to[c as usize] as usize];
+    let (t1, t2) = match feature {
+        Feature::Isolated => return DVec3::ZERO,
+        Feature::Corner { e0, e1 } => (p[e0 as usize] - pv, p[e1 as usize] - pv),
+        Feature::Smooth { start } => {
+            let a = TAU / rings.adj.corners_of(v).len() as f64;
+            rings.fan(start).enumerate().fold((DVec3::ZERO, DVec3::ZERO), |(t1, t2), (i, c)| {
+                let (sin, cos) = (a * i as f64).sin_cos();
+                (t1 + to(c) * cos, t2 + to(c) * sin)
+            })
+        }
+        Feature::Crease { start, faces: k, last } => {
+            let last = p[last as usize];
+            let first = to(start);
+            // the edges strictly inside the span
+            let mut inner = rings.fan(start).skip(1).take(k - 1).map(to);
+            let across = match k {
+                1 => (first + last) * 3.0 - pv * 6.0,
+                2 => inner.next().unwrap_or(pv) - pv,
+                3 => {
+                    let r3 = 3f64.sqrt();
+                    let inner: DVec3 = inner.sum();
+                    inner * r3 - (first + last) * (0.5 * r3) - pv * r3
+                }
+                _ => {
+                    let theta = PI / k as f64;
+                    let inner = inner.enumerate().fold(DVec3::ZERO, |s, (i, q)| s + q * ((i + 1) as f64 * theta).sin());
+                    inner * (2.0 * (1.0 - theta.cos())) - (first + last) * theta.sin()
+                }
+            };
+            (first - last, across)
+        }
+    };
+    t1.cross(t2).normalize_or_zero()
 }
 
 /// The Catmull-Clark limit positions of the vertices of `mesh` (see the [module
@@ -96,105 +243,12 @@ pub fn catmull_clark_limit_positions(
     mesh: &PolyMesh,
     options: &CatmullClarkOptions,
 ) -> Result<Vec<DVec3>, SubdivError> {
-    let rings = Rings::new(mesh)?;
-    let p = &mesh.positions;
-    (0..p.len())
+    let (rings, sharp) = rings_and_sharpness(mesh, &Creases::default())?;
+    (0..mesh.num_vertices() as u32)
         .into_par_iter()
         .with_min_len(MIN_LEN)
-        .map(|v| {
-            let corners = rings.adj.corners_of(v as u32);
-            if corners.is_empty() {
-                return Ok(p[v]);
-            }
-            if let Some(ends) = rings.boundary_neighbours(v as u32) {
-                return Ok(boundary_limit(&rings, p, v, ends, options.boundary));
-            }
-            let mut edges = DVec3::ZERO;
-            let mut diagonals = DVec3::ZERO;
-            for &c in corners {
-                let f = rings.adj.face_of[c as usize] as usize;
-                let face = mesh.face(f);
-                if face.len() != 4 {
-                    return Err(SubdivError::NotQuads { vertex: v, face: f, corners: face.len() });
-                }
-                let k = c as usize - mesh.face_offsets[f] as usize;
-                edges += p[rings.adj.to[c as usize] as usize];
-                diagonals += p[face[(k + 2) % 4] as usize];
-            }
-            let n = corners.len() as f64;
-            Ok((p[v] * (n * n) + edges * 4.0 + diagonals) * (1.0 / (n * (n + 5.0))))
-        })
+        .map(|v| catmull_clark_position(&rings, v, feature(&rings, &sharp, options.boundary, v)))
         .collect()
-}
-
-/// Vertex `v`'s corners (half-edges leaving it), counter-clockwise: from the one along the
-/// boundary for a boundary vertex (then also the neighbour it arrives from along the
-/// boundary), from any for an interior one; `None` for a vertex without faces.
-fn ccw_ring<'r>(rings: &'r Rings<'_>, v: u32) -> Option<(impl Iterator<Item = u32> + 'r, Option<u32>)> {
-    let corners = rings.adj.corners_of(v);
-    let first = *corners.first()?;
-    let start = corners.iter().copied().find(|&c| rings.adj.twin[c as usize] == NONE);
-    let arriving = start.map(|_| rings.boundary_neighbours(v).map_or(v, |(_, arriving)| arriving));
-    Some((rings.fan(start.unwrap_or(first)), arriving))
-}
-
-/// The unit Loop limit normals of the vertices of the triangle mesh `mesh` (see the [module
-/// docs](self)): the normal of the limit surface at each vertex's limit position, on the side
-/// the triangles turn counter-clockwise around.
-///
-/// # Errors
-///
-/// As [`loop_limit_positions`].
-pub fn loop_limit_normals(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<DVec3>, SubdivError> {
-    triangles_only(mesh, "Loop")?;
-    let rings = Rings::new(mesh)?;
-    let p = &mesh.positions;
-    Ok((0..p.len() as u32)
-        .into_par_iter()
-        .with_min_len(MIN_LEN)
-        .map(|v| {
-            let Some((ring, arriving)) = ccw_ring(&rings, v) else { return DVec3::ZERO };
-            let pv = p[v as usize];
-            let k = rings.adj.corners_of(v).len();
-            let to = |c: u32| p[rings.adj.to[c as usize] as usize];
-            let (t1, t2) = match arriving {
-                None => {
-                    let a = TAU / k as f64;
-                    ring.enumerate().fold((DVec3::ZERO, DVec3::ZERO), |(t1, t2), (i, c)| {
-                        let (sin, cos) = (a * i as f64).sin_cos();
-                        (t1 + to(c) * cos, t2 + to(c) * sin)
-                    })
-                }
-                Some(last) => {
-                    let last = p[last as usize];
-                    let mut ring = ring.map(to);
-                    let first = ring.next().unwrap_or(pv);
-                    if options.boundary == BoundaryRule::Corners && k == 1 {
-                        (first - pv, last - pv)
-                    } else {
-                        let across = match k {
-                            1 => (first + last) * 3.0 - pv * 6.0,
-                            2 => ring.next().unwrap_or(pv) - pv,
-                            3 => {
-                                let r3 = 3f64.sqrt();
-                                let inner: DVec3 = ring.sum();
-                                inner * r3 - (first + last) * (0.5 * r3) - pv * r3
-                            }
-                            _ => {
-                                let theta = PI / k as f64;
-                                let inner = ring
-                                    .enumerate()
-                                    .fold(DVec3::ZERO, |s, (i, q)| s + q * ((i + 1) as f64 * theta).sin());
-                                inner * (2.0 * (1.0 - theta.cos())) - (first + last) * theta.sin()
-                            }
-                        };
-                        (first - last, across)
-                    }
-                }
-            };
-            t1.cross(t2).normalize_or_zero()
-        })
-        .collect())
 }
 
 /// The unit Catmull-Clark limit normals of the vertices of `mesh` (see the [module
@@ -207,82 +261,124 @@ pub fn loop_limit_normals(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<
 /// boundary vertex with one face), [`SubdivError::Topology`] for a non-manifold or
 /// inconsistently oriented edge or vertex.
 pub fn catmull_clark_limit_normals(mesh: &PolyMesh, options: &CatmullClarkOptions) -> Result<Vec<DVec3>, SubdivError> {
-    let rings = Rings::new(mesh)?;
-    let p = &mesh.positions;
-    (0..p.len() as u32)
+    let (rings, sharp) = rings_and_sharpness(mesh, &Creases::default())?;
+    (0..mesh.num_vertices() as u32)
+        .into_par_iter()
+        .with_min_len(MIN_LEN)
+        .map(|v| catmull_clark_normal(&rings, v, feature(&rings, &sharp, options.boundary, v)))
+        .collect()
+}
+
+/// The Catmull-Clark limit positions and unit limit normals of the vertices of `mesh` with
+/// `creases` (on its vertices, as returned by
+/// [`catmull_clark_subdivide_creased`](super::catmull_clark_subdivide_creased) for its finest
+/// level); see the [module docs](self).
+///
+/// # Errors
+///
+/// As [`catmull_clark_limit_normals`], and [`SubdivError::Crease`] for a crease on an edge the
+/// mesh does not have, a vertex it does not have, or a sharpness that is not a number ≥ 0.
+pub fn catmull_clark_limit_creased(
+    mesh: &PolyMesh,
+    options: &CatmullClarkOptions,
+    creases: &Creases,
+) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
+    let (rings, sharp) = rings_and_sharpness(mesh, creases)?;
+    let limits: Vec<(DVec3, DVec3)> = (0..mesh.num_vertices() as u32)
         .into_par_iter()
         .with_min_len(MIN_LEN)
         .map(|v| {
-            let Some((ring, arriving)) = ccw_ring(&rings, v) else { return Ok(DVec3::ZERO) };
-            let pv = p[v as usize];
-            let k = rings.adj.corners_of(v).len();
-            // corner c's edge neighbour, and the vertex across its quad
-            let edge = |c: u32| p[rings.adj.to[c as usize] as usize];
-            let diagonal = |c: u32| {
-                let f = rings.adj.face_of[c as usize] as usize;
-                let face = mesh.face(f);
-                if face.len() != 4 {
-                    return Err(SubdivError::NotQuads { vertex: v as usize, face: f, corners: face.len() });
-                }
-                let i = c as usize - mesh.face_offsets[f] as usize;
-                Ok(p[face[(i + 2) % 4] as usize])
-            };
-            let (t1, t2) = match arriving {
-                None if k == 2 => {
-                    let mut ring = ring.map(edge);
-                    let (e0, e1) = (ring.next().unwrap_or(pv), ring.next().unwrap_or(pv));
-                    (e0 - pv, e1 - pv)
-                }
-                None => {
-                    let theta = TAU / k as f64;
-                    let lambda =
-                        5.0 / 16.0 + (theta.cos() + (0.5 * theta).cos() * (2.0 * (9.0 + theta.cos())).sqrt()) / 16.0;
-                    let face_scale = 1.0 / (4.0 * lambda - 1.0);
-                    let mut t = (DVec3::ZERO, DVec3::ZERO);
-                    for (i, c) in ring.enumerate() {
-                        let (e, f) = (edge(c), diagonal(c)?);
-                        let cos = |j: f64| (j * theta).cos();
-                        let i = i as f64;
-                        t.0 += e * (4.0 * cos(i)) + f * (face_scale * (cos(i) + cos(i + 1.0)));
-                        t.1 += e * (4.0 * cos(i - 1.0)) + f * (face_scale * (cos(i - 1.0) + cos(i)));
-                    }
-                    t
-                }
-                Some(last) => {
-                    let last = p[last as usize];
-                    let mut ring = ring.peekable();
-                    let c0 = *ring.peek().expect("a vertex with faces has a corner");
-                    let first = edge(c0);
-                    if options.boundary == BoundaryRule::Corners && k == 1 {
-                        (first - pv, last - pv)
-                    } else {
-                        let across = match k {
-                            1 => (first + last) * 3.0 - pv * 6.0,
-                            2 => {
-                                let c1 = ring.nth(1).unwrap_or(c0);
-                                let (f0, f1) = (diagonal(c0)?, diagonal(c1)?);
-                                (edge(c1) * 4.0 - pv * 4.0 - first - last + f0 + f1) * (1.0 / 6.0)
-                            }
-                            _ => {
-                                let theta = PI / k as f64;
-                                let (sin, cos) = theta.sin_cos();
-                                let r = (cos + 1.0) / sin;
-                                let mut inner = pv * (4.0 * r * (cos - 1.0)) - (first + last) * (r * (1.0 + 2.0 * cos));
-                                for (i, c) in ring.enumerate() {
-                                    let (si, sj) = ((i as f64 * theta).sin(), ((i + 1) as f64 * theta).sin());
-                                    if i > 0 {
-                                        inner += edge(c) * (4.0 * si);
-                                    }
-                                    inner += diagonal(c)? * (si + sj);
-                                }
-                                inner * (1.0 / (k as f64 * (3.0 + cos)))
-                            }
-                        };
-                        (first - last, across)
-                    }
-                }
-            };
-            Ok(t1.cross(t2).normalize_or_zero())
+            let feature = feature(&rings, &sharp, options.boundary, v);
+            Ok((catmull_clark_position(&rings, v, feature)?, catmull_clark_normal(&rings, v, feature)?))
         })
-        .collect()
+        .collect::<Result<_, SubdivError>>()?;
+    Ok(limits.into_iter().unzip())
+}
+
+/// The vertex across corner `c`'s quad from its vertex, or an error naming vertex `v` if the
+/// face is not a quad.
+fn diagonal(rings: &Rings<'_>, v: u32, c: u32) -> Result<u32, SubdivError> {
+    let mesh = rings.mesh;
+    let f = rings.adj.face_of[c as usize] as usize;
+    let face = mesh.face(f);
+    if face.len() != 4 {
+        return Err(SubdivError::NotQuads { vertex: v as usize, face: f, corners: face.len() });
+    }
+    let i = c as usize - mesh.face_offsets[f] as usize;
+    Ok(face[(i + 2) % 4])
+}
+
+/// The Catmull-Clark limit position of vertex `v` (see the [module docs](self)).
+fn catmull_clark_position(rings: &Rings<'_>, v: u32, feature: Feature) -> Result<DVec3, SubdivError> {
+    let p = &rings.mesh.positions;
+    if let Some(position) = sharp_position(rings, p, v as usize, feature) {
+        return Ok(position);
+    }
+    let corners = rings.adj.corners_of(v);
+    let (mut edges, mut diagonals) = (DVec3::ZERO, DVec3::ZERO);
+    for &c in corners {
+        edges += p[rings.adj.to[c as usize] as usize];
+        diagonals += p[diagonal(rings, v, c)? as usize];
+    }
+    let n = corners.len() as f64;
+    Ok((p[v as usize] * (n * n) + edges * 4.0 + diagonals) * (1.0 / (n * (n + 5.0))))
+}
+
+/// The unit Catmull-Clark limit normal of vertex `v` (see the [module docs](self)).
+fn catmull_clark_normal(rings: &Rings<'_>, v: u32, feature: Feature) -> Result<DVec3, SubdivError> {
+    let p = &rings.mesh.positions;
+    let pv = p[v as usize];
+    let edge = |c: u32| p[rings.adj.to[c as usize] as usize];
+    let diagonal = |c: u32| diagonal(rings, v, c).map(|d| p[d as usize]);
+    let (t1, t2) = match feature {
+        Feature::Isolated => return Ok(DVec3::ZERO),
+        Feature::Corner { e0, e1 } => (p[e0 as usize] - pv, p[e1 as usize] - pv),
+        Feature::Smooth { start } if rings.adj.corners_of(v).len() == 2 => {
+            let mut ring = rings.fan(start).map(edge);
+            let (e0, e1) = (ring.next().unwrap_or(pv), ring.next().unwrap_or(pv));
+            (e0 - pv, e1 - pv)
+        }
+        Feature::Smooth { start } => {
+            let theta = TAU / rings.adj.corners_of(v).len() as f64;
+            let lambda = 5.0 / 16.0 + (theta.cos() + (0.5 * theta).cos() * (2.0 * (9.0 + theta.cos())).sqrt()) / 16.0;
+            let face_scale = 1.0 / (4.0 * lambda - 1.0);
+            let mut t = (DVec3::ZERO, DVec3::ZERO);
+            for (i, c) in rings.fan(start).enumerate() {
+                let (e, f) = (edge(c), diagonal(c)?);
+                let cos = |j: f64| (j * theta).cos();
+                let i = i as f64;
+                t.0 += e * (4.0 * cos(i)) + f * (face_scale * (cos(i) + cos(i + 1.0)));
+                t.1 += e * (4.0 * cos(i - 1.0)) + f * (face_scale * (cos(i - 1.0) + cos(i)));
+            }
+            t
+        }
+        Feature::Crease { start, faces: k, last } => {
+            let last = p[last as usize];
+            let first = edge(start);
+            let across = match k {
+                1 => (first + last) * 3.0 - pv * 6.0,
+                2 => {
+                    let c1 = rings.fan(start).nth(1).unwrap_or(start);
+                    let (f0, f1) = (diagonal(start)?, diagonal(c1)?);
+                    (edge(c1) * 4.0 - pv * 4.0 - first - last + f0 + f1) * (1.0 / 6.0)
+                }
+                _ => {
+                    let theta = PI / k as f64;
+                    let (sin, cos) = theta.sin_cos();
+                    let r = (cos + 1.0) / sin;
+                    let mut inner = pv * (4.0 * r * (cos - 1.0)) - (first + last) * (r * (1.0 + 2.0 * cos));
+                    for (i, c) in rings.fan(start).take(k).enumerate() {
+                        let (si, sj) = ((i as f64 * theta).sin(), ((i + 1) as f64 * theta).sin());
+                        if i > 0 {
+                            inner += edge(c) * (4.0 * si);
+                        }
+                        inner += diagonal(c)? * (si + sj);
+                    }
+                    inner * (1.0 / (k as f64 * (3.0 + cos)))
+                }
+            };
+            (first - last, across)
+        }
+    };
+    Ok(t1.cross(t2).normalize_or_zero())
 }

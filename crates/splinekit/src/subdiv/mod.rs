@@ -37,7 +37,10 @@ pub use crease::{
     Creases, CreasingMethod, EdgeCrease, VertexCrease, catmull_clark_subdivide_creased, loop_subdivide_creased,
 };
 pub use doo_sabin::{DooSabinOptions, doo_sabin_subdivide};
-pub use limit::{catmull_clark_limit_normals, catmull_clark_limit_positions, loop_limit_normals, loop_limit_positions};
+pub use limit::{
+    catmull_clark_limit_creased, catmull_clark_limit_normals, catmull_clark_limit_positions, loop_limit_creased,
+    loop_limit_normals, loop_limit_positions,
+};
 pub use loop_scheme::{
     Attribute, BoundaryRule, LEVEL_COLORS, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,
     loop_subdivide,
