@@ -27,8 +27,9 @@ use std::path::{Path, PathBuf};
 
 use eframe::egui::{self, Key, Modifiers};
 use splinekit::subdiv::{
-    ButterflyOptions, CatmullClarkOptions, DooSabinOptions, LoopOptions, LoopPyramid, Sqrt3Options, butterfly_step,
-    catmull_clark_step, doo_sabin_subdivide, sqrt3_subdivide,
+    ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions, LoopOptions, LoopPyramid,
+    Sqrt3Options, butterfly_step, catmull_clark_step, catmull_clark_subdivide_creased, doo_sabin_subdivide,
+    loop_subdivide_creased, sqrt3_subdivide,
 };
 use splinekit::{PolyMesh, TriMesh};
 use splinekit_io::SwpDocument;
@@ -88,16 +89,34 @@ impl Scheme {
         }
     }
 
+    /// Whether the scheme has creases (Loop and Catmull-Clark).
+    #[must_use]
+    pub fn has_creases(self) -> bool {
+        matches!(self, Self::Loop | Self::CatmullClark)
+    }
+
     /// Level `depth` of `base` (`depth ≥ 1`) from level `depth − 1`, `coarse`, for the
-    /// schemes other than Loop (whose levels are a [`LoopPyramid`]).
+    /// schemes other than Loop without creases (whose levels are a [`LoopPyramid`]). With
+    /// `creases` (on `base`), Loop and Catmull-Clark make it from `base` with them (Chaikin's
+    /// creasing, as OpenSubdiv's default in the command line).
     fn polygon_level(
         self,
         base: &PolyMesh,
         coarse: &PolyMesh,
+        creases: &Creases,
         depth: usize,
         color_by_level: bool,
     ) -> Result<PolyMesh, String> {
+        let method = CreasingMethod::Chaikin;
         match self {
+            Self::Loop if !creases.is_empty() => {
+                let options = LoopOptions { color_by_level, ..LoopOptions::default() };
+                loop_subdivide_creased(base, depth as u32, &options, creases, method).map(|(fine, _)| fine)
+            }
+            Self::CatmullClark if !creases.is_empty() => {
+                let options = CatmullClarkOptions { color_by_level, ..CatmullClarkOptions::default() };
+                catmull_clark_subdivide_creased(base, depth, &options, creases, method).map(|(fine, _)| fine)
+            }
             Self::Loop | Self::CatmullClark => {
                 let options = CatmullClarkOptions { color_by_level, ..CatmullClarkOptions::default() };
                 catmull_clark_step(coarse, depth, &options)
@@ -117,8 +136,11 @@ pub struct MeshState {
     pub name: String,
     /// The Loop levels (level 0 is the loaded mesh), or why it cannot be Loop-subdivided.
     pub pyramid: Result<LoopPyramid, String>,
-    /// The levels 1, 2, … made so far with `scheme` when it is not Loop.
+    /// The levels 1, 2, … made so far with `scheme` when it is not Loop without creases.
     pub levels: Vec<PolyMesh>,
+    /// The loaded mesh's sharp and semi-sharp edges and vertices (its OBJ's crease tags), used
+    /// by Loop and Catmull-Clark.
+    pub creases: Creases,
     /// The scheme of the levels shown.
     pub scheme: Scheme,
     /// The loaded mesh (triangles or polygons).
@@ -128,6 +150,11 @@ pub struct MeshState {
 }
 
 impl MeshState {
+    /// Whether the levels are the Loop pyramid's (Loop without creases).
+    fn uses_pyramid(&self) -> bool {
+        self.scheme == Scheme::Loop && self.creases.is_empty()
+    }
+
     /// The level shown of a scheme other than Loop (the loaded mesh at level 0).
     fn polygon_level(&self) -> &PolyMesh {
         if self.level == 0 { &self.base } else { &self.levels[self.level - 1] }
@@ -136,9 +163,9 @@ impl MeshState {
     /// The number of faces of the level shown.
     #[must_use]
     pub fn faces(&self) -> usize {
-        match (self.scheme, &self.pyramid) {
-            (Scheme::Loop, Ok(p)) => p.level(self.level).num_triangles(),
-            (Scheme::Loop, Err(_)) => self.base.num_faces(),
+        match (self.uses_pyramid(), &self.pyramid) {
+            (true, Ok(p)) => p.level(self.level).num_triangles(),
+            (true, Err(_)) => self.base.num_faces(),
             _ => self.polygon_level().num_faces(),
         }
     }
@@ -146,9 +173,9 @@ impl MeshState {
     /// The number of vertices of the level shown.
     #[must_use]
     pub fn vertices(&self) -> usize {
-        match (self.scheme, &self.pyramid) {
-            (Scheme::Loop, Ok(p)) => p.level(self.level).num_vertices(),
-            (Scheme::Loop, Err(_)) => self.base.positions.len(),
+        match (self.uses_pyramid(), &self.pyramid) {
+            (true, Ok(p)) => p.level(self.level).num_vertices(),
+            (true, Err(_)) => self.base.positions.len(),
             _ => self.polygon_level().num_vertices(),
         }
     }
@@ -156,9 +183,9 @@ impl MeshState {
     /// The level shown, triangulated for the 3D view and export.
     #[must_use]
     pub fn shown(&self) -> TriMesh {
-        match (self.scheme, &self.pyramid) {
-            (Scheme::Loop, Ok(p)) => p.level(self.level).clone().into_tri_mesh(),
-            (Scheme::Loop, Err(_)) => self.base.to_tri_mesh(),
+        match (self.uses_pyramid(), &self.pyramid) {
+            (true, Ok(p)) => p.level(self.level).clone().into_tri_mesh(),
+            (true, Err(_)) => self.base.to_tri_mesh(),
             _ => self.polygon_level().to_tri_mesh(),
         }
     }
@@ -166,7 +193,7 @@ impl MeshState {
     /// Whether the level shown can be refined.
     #[must_use]
     pub fn can_refine(&self) -> bool {
-        self.scheme != Scheme::Loop || self.pyramid.is_ok()
+        !self.uses_pyramid() || self.pyramid.is_ok()
     }
 }
 
@@ -293,14 +320,17 @@ impl EditorApp {
             return;
         }
         match load_mesh(path) {
-            Ok(mesh) => {
+            Ok((mesh, creases)) => {
                 let pyramid = LoopPyramid::new(&mesh, self.loop_options()).map_err(|e| e.to_string());
-                self.status = format!(
-                    "Loaded {}: {} vertices, {} triangles",
-                    path.display(),
-                    mesh.positions.len(),
-                    mesh.num_faces()
-                );
+                self.status =
+                    format!("Loaded {}: {} vertices, {} faces", path.display(), mesh.positions.len(), mesh.num_faces());
+                if !creases.is_empty() {
+                    self.status.push_str(&format!(
+                        ", {} creased edges and {} creased vertices (Loop and Catmull-Clark keep them)",
+                        creases.edges.len(),
+                        creases.vertices.len()
+                    ));
+                }
                 if let Err(e) = &pyramid {
                     self.status.push_str(&format!(" (cannot subdivide: {e})"));
                 }
@@ -308,6 +338,7 @@ impl EditorApp {
                     name: path.display().to_string(),
                     pyramid,
                     levels: Vec::new(),
+                    creases,
                     scheme: Scheme::Loop,
                     base: mesh,
                     level: 0,
@@ -335,7 +366,7 @@ impl EditorApp {
         let color_by_level = self.color_by_level;
         let Some(m) = &mut self.mesh else { return };
         match m.scheme {
-            Scheme::Loop => {
+            Scheme::Loop if m.uses_pyramid() => {
                 let Ok(p) = &mut m.pyramid else { return };
                 if m.level + 1 > p.finest().depth() {
                     p.refine();
@@ -345,7 +376,7 @@ impl EditorApp {
             scheme => {
                 if m.level >= m.levels.len() {
                     let coarse = m.levels.last().unwrap_or(&m.base);
-                    match scheme.polygon_level(&m.base, coarse, m.levels.len() + 1, color_by_level) {
+                    match scheme.polygon_level(&m.base, coarse, &m.creases, m.levels.len() + 1, color_by_level) {
                         Ok(fine) => m.levels.push(fine),
                         Err(e) => {
                             self.status = format!("Error: {}: {e}", m.name);
@@ -368,6 +399,9 @@ impl EditorApp {
             m.levels.clear();
             self.mesh_generation += 1;
             self.status = format!("{} subdivision", scheme.name());
+            if !m.creases.is_empty() && !scheme.has_creases() {
+                self.status.push_str(" (it has no creases: the mesh's crease tags are left out)");
+            }
         }
     }
 
@@ -376,23 +410,24 @@ impl EditorApp {
         let options = self.loop_options();
         let Some(m) = &mut self.mesh else { return };
         m.pyramid = LoopPyramid::new(&m.base, options).map_err(|e| e.to_string());
+        let pyramid = m.uses_pyramid();
         if let Ok(p) = &mut m.pyramid
-            && m.scheme == Scheme::Loop
+            && pyramid
         {
             p.refine_to(m.level, |_| {});
         }
         // the other scheme's levels made so far, again with the new colours
         let mut levels: Vec<PolyMesh> = Vec::with_capacity(m.levels.len());
-        if m.scheme != Scheme::Loop {
+        if !pyramid {
             for depth in 1..=m.levels.len() {
                 let coarse = levels.last().unwrap_or(&m.base);
-                match m.scheme.polygon_level(&m.base, coarse, depth, options.color_by_level) {
+                match m.scheme.polygon_level(&m.base, coarse, &m.creases, depth, options.color_by_level) {
                     Ok(fine) => levels.push(fine),
                     Err(_) => break,
                 }
             }
         }
-        if m.scheme != Scheme::Loop {
+        if !pyramid {
             m.level = m.level.min(levels.len());
         }
         m.levels = levels;
@@ -868,14 +903,15 @@ fn append(a: &mut TriMesh, b: &TriMesh) {
     a.triangles.extend(b.triangles.iter().map(|t| t.map(|i| i + offset)));
 }
 
-/// Reads a mesh file; an OBJ with a spline header is rebuilt from its spline.
-fn load_mesh(path: &Path) -> Result<PolyMesh, String> {
+/// Reads a mesh file and its creases (an OBJ's crease tags); an OBJ with a spline header is
+/// rebuilt from its spline.
+fn load_mesh(path: &Path) -> Result<(PolyMesh, Creases), String> {
     let is_obj = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"));
     if is_obj && let Ok(Some(header)) = SplineHeader::read(path) {
         let mesh = header.rebuild(&RebuildOptions::DEFAULT).map_err(|e| format!("{}: {e}", path.display()))?;
-        return Ok(PolyMesh::from(&mesh));
+        return Ok((PolyMesh::from(&mesh), Creases::default()));
     }
-    splinekit_io::load_mesh(path).map(|m| m.mesh).map_err(|e| e.to_string())
+    splinekit_io::load_mesh(path).map(|m| (m.mesh, m.creases)).map_err(|e| e.to_string())
 }
 
 /// Opens the editor window (blocks until it is closed).

@@ -448,6 +448,59 @@ fn catmull_clark_from_the_scheme_menu() {
     h.get_by_label("Faces: 60");
 }
 
+/// A cube whose top face (z = 1) is an infinitely sharp crease loop with sharp corners, as
+/// OpenSubdiv's OBJ tags (0-based vertices); `triangles` splits each quad in two for Loop.
+fn creased_cube(triangles: bool) -> String {
+    let mut text = String::from("v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n");
+    for [a, b, c, d] in [[1, 3, 4, 2], [5, 6, 8, 7], [1, 2, 6, 5], [3, 7, 8, 4], [1, 5, 7, 3], [2, 4, 8, 6]] {
+        if triangles {
+            text += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+        } else {
+            text += &format!("f {a} {b} {c} {d}\n");
+        }
+    }
+    text + "t crease 5/1 4 5 7 6 4 10\nt corner 4/1 4 5 6 7 10\n"
+}
+
+/// The vertices of `mesh` on the cube's top rim (z = 1, |x| = 1 or |y| = 1).
+fn on_top_rim(mesh: &splinekit::TriMesh) -> usize {
+    let near = |x: f64, y: f64| (x - y).abs() < 1e-12;
+    mesh.positions.iter().filter(|p| near(p.z, 1.0) && (near(p.x.abs(), 1.0) || near(p.y.abs(), 1.0))).count()
+}
+
+#[test]
+fn creases_from_the_obj_are_kept_by_loop_and_catmull_clark() {
+    let dir = tempfile_dir("creases");
+    for (scheme, triangles) in [("Catmull-Clark", false), ("Loop", true)] {
+        let file = dir.join(format!("cube-{scheme}.obj"));
+        std::fs::write(&file, creased_cube(triangles)).unwrap();
+        let mut h = harness(EditorApp::new(Some(&file)));
+        assert!(h.state().status.contains("4 creased edges and 4 creased vertices"), "{}", h.state().status);
+        if scheme == "Catmull-Clark" {
+            click(&mut h, "Scheme");
+            click(&mut h, "Catmull-Clark");
+        }
+        // the sharp top loop stays a square with 4·2ⁿ vertices, level after level
+        for level in 1..=2 {
+            click(&mut h, "Refine subdivision");
+            let shown = h.state().mesh.as_ref().unwrap().shown();
+            assert_eq!(on_top_rim(&shown), 4 << level, "{scheme} level {level}");
+            assert!(shown.positions.iter().all(|p| p.z <= 1.0 + 1e-12), "{scheme} level {level}");
+        }
+        click(&mut h, "Coarsen subdivision");
+        assert_eq!(on_top_rim(&h.state().mesh.as_ref().unwrap().shown()), 8, "{scheme} coarsened");
+        // √3 has no creases: the rim is rounded off, and the status says the tags are left out
+        click(&mut h, "Scheme");
+        click(&mut h, "√3");
+        assert!(h.state().status.contains("crease tags are left out"), "{}", h.state().status);
+        if triangles {
+            click(&mut h, "Refine subdivision");
+            assert_eq!(on_top_rim(&h.state().mesh.as_ref().unwrap().shown()), 0, "√3 without creases");
+        }
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
 #[test]
 fn sqrt3_doo_sabin_and_butterfly_from_the_scheme_menu() {
     let mut h = harness(EditorApp::new(Some(&data("obj/icosahedron.obj"))));
