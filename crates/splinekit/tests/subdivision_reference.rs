@@ -557,23 +557,38 @@ fn creased_limit_matches_opensubdiv() {
     assert!(failures.is_empty(), "creased limit against OpenSubdiv:\n{failures}");
 }
 
-/// √3 against CGAL's `Sqrt3_subdivision`: levels 1 to 3 of one call, so the boundary meshes
-/// meet the boundary rule of level 2 and the level after it.
-#[test]
-fn sqrt3_matches_cgal() {
+/// Levels 1 to `max` of each `(input, max)` case (`tests/data/{input}.in.obj`) made by
+/// `subdivide`, each compared with `{peer}/{name}.{tag}.l{level}.obj`: the failures, a line each.
+fn check_levels(
+    cases: &[(&str, usize)],
+    peer: &str,
+    tag: &str,
+    subdivide: impl Fn(&PolyMesh, usize) -> Result<PolyMesh, String>,
+) -> String {
     let mut failures = String::new();
-    for name in ["tetra4", "icosahedron20", "trigrid18", "icoopen15"] {
-        let mesh = read_obj(&format!("cgal/{name}.in.obj")).to_poly();
-        for level in 1..=3 {
-            let what = format!("{name}.cgal-sqrt3.l{level}");
-            let result = sqrt3_subdivide(&mesh, level, &Sqrt3Options::default())
-                .map_err(|e| format!("sqrt3_subdivide failed: {e}"))
-                .and_then(|ours| compare(&ours, &read_obj(&format!("cgal/{what}.obj"))));
+    for &(input, max_level) in cases {
+        let mesh = read_obj(&format!("{input}.in.obj")).to_poly();
+        let name = input.rsplit('/').next().unwrap();
+        for level in 1..=max_level {
+            let what = format!("{name}.{tag}.l{level}");
+            let result =
+                subdivide(&mesh, level).and_then(|ours| compare(&ours, &read_obj(&format!("{peer}/{what}.obj"))));
             if let Err(e) = result {
                 writeln!(failures, "{what}: {e}").unwrap();
             }
         }
     }
+    failures
+}
+
+/// √3 against CGAL's `Sqrt3_subdivision`: levels 1 to 3 of one call, so the boundary meshes
+/// meet the boundary rule of level 2 and the level after it.
+#[test]
+fn sqrt3_matches_cgal() {
+    let cases = [("cgal/tetra4", 3), ("cgal/icosahedron20", 3), ("cgal/trigrid18", 3), ("cgal/icoopen15", 3)];
+    let failures = check_levels(&cases, "cgal", "cgal-sqrt3", |mesh, level| {
+        sqrt3_subdivide(mesh, level, &Sqrt3Options::default()).map_err(|e| format!("sqrt3_subdivide failed: {e}"))
+    });
     assert!(failures.is_empty(), "against CGAL (Sqrt3_subdivision):\n{failures}");
 }
 
@@ -581,7 +596,6 @@ fn sqrt3_matches_cgal() {
 /// and pentagons.
 #[test]
 fn doo_sabin_matches_cgal() {
-    let mut failures = String::new();
     let cases = [
         ("catmark/cube6", 3),
         ("catmark/prism8", 2),
@@ -589,19 +603,10 @@ fn doo_sabin_matches_cgal() {
         ("catmark/grid16", 2),
         ("cgal/trigrid18", 2),
     ];
-    for (input, max_level) in cases {
-        let mesh = read_obj(&format!("{input}.in.obj")).to_poly();
-        let name = input.rsplit('/').next().unwrap();
-        for level in 1..=max_level {
-            let what = format!("{name}.cgal-doosabin.l{level}");
-            let result = doo_sabin_subdivide(&mesh, level, &DooSabinOptions::default())
-                .map_err(|e| format!("doo_sabin_subdivide failed: {e}"))
-                .and_then(|ours| compare(&ours, &read_obj(&format!("cgal/{what}.obj"))));
-            if let Err(e) = result {
-                writeln!(failures, "{what}: {e}").unwrap();
-            }
-        }
-    }
+    let failures = check_levels(&cases, "cgal", "cgal-doosabin", |mesh, level| {
+        doo_sabin_subdivide(mesh, level, &DooSabinOptions::default())
+            .map_err(|e| format!("doo_sabin_subdivide failed: {e}"))
+    });
     assert!(failures.is_empty(), "against CGAL (DooSabin_subdivision):\n{failures}");
 }
 
@@ -611,7 +616,6 @@ fn doo_sabin_matches_cgal() {
 /// ends), and level 1 of the bunny's base mesh (four holes, valences 3 to 11).
 #[test]
 fn butterfly_matches_openmesh() {
-    let mut failures = String::new();
     let cases = [
         ("cgal/tetra4", 3),
         ("openmesh/octahedron8", 3),
@@ -621,19 +625,10 @@ fn butterfly_matches_openmesh() {
         ("cgal/icoopen15", 3),
         ("loop/bunnybase883", 1),
     ];
-    for (input, max_level) in cases {
-        let mesh = read_obj(&format!("{input}.in.obj")).to_poly();
-        let name = input.rsplit('/').next().unwrap();
-        for level in 1..=max_level {
-            let what = format!("{name}.openmesh-butterfly.l{level}");
-            let result = butterfly_subdivide(&mesh, level, &ButterflyOptions::default())
-                .map_err(|e| format!("butterfly_subdivide failed: {e}"))
-                .and_then(|ours| compare(&ours, &read_obj(&format!("openmesh/{what}.obj"))));
-            if let Err(e) = result {
-                writeln!(failures, "{what}: {e}").unwrap();
-            }
-        }
-    }
+    let failures = check_levels(&cases, "openmesh", "openmesh-butterfly", |mesh, level| {
+        butterfly_subdivide(mesh, level, &ButterflyOptions::default())
+            .map_err(|e| format!("butterfly_subdivide failed: {e}"))
+    });
     assert!(failures.is_empty(), "against OpenMesh (ModifiedButterflyT):\n{failures}");
 }
 

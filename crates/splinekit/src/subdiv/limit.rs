@@ -112,11 +112,21 @@ fn feature(rings: &Rings<'_>, sharp: &Sharpness, boundary: BoundaryRule, v: u32)
     Feature::Crease { start: lead, faces: i1 - i0, last: to(trail) }
 }
 
-/// The rings of `mesh` and the sharpness of its edges and vertices given by `creases`.
-fn rings_and_sharpness<'m>(mesh: &'m PolyMesh, creases: &Creases) -> Result<(Rings<'m>, Sharpness), SubdivError> {
+/// `limit(rings, v, feature)` for every vertex `v` of `mesh` with its limit rule under
+/// `creases` (boundary edges infinitely sharp, one-face corners by `boundary`), in parallel.
+fn each_vertex<T: Send>(
+    mesh: &PolyMesh,
+    boundary: BoundaryRule,
+    creases: &Creases,
+    limit: impl Fn(&Rings<'_>, u32, Feature) -> Result<T, SubdivError> + Sync,
+) -> Result<Vec<T>, SubdivError> {
     let rings = Rings::new(mesh)?;
     let sharp = sharpness(&rings, creases)?;
-    Ok((rings, sharp))
+    (0..mesh.num_vertices() as u32)
+        .into_par_iter()
+        .with_min_len(MIN_LEN)
+        .map(|v| limit(&rings, v, feature(&rings, &sharp, boundary, v)))
+        .collect()
 }
 
 /// The limit position of vertex `v` for a crease or corner `feature`, `None` for a smooth one.
@@ -139,7 +149,9 @@ fn sharp_position(rings: &Rings<'_>, p: &[DVec3], v: usize, feature: Feature) ->
 /// [`SubdivError::NotTriangles`] for a face that is not a triangle, [`SubdivError::Topology`]
 /// for a non-manifold or inconsistently oriented edge or vertex.
 pub fn loop_limit_positions(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<DVec3>, SubdivError> {
-    loop_limit_creased(mesh, options, &Creases::default()).map(|(positions, _)| positions)
+    triangles_only(mesh, "Loop")?;
+    let rules = Rules::new(options);
+    each_vertex(mesh, options.boundary, &Creases::default(), |rings, v, f| Ok(loop_position(rings, &rules, v, f)))
 }
 
 /// The unit Loop limit normals of the vertices of the triangle mesh `mesh` (see the [module
@@ -150,7 +162,8 @@ pub fn loop_limit_positions(mesh: &PolyMesh, options: &LoopOptions) -> Result<Ve
 ///
 /// As [`loop_limit_positions`].
 pub fn loop_limit_normals(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<DVec3>, SubdivError> {
-    loop_limit_creased(mesh, options, &Creases::default()).map(|(_, normals)| normals)
+    triangles_only(mesh, "Loop")?;
+    each_vertex(mesh, options.boundary, &Creases::default(), |rings, v, f| Ok(loop_normal(rings, v, f)))
 }
 
 /// The Loop limit positions and unit limit normals of the vertices of the triangle mesh
@@ -168,21 +181,16 @@ pub fn loop_limit_creased(
     creases: &Creases,
 ) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
     triangles_only(mesh, "Loop")?;
-    let (rings, sharp) = rings_and_sharpness(mesh, creases)?;
     let rules = Rules::new(options);
-    let p = &mesh.positions;
-    Ok((0..p.len() as u32)
-        .into_par_iter()
-        .with_min_len(MIN_LEN)
-        .map(|v| {
-            let feature = feature(&rings, &sharp, options.boundary, v);
-            (loop_position(&rings, &rules, p, v, feature), loop_normal(&rings, p, v, feature))
-        })
-        .unzip())
+    let limits = each_vertex(mesh, options.boundary, creases, |rings, v, f| {
+        Ok((loop_position(rings, &rules, v, f), loop_normal(rings, v, f)))
+    })?;
+    Ok(limits.into_iter().unzip())
 }
 
 /// The Loop limit position of vertex `v` (see the [module docs](self)).
-fn loop_position(rings: &Rings<'_>, rules: &Rules, p: &[DVec3], v: u32, feature: Feature) -> DVec3 {
+fn loop_position(rings: &Rings<'_>, rules: &Rules, v: u32, feature: Feature) -> DVec3 {
+    let p = &rings.mesh.positions;
     if let Some(position) = sharp_position(rings, p, v as usize, feature) {
         return position;
     }
@@ -194,7 +202,8 @@ fn loop_position(rings: &Rings<'_>, rules: &Rules, p: &[DVec3], v: u32, feature:
 }
 
 /// The unit Loop limit normal of vertex `v` (see the [module docs](self)).
-fn loop_normal(rings: &Rings<'_>, p: &[DVec3], v: u32, feature: Feature) -> DVec3 {
+fn loop_normal(rings: &Rings<'_>, v: u32, feature: Feature) -> DVec3 {
+    let p = &rings.mesh.positions;
     let pv = p[v as usize];
     let to = |c: u32| p[rings.adj.to[c as usize] as usize];
     let (t1, t2) = match feature {
@@ -243,12 +252,7 @@ pub fn catmull_clark_limit_positions(
     mesh: &PolyMesh,
     options: &CatmullClarkOptions,
 ) -> Result<Vec<DVec3>, SubdivError> {
-    let (rings, sharp) = rings_and_sharpness(mesh, &Creases::default())?;
-    (0..mesh.num_vertices() as u32)
-        .into_par_iter()
-        .with_min_len(MIN_LEN)
-        .map(|v| catmull_clark_position(&rings, v, feature(&rings, &sharp, options.boundary, v)))
-        .collect()
+    each_vertex(mesh, options.boundary, &Creases::default(), catmull_clark_position)
 }
 
 /// The unit Catmull-Clark limit normals of the vertices of `mesh` (see the [module
@@ -261,12 +265,7 @@ pub fn catmull_clark_limit_positions(
 /// boundary vertex with one face), [`SubdivError::Topology`] for a non-manifold or
 /// inconsistently oriented edge or vertex.
 pub fn catmull_clark_limit_normals(mesh: &PolyMesh, options: &CatmullClarkOptions) -> Result<Vec<DVec3>, SubdivError> {
-    let (rings, sharp) = rings_and_sharpness(mesh, &Creases::default())?;
-    (0..mesh.num_vertices() as u32)
-        .into_par_iter()
-        .with_min_len(MIN_LEN)
-        .map(|v| catmull_clark_normal(&rings, v, feature(&rings, &sharp, options.boundary, v)))
-        .collect()
+    each_vertex(mesh, options.boundary, &Creases::default(), catmull_clark_normal)
 }
 
 /// The Catmull-Clark limit positions and unit limit normals of the vertices of `mesh` with
@@ -283,15 +282,9 @@ pub fn catmull_clark_limit_creased(
     options: &CatmullClarkOptions,
     creases: &Creases,
 ) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
-    let (rings, sharp) = rings_and_sharpness(mesh, creases)?;
-    let limits: Vec<(DVec3, DVec3)> = (0..mesh.num_vertices() as u32)
-        .into_par_iter()
-        .with_min_len(MIN_LEN)
-        .map(|v| {
-            let feature = feature(&rings, &sharp, options.boundary, v);
-            Ok((catmull_clark_position(&rings, v, feature)?, catmull_clark_normal(&rings, v, feature)?))
-        })
-        .collect::<Result<_, SubdivError>>()?;
+    let limits = each_vertex(mesh, options.boundary, creases, |rings, v, f| {
+        Ok((catmull_clark_position(rings, v, f)?, catmull_clark_normal(rings, v, f)?))
+    })?;
     Ok(limits.into_iter().unzip())
 }
 
