@@ -179,17 +179,25 @@ impl QuadLevel {
     /// The tables, with each corner's edge from the twins and the counts per face.
     fn with_edges(corners: Vec<u32>, twin: Vec<u32>, edge_base: Vec<u32>, vertex_start: Vec<u32>) -> Self {
         let mut level = Self { corners, twin, edge_base, edge_of: Vec::new(), vertex_start };
-        let mut edge_of = Vec::new();
-        (0..level.twin.len() as u32)
+        let mut edge_of: Vec<[u32; 4]> = Vec::new();
+        // per face: its own owner bits once, a neighbour's for each edge the neighbour owns
+        let edge = |q: u32, owners: u32, k: u32| level.edge_base[q as usize] + (owners & ((1 << k) - 1)).count_ones();
+        (0..level.num_faces() as u32)
             .into_par_iter()
-            .with_min_len(MIN_LEN)
-            .map(|c| {
-                let o = c.min(level.twin[c as usize]);
-                let q = o / 4;
-                level.edge_base[q as usize] + (level.owners(q) & ((1 << (o % 4)) - 1)).count_ones()
+            .with_min_len(FACES)
+            .map(|q| {
+                let owners = level.owners(q);
+                core::array::from_fn(|k| {
+                    let t = level.twin[4 * q as usize + k];
+                    if owners & (1 << k) != 0 {
+                        edge(q, owners, k as u32)
+                    } else {
+                        edge(t / 4, level.owners(t / 4), t % 4)
+                    }
+                })
             })
             .collect_into_vec(&mut edge_of);
-        level.edge_of = edge_of;
+        level.edge_of = bytemuck::cast_vec(edge_of);
         level
     }
 
