@@ -71,9 +71,14 @@ trait Corners: Sync {
     /// How many edges the corners of child face `c` own.
     #[inline]
     fn child_owners(&self, c: u32) -> u32 {
-        let t = self.child_twins(c);
-        (0..4).map(|j| u32::from(4 * c + j < t[j as usize])).sum()
+        owned(c, self.child_twins(c))
     }
+}
+
+/// How many edges the corners of child face `c`, whose twins are `t`, own.
+#[inline]
+fn owned(c: u32, t: [u32; 4]) -> u32 {
+    (0..4).map(|j| u32::from(4 * c + j < t[j as usize])).sum()
 }
 
 impl Corners for Rings<'_> {
@@ -403,13 +408,17 @@ impl QuadLevel {
     /// The child's tables, given its corners ([`Self::child_corners`]).
     pub(super) fn child(&self, corners: Vec<u32>) -> Self {
         let (nv, ne, nf) = (self.num_vertices(), self.num_edges(), self.num_faces());
-        let mut twin: Vec<[u32; 4]> = Vec::new();
+        // the twins of each child face, and how many edges its corners own
+        let (mut twin, mut counts): (Vec<[u32; 4]>, _) = (Vec::new(), Vec::with_capacity(4 * nf + 1));
         (0..4 * nf as u32)
             .into_par_iter()
             .with_min_len(MIN_LEN)
-            .map(|c| self.child_twins(c))
-            .collect_into_vec(&mut twin);
-        let edge_base = counts_before(4 * nf, |c| self.child_owners(c));
+            .map(|c| {
+                let t = self.child_twins(c);
+                (t, owned(c, t))
+            })
+            .unzip_into_vecs(&mut twin, &mut counts);
+        let edge_base = prefix_sums(counts);
         let mut vertex_start = vec![0u32; nv + ne + nf];
         let (old, rest) = vertex_start.split_at_mut(nv);
         let (edges, faces) = rest.split_at_mut(ne);
@@ -750,8 +759,14 @@ fn ascending(keys: [u32; 4]) -> [usize; 4] {
 
 /// The exclusive prefix sums of `count(0), …, count(n − 1)`, and the total: `n + 1` values.
 fn counts_before(n: usize, count: impl Fn(u32) -> u32 + Sync) -> Vec<u32> {
-    let mut out = Vec::new();
+    // room for the total: pushing it onto a full vector would copy the whole
+    let mut out = Vec::with_capacity(n + 1);
     (0..n as u32).into_par_iter().with_min_len(MIN_LEN).map(&count).collect_into_vec(&mut out);
+    prefix_sums(out)
+}
+
+/// The exclusive prefix sums of `out` in place, and the total pushed.
+fn prefix_sums(mut out: Vec<u32>) -> Vec<u32> {
     let mut sums: Vec<u32> = out.par_chunks(MIN_LEN).map(|c| c.iter().sum()).collect();
     let mut at = 0;
     for s in &mut sums {
