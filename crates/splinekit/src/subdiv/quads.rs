@@ -71,9 +71,14 @@ trait Corners: Sync {
     /// How many edges the corners of child face `c` own.
     #[inline]
     fn child_owners(&self, c: u32) -> u32 {
-        let t = self.child_twins(c);
-        (0..4).map(|j| u32::from(4 * c + j < t[j as usize])).sum()
+        owned(c, self.child_twins(c))
     }
+}
+
+/// How many edges the corners of child face `c`, whose twins are `t`, own.
+#[inline]
+fn owned(c: u32, t: [u32; 4]) -> u32 {
+    (0..4).map(|j| u32::from(4 * c + j < t[j as usize])).sum()
 }
 
 impl Corners for Rings<'_> {
@@ -179,17 +184,25 @@ impl QuadLevel {
     /// The tables, with each corner's edge from the twins and the counts per face.
     fn with_edges(corners: Vec<u32>, twin: Vec<u32>, edge_base: Vec<u32>, vertex_start: Vec<u32>) -> Self {
         let mut level = Self { corners, twin, edge_base, edge_of: Vec::new(), vertex_start };
-        let mut edge_of = Vec::new();
-        (0..level.twin.len() as u32)
+        let mut edge_of: Vec<[u32; 4]> = Vec::new();
+        // per face: its own owner bits once, a neighbour's for each edge the neighbour owns
+        let edge = |q: u32, owners: u32, k: u32| level.edge_base[q as usize] + (owners & ((1 << k) - 1)).count_ones();
+        (0..level.num_faces() as u32)
             .into_par_iter()
-            .with_min_len(MIN_LEN)
-            .map(|c| {
-                let o = c.min(level.twin[c as usize]);
-                let q = o / 4;
-                level.edge_base[q as usize] + (level.owners(q) & ((1 << (o % 4)) - 1)).count_ones()
+            .with_min_len(FACES)
+            .map(|q| {
+                let owners = level.owners(q);
+                core::array::from_fn(|k| {
+                    let t = level.twin[4 * q as usize + k];
+                    if owners & (1 << k) != 0 {
+                        edge(q, owners, k as u32)
+                    } else {
+                        edge(t / 4, level.owners(t / 4), t % 4)
+                    }
+                })
             })
             .collect_into_vec(&mut edge_of);
-        level.edge_of = edge_of;
+        level.edge_of = bytemuck::cast_vec(edge_of);
         level
     }
 
@@ -395,13 +408,17 @@ impl QuadLevel {
     /// The child's tables, given its corners ([`Self::child_corners`]).
     pub(super) fn child(&self, corners: Vec<u32>) -> Self {
         let (nv, ne, nf) = (self.num_vertices(), self.num_edges(), self.num_faces());
-        let mut twin: Vec<[u32; 4]> = Vec::new();
+        // the twins of each child face, and how many edges its corners own
+        let (mut twin, mut counts): (Vec<[u32; 4]>, _) = (Vec::new(), Vec::with_capacity(4 * nf + 1));
         (0..4 * nf as u32)
             .into_par_iter()
             .with_min_len(MIN_LEN)
-            .map(|c| self.child_twins(c))
-            .collect_into_vec(&mut twin);
-        let edge_base = counts_before(4 * nf, |c| self.child_owners(c));
+            .map(|c| {
+                let t = self.child_twins(c);
+                (t, owned(c, t))
+            })
+            .unzip_into_vecs(&mut twin, &mut counts);
+        let edge_base = prefix_sums(counts);
         let mut vertex_start = vec![0u32; nv + ne + nf];
         let (old, rest) = vertex_start.split_at_mut(nv);
         let (edges, faces) = rest.split_at_mut(ne);
@@ -428,6 +445,9 @@ pub(super) struct Grandchild<'a> {
     masks: Vec<u32>,
     /// Per `S` face, and one more: the `M` edges owned by the faces before it.
     base: Vec<u32>,
+    /// The numbers of `S` vertices and `S` edges.
+    nvs: u32,
+    nes: u32,
 }
 
 impl QuadLevel {
@@ -450,7 +470,7 @@ impl QuadLevel {
             })
             .collect_into_vec(&mut masks);
         let base = counts_before(self.num_faces(), |q| masks[q as usize].count_ones());
-        Grandchild { s: self, masks, base }
+        Grandchild { s: self, masks, base, nvs: self.num_vertices() as u32, nes: self.num_edges() as u32 }
     }
 }
 
@@ -506,11 +526,11 @@ impl Grandchild<'_> {
     #[inline]
     fn m_faces(&self, q: u32) -> [[u32; 4]; 4] {
         let s = self.s;
-        let nv = s.num_vertices() as u32;
-        let e = [0, 1, 2, 3].map(|k| nv + s.edge(4 * q + k));
-        let m = nv + s.num_edges() as u32 + q;
-        let a = &s.corners[4 * q as usize..4 * q as usize + 4];
-        [0, 1, 2, 3].map(|k| [a[k], e[k], m, e[(k + 3) % 4]])
+        let i = 4 * q as usize;
+        let (a, eo) = (&s.corners[i..i + 4], &s.edge_of[i..i + 4]);
+        let e = [self.nvs + eo[0], self.nvs + eo[1], self.nvs + eo[2], self.nvs + eo[3]];
+        let m = self.nvs + self.nes + q;
+        [[a[0], e[0], m, e[3]], [a[1], e[1], m, e[0]], [a[2], e[2], m, e[1]], [a[3], e[3], m, e[2]]]
     }
 
     /// The values of `F` from those of `M`, `pm` (the layout of [`QuadLevel::refine`] on `M`).
@@ -563,30 +583,44 @@ impl Grandchild<'_> {
                 for (q, on_face) in (q0..).zip(on_faces) {
                     let mv = self.m_faces(q);
                     let at = |k: usize, j: usize| pm[mv[k][j] as usize];
+                    let i = 4 * q as usize;
+                    let tw = [s.twin[i], s.twin[i + 1], s.twin[i + 2], s.twin[i + 3]];
                     // The M vertex on S face q: valence 4, its corners 16q + 4k + 2 ascending.
                     let ring = (0..4).fold(T::default(), |r, k| r + at(k, 3));
                     let centres = (0..4).fold(T::default(), |r, k| r + fp(4 * q + k as u32));
                     *on_face = at(0, 2) * 0.5 + (ring + centres) * 0.0625;
                     // The M vertices on the S edges q owns.
-                    let mut owners = s.owners(q);
+                    let mut owners = (0..4).fold(0, |m, k| m | u32::from(4 * q + k < tw[k as usize]) << k);
                     while owners != 0 {
                         let o = 4 * q + owners.trailing_zeros();
                         owners &= owners - 1;
-                        let value = self.on_edge(pm, faces, o, at((o % 4) as usize, 1));
+                        let k = (o % 4) as usize;
+                        let value =
+                            self.on_edge(pm, faces, o, tw[k], [at(k, 1), at(k, 0), at((k + 1) % 4, 0), at(k, 2)]);
                         if let Some(slot) = on_edges.next() {
                             *slot = value;
                         }
                     }
-                    // The M edges q owns.
+                    // The M edges q owns: M corner 16q + 4k + j, in M face 4q + k, whose twin
+                    // is in M face `across[j]` (see `Corners::child_twins`).
                     let mut owners = self.masks[q as usize];
                     while owners != 0 {
-                        let i = owners.trailing_zeros();
+                        let x = owners.trailing_zeros();
                         owners &= owners - 1;
-                        let (k, j) = ((i / 4) as usize, (i % 4) as usize);
+                        let (k, j) = ((x / 4) as usize, (x % 4) as usize);
                         let (a, b) = (at(k, j), at(k, (j + 1) % 4));
-                        let t = s.child_twins(4 * q + k as u32)[j];
-                        let value =
-                            if t == NONE { (a + b) * 0.5 } else { (a + b + fp(4 * q + k as u32) + fp(t / 4)) * 0.25 };
+                        let across = match j {
+                            0 if tw[k] == NONE => NONE,
+                            0 => next(tw[k]),
+                            1 => 4 * q + ((k as u32 + 1) % 4),
+                            2 => 4 * q + ((k as u32 + 3) % 4),
+                            _ => tw[(k + 3) % 4],
+                        };
+                        let value = if across == NONE {
+                            (a + b) * 0.5
+                        } else {
+                            (a + b + fp(4 * q + k as u32) + fp(across)) * 0.25
+                        };
                         if let Some(slot) = edges.next() {
                             *slot = value;
                         }
@@ -598,29 +632,22 @@ impl Grandchild<'_> {
         out
     }
 
-    /// The new value of the `M` vertex on the `S` edge owned by corner `o`, whose value is
-    /// `pv`: on a boundary the crease rule between the edge's ends, else valence 4 with the
-    /// `M` corners `4o + 1`, `4·next(o) + 3`, `4t + 1`, `4·next(t) + 3` (`t` the twin), summed
-    /// in ascending order.
+    /// The new value of the `M` vertex on the `S` edge owned by corner `o`, whose twin is `t`,
+    /// from the values `pv` of that vertex, `a` and `b` of the edge's ends (from `o`'s vertex)
+    /// and `m` of the `M` vertex on `o`'s face: on a boundary the crease rule between the
+    /// ends, else valence 4 with the `M` corners `4o + 1`, `4·next(o) + 3`, `4t + 1`,
+    /// `4·next(t) + 3`, summed in ascending order.
     #[inline]
-    fn on_edge<T: Attribute>(&self, pm: &[T], faces: &[T], o: u32, pv: T) -> T {
-        let s = self.s;
-        let nfp = s.num_vertices() + s.num_edges();
-        let (no, t) = (next(o), s.twin[o as usize]);
-        let (a, b) = (pm[s.corners[o as usize] as usize], pm[s.corners[no as usize] as usize]);
+    fn on_edge<T: Attribute>(&self, pm: &[T], faces: &[T], o: u32, t: u32, [pv, a, b, m]: [T; 4]) -> T {
         if t == NONE {
             return pv * 0.75 + (b + a) * 0.125;
         }
-        let nt = next(t);
-        let mut ring = [
-            (4 * o + 1, pm[nfp + (o / 4) as usize], o),
-            (4 * no + 3, b, no),
-            (4 * t + 1, pm[nfp + (t / 4) as usize], t),
-            (4 * nt + 3, a, nt),
-        ];
-        ring.sort_unstable_by_key(|r| r.0);
-        let sum = ring.iter().fold(T::default(), |r, x| r + x.1);
-        let centres = ring.iter().fold(T::default(), |r, x| r + faces[x.2 as usize]);
+        let (no, nt) = (next(o), next(t));
+        let ring = [m, b, pm[(self.nvs + self.nes + t / 4) as usize], a];
+        let centres = [o, no, t, nt];
+        let order = ascending([4 * o + 1, 4 * no + 3, 4 * t + 1, 4 * nt + 3]);
+        let sum = order.iter().fold(T::default(), |r, &i| r + ring[i]);
+        let centres = order.iter().fold(T::default(), |r, &i| r + faces[centres[i] as usize]);
         pv * 0.5 + (sum + centres) * 0.0625
     }
 
@@ -677,7 +704,11 @@ pub(super) fn subdivide(
             let fine = g.values(&positions, b);
             drop(positions);
             colors = colours(&colors, fine.len(), levels, &|c| g.values(c, b));
-            return quad_mesh(fine, colors, g.corners());
+            let corners = g.corners();
+            // the tables are done with: their memory can serve the face offsets
+            drop(g);
+            drop(level);
+            return quad_mesh(fine, colors, corners);
         }
         let corners = level.child_corners();
         level = level.child(corners);
@@ -707,10 +738,35 @@ fn edge_start(level: &impl Corners, o: u32) -> u32 {
     if level.twin(o) == NONE { 4 * level.next(o) + 3 } else { 4 * o + 1 }
 }
 
+/// The indices of `keys` (all different) in ascending order of the keys, without moving
+/// anything: each key's rank is how many keys are smaller.
+#[inline]
+fn ascending(keys: [u32; 4]) -> [usize; 4] {
+    let mut rank = [0; 4];
+    for i in 0..4 {
+        for j in i + 1..4 {
+            let below = usize::from(keys[i] < keys[j]);
+            rank[j] += below;
+            rank[i] += 1 - below;
+        }
+    }
+    let mut order = [0; 4];
+    for (i, r) in rank.into_iter().enumerate() {
+        order[r] = i;
+    }
+    order
+}
+
 /// The exclusive prefix sums of `count(0), …, count(n − 1)`, and the total: `n + 1` values.
 fn counts_before(n: usize, count: impl Fn(u32) -> u32 + Sync) -> Vec<u32> {
-    let mut out = Vec::new();
+    // room for the total: pushing it onto a full vector would copy the whole
+    let mut out = Vec::with_capacity(n + 1);
     (0..n as u32).into_par_iter().with_min_len(MIN_LEN).map(&count).collect_into_vec(&mut out);
+    prefix_sums(out)
+}
+
+/// The exclusive prefix sums of `out` in place, and the total pushed.
+fn prefix_sums(mut out: Vec<u32>) -> Vec<u32> {
     let mut sums: Vec<u32> = out.par_chunks(MIN_LEN).map(|c| c.iter().sum()).collect();
     let mut at = 0;
     for s in &mut sums {
