@@ -33,7 +33,7 @@
 //! one) and 19 ms with one sample per pixel (38 ms on one); per-pixel shading and the
 //! per-triangle setup take about a third each.
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec3A};
 use splinekit::TriMesh;
 
 use crate::camera::{Camera, DEFAULT_MARGIN, Projection, View, bounding_radius};
@@ -68,8 +68,12 @@ const SUB: f32 = (1 << SUB_BITS) as f32;
 const BAND_PIXEL_ROWS: usize = 16;
 /// No triangle.
 const NONE: u32 = u32::MAX;
+/// The sample buffers' id of a mesh triangle seen from its back has this bit set (so the
+/// shading pass tells front from back without looking the triangle up); ids themselves stay
+/// below it.
+const BACK: u32 = 1 << 31;
 /// Unit direction towards the key light, in camera coordinates (x right, y up, z to the eye).
-const LIGHT: Vec3 = Vec3::new(-0.381_529, 0.599_546, 0.703_526);
+const LIGHT: Vec3A = Vec3A::new(-0.381_529, 0.599_546, 0.703_526);
 
 /// How normals are chosen.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -233,10 +237,10 @@ struct Vert {
     y: f32,
     z: f32,
     inv_w: f32,
-    view: Vec3,
-    normal: Vec3,
+    view: Vec3A,
+    normal: Vec3A,
     /// Linear RGB front colour.
-    colour: Vec3,
+    colour: Vec3A,
 }
 
 /// A screen-space triangle of a mark: sample coordinates and depth key per corner, and a
@@ -244,7 +248,7 @@ struct Vert {
 #[derive(Clone, Copy, Debug)]
 struct MarkTri {
     v: [[f32; 3]; 3],
-    colour: Vec3,
+    colour: Vec3A,
 }
 
 /// What the shading pass needs to know about the frame.
@@ -252,6 +256,8 @@ struct Frame<'a> {
     meshes: &'a [&'a TriMesh],
     /// First global triangle id of each mesh, and one past the last.
     offsets: Vec<u32>,
+    /// The first id of the marks (one past the meshes' last).
+    last: u32,
     /// First vertex of each mesh in `verts`.
     vert_offsets: Vec<usize>,
     verts: &'a [Vert],
@@ -259,12 +265,12 @@ struct Frame<'a> {
     smooth: Vec<bool>,
     perspective: bool,
     /// The Blinn–Phong half vector for the parallel projection's eye direction `+z`.
-    half_ortho: Vec3,
+    half_ortho: Vec3A,
     ss: u32,
     sample_width: usize,
-    back: Vec3,
-    background: Vec3,
-    wire: Option<(Vec3, f32)>,
+    back: Vec3A,
+    background: Vec3A,
+    wire: Option<(Vec3A, f32)>,
 }
 
 impl Renderer {
@@ -317,7 +323,7 @@ impl Renderer {
             total += m.triangles.len() as u64;
         }
         offsets.push(total as u32);
-        // Ids must stay below NONE.
+        // Ids must stay below BACK (meshes' triangles beyond are not drawn).
         let mark_base = total;
 
         // Marks as screen-space triangles.
@@ -325,7 +331,7 @@ impl Renderer {
         for mark in marks {
             mark_triangles(mark, &camera, ss, MARK_DEPTH_BIAS * radius, &mut self.mark_tris);
         }
-        let mark_count = self.mark_tris.len().min((NONE as u64 - 1 - mark_base.min(NONE as u64 - 1)) as usize);
+        let mark_count = self.mark_tris.len().min((u64::from(BACK) - mark_base.min(u64::from(BACK))) as usize);
 
         // Bands of pixel rows, each rasterized into its own small sample buffers and shaded
         // right away (the buffers stay in cache, and no frame-sized sample buffer is cleared).
@@ -333,13 +339,14 @@ impl Renderer {
         bin_triangles(meshes, &vert_offsets, &self.verts, &self.mark_tris[..mark_count], sh, band_rows, &mut self.bins);
         let frame = Frame {
             meshes,
+            last: *offsets.last().unwrap_or(&0),
             offsets,
             vert_offsets,
             verts: &self.verts,
             mark_tris: &self.mark_tris,
             smooth,
             perspective: options.projection == Projection::Perspective,
-            half_ortho: (LIGHT + Vec3::Z).normalize(),
+            half_ortho: (LIGHT + Vec3A::Z).normalize(),
             ss,
             sample_width: sw,
             back: linear_rgb(options.back),
@@ -365,14 +372,14 @@ impl Renderer {
                 }
             }
             // Shading pass.
-            let (ids, depth) = (&scratch.ids[..], &scratch.depth[..]);
+            let (ids, depth, row) = (&scratch.ids[..], &scratch.depth[..], &mut scratch.row);
             for (r, out) in out.chunks_mut(4 * w).enumerate() {
                 let py = b * BAND_PIXEL_ROWS + r;
                 match ss {
-                    1 => frame.shade_row::<1>(r, py, ids, depth, &lut, out),
-                    2 => frame.shade_row::<2>(r, py, ids, depth, &lut, out),
-                    3 => frame.shade_row::<3>(r, py, ids, depth, &lut, out),
-                    _ => frame.shade_row::<4>(r, py, ids, depth, &lut, out),
+                    1 => frame.shade_row::<1>(r, py, ids, depth, &lut, row, out),
+                    2 => frame.shade_row::<2>(r, py, ids, depth, &lut, row, out),
+                    3 => frame.shade_row::<3>(r, py, ids, depth, &lut, row, out),
+                    _ => frame.shade_row::<4>(r, py, ids, depth, &lut, row, out),
                 }
             }
         };
@@ -399,7 +406,7 @@ fn project_vertices(
     mesh: &TriMesh,
     normals: &[DVec3],
     colours: Option<&[DVec3]>,
-    front: Vec3,
+    front: Vec3A,
     out: &mut Vec<Vert>,
 ) {
     let ss = f64::from(ss);
@@ -411,17 +418,17 @@ fn project_vertices(
             Projection::Perspective => (1.0 / q.depth, 1.0 / q.depth),
             Projection::Orthographic => (-q.depth, 1.0),
         };
-        let normal = normals.get(i).map_or(Vec3::ZERO, |&n| camera.dir_to_view(n).as_vec3().normalize_or_zero());
+        let normal = normals.get(i).map_or(Vec3A::ZERO, |&n| camera.dir_to_view(n).as_vec3a().normalize_or_zero());
         let colour = colours.map_or(front, |c| {
             let c = c[i];
-            Vec3::new(srgb_to_linear(c.x as f32), srgb_to_linear(c.y as f32), srgb_to_linear(c.z as f32))
+            Vec3A::new(srgb_to_linear(c.x as f32), srgb_to_linear(c.y as f32), srgb_to_linear(c.z as f32))
         });
         Vert {
             x: if valid { (q.x * ss) as f32 } else { f32::NAN },
             y: (q.y * ss) as f32,
             z: z as f32,
             inv_w: inv_w as f32,
-            view: camera.to_view(p).as_vec3(),
+            view: camera.to_view(p).as_vec3a(),
             normal,
             colour,
         }
@@ -484,7 +491,7 @@ fn bin_triangles(
             let lo = ys[0].min(ys[1]).min(ys[2]);
             let hi = ys[0].max(ys[1]).max(ys[2]);
             // NaN fails both tests.
-            if !(hi >= 0.0 && lo < rows as f32) {
+            if !(hi >= 0.0 && lo < rows as f32) || id >= BACK {
                 return;
             }
             let b0 = (lo.max(0.0) as usize) / band_rows;
@@ -523,11 +530,31 @@ fn bin_triangles(
     bins.iter_mut().zip(chunks.iter()).for_each(bin_chunk);
 }
 
-/// One thread's sample buffers for a band: depth key and triangle id per sample.
+/// One thread's sample buffers for a band: depth key and triangle id per sample, and the
+/// shading pass's lists for a row.
 #[derive(Default)]
 struct BandBuffers {
     depth: Vec<f32>,
     ids: Vec<u32>,
+    row: RowScratch,
+}
+
+/// What a row of pixels needs shaded, and its colours.
+#[derive(Default)]
+struct RowScratch {
+    requests: Vec<Request>,
+    /// Linear colour per pixel.
+    colours: Vec<Vec3A>,
+}
+
+/// One shading: triangle `id` at sample position `(x, y)`, adding `weight` of its colour to
+/// pixel `pixel` of the row.
+struct Request {
+    id: u32,
+    x: f32,
+    y: f32,
+    weight: f32,
+    pixel: u32,
 }
 
 /// The sample buffers of the band of sample rows `y0..y1` (row `y0` first).
@@ -540,8 +567,9 @@ struct Band<'a> {
 }
 
 impl Band<'_> {
-    /// Rasterizes one triangle (sample coordinates and depth key per corner). `ties` lets it
-    /// win equal depths.
+    /// Rasterizes one triangle (sample coordinates and depth key per corner). `ties` (a
+    /// mark) lets it win equal depths; otherwise (a mesh triangle) its id is stored with
+    /// [`BACK`] when it is seen from its back (clockwise on screen).
     fn triangle(&mut self, v: [[f32; 3]; 3], id: u32, ties: bool) {
         const LIMIT: f32 = (1 << 26) as f32;
         let mut fx = [0i64; 3];
@@ -561,6 +589,8 @@ impl Band<'_> {
         if area == 0 {
             return;
         }
+        // The screen's y points down: counter-clockwise as seen has a negative area.
+        let id = if area > 0 && !ties { id | BACK } else { id };
         if area < 0 {
             order = [0, 2, 1];
             area = -area;
@@ -592,32 +622,29 @@ impl Band<'_> {
                 c[k] -= 1;
             }
         }
-        let inv_area = 1.0 / area as f64;
-        // A flat depth (dots, marks seen face on) stays exact, so later marks win its ties.
-        let flat = z[0] == z[1] && z[1] == z[2];
-        // Depth plane from the barycentric weights e_k / area.
-        let dzdx = if flat {
-            0.0
-        } else {
-            ((a[0] as f64 * f64::from(z[0]) + a[1] as f64 * f64::from(z[1]) + a[2] as f64 * f64::from(z[2]))
-                * inv_area
-                * f64::from(SUB)) as f32
-        };
+        // The depth plane from the barycentric weights e_k / area, at the box's first sample
+        // and per sample step in x and y. A flat depth (dots, marks seen face on) stays
+        // exact, so later marks win its ties.
         let step = 1i64 << SUB_BITS;
-        for sy in min_y..=max_y {
-            let py = (sy as i64) * step + half;
-            let px0 = (min_x as i64) * step + half;
-            let mut e = [0i64; 3];
-            for k in 0..3 {
-                e[k] = a[k] * px0 + b[k] * py + c[k];
-            }
-            let z_row = if flat {
-                z[0]
-            } else {
-                ((e[0] as f64 * f64::from(z[0]) + e[1] as f64 * f64::from(z[1]) + e[2] as f64 * f64::from(z[2]))
-                    * inv_area) as f32
+        let (px0, py0) = ((min_x as i64) * step + half, (min_y as i64) * step + half);
+        let e0 = [0, 1, 2].map(|k| a[k] * px0 + b[k] * py0 + c[k]);
+        let (sa, sb) = (a.map(|a| a * step), b.map(|b| b * step));
+        let (z0, dzdx, dzdy) = if z[0] == z[1] && z[1] == z[2] {
+            (f64::from(z[0]), 0.0, 0.0)
+        } else {
+            let plane = |w: [i64; 3]| {
+                (w[0] as f64 * f64::from(z[0]) + w[1] as f64 * f64::from(z[1]) + w[2] as f64 * f64::from(z[2]))
+                    / area as f64
             };
-            let (sa, row) = (a.map(|a| a * step), (sy - self.y0) * self.width);
+            (plane(e0), plane(sa), plane(sb))
+        };
+        let dzdx = dzdx as f32;
+        let mut e_row = e0;
+        for (j, sy) in (min_y..=max_y).enumerate() {
+            let e = e_row;
+            for k in 0..3 {
+                e_row[k] += sb[k];
+            }
             // The row's span lo..=hi (offsets from min_x): e_k + i·sa_k ≥ 0 for each edge,
             // solved exactly in integers (numerators and divisors non-negative).
             let (mut lo, mut hi) = (0i64, (max_x - min_x) as i64);
@@ -636,27 +663,39 @@ impl Band<'_> {
             if lo > hi {
                 continue;
             }
-            // The depth steps along the row as the sample loop always has (same rounding).
-            let mut zz = z_row;
-            for _ in 0..lo {
-                zz += dzdx;
-            }
-            let (depth, ids) = (&mut self.depth[row + min_x..], &mut self.ids[row + min_x..]);
-            for i in lo as usize..=hi as usize {
-                let d = depth[i];
-                let win = zz > d || (ties && zz == d);
-                depth[i] = if win { zz } else { d };
-                ids[i] = if win { id } else { ids[i] };
-                zz += dzdx;
+            // Sample i of the row (from min_x) has depth z_row + i·dzdx.
+            let z_row = (z0 + j as f64 * dzdy) as f32;
+            let at = (sy - self.y0) * self.width + min_x;
+            let span = lo as usize..=hi as usize;
+            let (depth, ids) = (&mut self.depth[at..][span.clone()], &mut self.ids[at..][span]);
+            if ties {
+                span_keep::<true>(depth, ids, lo as usize, z_row, dzdx, id);
+            } else {
+                span_keep::<false>(depth, ids, lo as usize, z_row, dzdx, id);
             }
         }
     }
 }
 
+/// Depth test of a row's covered span, which starts `lo` samples into a row whose first
+/// sample has depth `z_row`.
+#[inline(always)]
+fn span_keep<const TIES: bool>(depth: &mut [f32], ids: &mut [u32], lo: usize, z_row: f32, dzdx: f32, id: u32) {
+    for (i, (d, t)) in (lo..).zip(depth.iter_mut().zip(ids.iter_mut())) {
+        let z = z_row + i as f32 * dzdx;
+        let win = z > *d || (TIES && z == *d);
+        *d = if win { z } else { *d };
+        *t = if win { id } else { *t };
+    }
+}
+
 impl Frame<'_> {
     /// Shades pixel row `py` (RGBA into `out`) from the `SS × SS` samples of each pixel, its
-    /// row `r` of the band whose sample buffers are `ids` and `depth`.
+    /// row `r` of the band whose sample buffers are `ids` and `depth`. First each pixel
+    /// says what it needs shaded (and with which weight) into `scratch`, then those shadings
+    /// run in one loop whose branches are predictable, and the colours are encoded.
     #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
     fn shade_row<const SS: usize>(
         &self,
         r: usize,
@@ -664,37 +703,51 @@ impl Frame<'_> {
         ids: &[u32],
         depth: &[f32],
         lut: &SrgbLut,
+        scratch: &mut RowScratch,
         out: &mut [u8],
     ) {
-        let encode = |c: Vec3| [lut.encode(c.x), lut.encode(c.y), lut.encode(c.z), 255];
-        let background = encode(self.background);
         let sw = self.sample_width;
+        let w = out.len() / 4;
+        let RowScratch { requests, colours } = scratch;
+        requests.clear();
+        colours.clear();
+        colours.resize(w, Vec3A::ZERO);
         let rows: [&[u32]; SS] = std::array::from_fn(|sy| &ids[(r * SS + sy) * sw..(r * SS + sy + 1) * sw]);
-        for (px, out) in out.chunks_exact_mut(4).enumerate() {
+        for (px, colour) in colours.iter_mut().enumerate() {
             let mut grid = [[NONE; SS]; SS];
             for sy in 0..SS {
                 grid[sy].copy_from_slice(&rows[sy][px * SS..(px + 1) * SS]);
             }
             let samples = grid.as_flattened();
             let first = samples[0];
-            let rgba = if samples.iter().all(|&s| s == first) {
-                if first == NONE { background } else { encode(self.shade(first, Self::centre::<SS>(px, py))) }
-            } else if self.one_smooth_surface(samples, depth, (px, r)) {
-                encode(self.shade(first, Self::centre::<SS>(px, py)))
-            } else {
-                // Each triangle seen once, at its first sample, weighted by its samples.
-                let mut sum = Vec3::ZERO;
-                for (j, &id) in samples.iter().enumerate() {
-                    if samples[..j].contains(&id) {
-                        continue;
-                    }
-                    let count = samples[j..].iter().filter(|&&s| s == id).count();
-                    let (sx, sy) = (px * SS + j % SS, py * SS + j / SS);
-                    sum += self.shade(id, (sx as f32 + 0.5, sy as f32 + 0.5)) * count as f32;
+            if samples.iter().all(|&s| s == first) || self.one_smooth_surface(samples, depth, (px, r)) {
+                if let Some(c) = self.plain_colour(first) {
+                    *colour = c;
+                } else {
+                    let (x, y) = Self::centre::<SS>(px, py);
+                    requests.push(Request { id: first, x, y, weight: 1.0, pixel: px as u32 });
                 }
-                encode(sum / (SS * SS) as f32)
-            };
-            out.copy_from_slice(&rgba);
+                continue;
+            }
+            // Each triangle seen once, at its first sample, weighted by its samples.
+            for (j, &id) in samples.iter().enumerate() {
+                if samples[..j].contains(&id) {
+                    continue;
+                }
+                let weight = samples[j..].iter().filter(|&&s| s == id).count() as f32 / (SS * SS) as f32;
+                if let Some(c) = self.plain_colour(id) {
+                    *colour += c * weight;
+                } else {
+                    let (x, y) = ((px * SS + j % SS) as f32 + 0.5, (py * SS + j / SS) as f32 + 0.5);
+                    requests.push(Request { id, x, y, weight, pixel: px as u32 });
+                }
+            }
+        }
+        for q in requests.iter() {
+            colours[q.pixel as usize] += self.shade(q.id, (q.x, q.y)) * q.weight;
+        }
+        for (c, out) in colours.iter().zip(out.chunks_exact_mut(4)) {
+            out.copy_from_slice(&[lut.encode(c.x), lut.encode(c.y), lut.encode(c.z), 255]);
         }
     }
 
@@ -711,17 +764,10 @@ impl Frame<'_> {
     /// others (silhouettes, creases of flat shading, front/back borders, marks) once per
     /// triangle.
     fn one_smooth_surface(&self, ids: &[u32], depth: &[f32], (px, py): (usize, usize)) -> bool {
-        let last = *self.offsets.last().unwrap_or(&0);
-        if self.meshes.len() != 1 || !self.smooth[0] || ids.iter().any(|&id| id >= last) {
+        if self.meshes.len() != 1 || !self.smooth[0] || ids.iter().any(|&id| id & !BACK >= self.last) {
             return false;
         }
-        let facing = |id: u32| {
-            let t = self.meshes[0].triangles[id as usize];
-            let v = t.map(|i| &self.verts[i as usize]);
-            (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x) < 0.0
-        };
-        let front = facing(ids[0]);
-        if ids[1..].iter().any(|&id| id != ids[0] && facing(id) != front) {
+        if ids.iter().any(|&id| (id ^ ids[0]) & BACK != 0) {
             return false;
         }
         let ss = self.ss as usize;
@@ -737,20 +783,32 @@ impl Frame<'_> {
         hi - lo <= SAME_SURFACE_DEPTH * hi.abs().max(lo.abs())
     }
 
-    /// Linear colour of triangle `id` at sample position `p` (or the background).
-    fn shade(&self, id: u32, p: (f32, f32)) -> Vec3 {
+    /// The colour of sample id `id` when it needs no shading: the background, or a mark's
+    /// colour.
+    #[inline]
+    fn plain_colour(&self, id: u32) -> Option<Vec3A> {
         if id == NONE {
-            return self.background;
+            Some(self.background)
+        } else if id & !BACK >= self.last {
+            Some(self.mark_tris[(id - self.last) as usize].colour)
+        } else {
+            None
         }
-        let last = *self.offsets.last().unwrap_or(&0);
-        if id >= last {
-            return self.mark_tris[(id - last) as usize].colour;
-        }
+    }
+
+    /// The mesh of mesh triangle `id` (without [`BACK`]) and its corners.
+    #[inline(always)]
+    fn corners(&self, id: u32) -> (usize, [&Vert; 3]) {
         let mi = if self.meshes.len() == 1 { 0 } else { self.offsets.partition_point(|&o| o <= id) - 1 };
-        let mesh = self.meshes[mi];
-        let t = mesh.triangles[(id - self.offsets[mi]) as usize];
+        let t = self.meshes[mi].triangles[(id - self.offsets[mi]) as usize];
         let vo = self.vert_offsets[mi];
-        let v = t.map(|i| &self.verts[vo + i as usize]);
+        (mi, t.map(|i| &self.verts[vo + i as usize]))
+    }
+
+    /// Linear colour of mesh triangle `id` (with or without [`BACK`]) at sample position
+    /// `p`.
+    fn shade(&self, id: u32, p: (f32, f32)) -> Vec3A {
+        let (mi, v) = self.corners(id & !BACK);
         // Screen-space barycentrics (signed areas; `area` < 0 is counter-clockwise as seen,
         // the screen's y pointing down).
         let edge = |a: &Vert, b: &Vert| (b.x - a.x) * (p.1 - a.y) - (b.y - a.y) * (p.0 - a.x);
@@ -766,7 +824,7 @@ impl Frame<'_> {
         let inv_sum = 1.0 / (pw[0] + pw[1] + pw[2]);
         let m = if inv_sum.is_finite() { [pw[0] * inv_sum, pw[1] * inv_sum, pw[2] * inv_sum] } else { [1.0 / 3.0; 3] };
         let pos = v[0].view * m[0] + v[1].view * m[1] + v[2].view * m[2];
-        let to_eye = if self.perspective { (-pos).normalize_or(Vec3::Z) } else { Vec3::Z };
+        let to_eye = if self.perspective { (-pos).normalize_or(Vec3A::Z) } else { Vec3A::Z };
         // The geometric normal, turned to the eye: whichever side is seen is lit. A smooth
         // normal is turned to the same side (only the signs matter there, so the geometric
         // normal is normalized only when it is the one used).
@@ -790,14 +848,14 @@ impl Frame<'_> {
         };
         let base = if front_facing { v[0].colour * m[0] + v[1].colour * m[1] + v[2].colour * m[2] } else { self.back };
         let diffuse = n.dot(LIGHT).max(0.0);
-        let h = if self.perspective { (LIGHT + to_eye).normalize_or(Vec3::Z) } else { self.half_ortho };
+        let h = if self.perspective { (LIGHT + to_eye).normalize_or(Vec3A::Z) } else { self.half_ortho };
         let x = n.dot(h).max(0.0);
         let x2 = x * x;
         let x8 = (x2 * x2) * (x2 * x2);
         let x32 = (x8 * x8) * (x8 * x8);
         let specular = 0.2 * x32 * x8;
         let fill = 0.25 * n.dot(to_eye).max(0.0);
-        let mut c = base * (0.12 + 0.7 * diffuse + fill) + Vec3::splat(specular);
+        let mut c = base * (0.12 + 0.7 * diffuse + fill) + Vec3A::splat(specular);
         if let Some((wire, half_width)) = self.wire {
             // Distance to the nearest edge of this triangle, in pixels.
             let len = |a: &Vert, b: &Vert| ((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt();
@@ -934,7 +992,7 @@ impl Dasher {
 }
 
 /// A line of half-width `hw` from `a` to `b` (sample units), with square caps.
-fn quad(a: [f64; 3], b: [f64; 3], hw: f64, colour: Vec3, out: &mut Vec<MarkTri>) {
+fn quad(a: [f64; 3], b: [f64; 3], hw: f64, colour: Vec3A, out: &mut Vec<MarkTri>) {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     let l = (dx * dx + dy * dy).sqrt();
     let (ux, uy) = if l > 1e-9 { (dx / l, dy / l) } else { (1.0, 0.0) };
@@ -947,7 +1005,7 @@ fn quad(a: [f64; 3], b: [f64; 3], hw: f64, colour: Vec3, out: &mut Vec<MarkTri>)
 }
 
 /// A disc of radius `r` (sample units) at `c`, facing the eye.
-fn disc(c: [f64; 3], r: f64, colour: Vec3, out: &mut Vec<MarkTri>) {
+fn disc(c: [f64; 3], r: f64, colour: Vec3A, out: &mut Vec<MarkTri>) {
     const SIDES: usize = 16;
     let at = |k: usize| {
         let (s, co) = (std::f64::consts::TAU * k as f64 / SIDES as f64).sin_cos();
@@ -966,8 +1024,8 @@ fn srgb_to_linear(c: f32) -> f32 {
 }
 
 /// An 8-bit sRGB colour in linear RGB.
-fn linear_rgb(c: Rgb) -> Vec3 {
-    Vec3::new(
+fn linear_rgb(c: Rgb) -> Vec3A {
+    Vec3A::new(
         srgb_to_linear(f32::from(c[0]) / 255.0),
         srgb_to_linear(f32::from(c[1]) / 255.0),
         srgb_to_linear(f32::from(c[2]) / 255.0),
