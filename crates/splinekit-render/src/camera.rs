@@ -149,13 +149,16 @@ impl Camera {
         size: ImageSize,
         margin: f64,
     ) -> Self {
+        let (lo, hi) = bounds(points.clone().into_iter());
+        let (camera, radius) = Self::aimed(view, projection, lo, hi);
+        let extent = points.into_iter().filter(|p| p.is_finite()).fold(Extent::EMPTY, |e, p| e.with(camera.project(p)));
+        camera.zoomed(extent, radius, size, margin)
+    }
+
+    /// Looking at the centre of the box `lo..hi` (empty: the origin) from `view`, far
+    /// enough to see its bounding sphere, at scale 1; and the sphere's radius.
+    pub(crate) fn aimed(view: View, projection: Projection, lo: DVec3, hi: DVec3) -> (Self, f64) {
         // Bounding sphere about the box centre.
-        let mut lo = DVec3::INFINITY;
-        let mut hi = DVec3::NEG_INFINITY;
-        for p in points.clone().into_iter().filter(|p| p.is_finite()) {
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
         let (target, mut radius) =
             if lo.x <= hi.x { (0.5 * (lo + hi), 0.5 * (hi - lo).length()) } else { (DVec3::ZERO, 1.0) };
         if !(radius > 1e-12 * target.length().max(1e-300)) || !radius.is_finite() {
@@ -170,35 +173,31 @@ impl Camera {
             // Behind the nearest point, so depths are positive.
             Projection::Orthographic => target + back * (2.0 * radius),
         };
-        let mut camera = Self { eye, right, up, back, projection, scale: 1.0, centre: [0.0, 0.0] };
-        // Extent of the projections at scale 1, centre 0.
-        let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-        for p in points.into_iter().filter(|p| p.is_finite()) {
-            let q = camera.project(p);
-            x0 = x0.min(q.x);
-            x1 = x1.max(q.x);
-            y0 = y0.min(q.y);
-            y1 = y1.max(q.y);
-        }
+        (Self { eye, right, up, back, projection, scale: 1.0, centre: [0.0, 0.0] }, radius)
+    }
+
+    /// This camera (from [`Self::aimed`], with its `radius`) scaled and centred so that the
+    /// projections' `extent` at scale 1 fills a picture of `size` inside the margin.
+    pub(crate) fn zoomed(mut self, extent: Extent, radius: f64, size: ImageSize, margin: f64) -> Self {
+        let Extent { x0, x1, y0, y1 } = extent;
+        let half = (0.5 * FIELD_OF_VIEW_DEGREES).to_radians();
         let (w, h) = (f64::from(size.width), f64::from(size.height));
         let free = margin.clamp(0.0, 0.45) * w.min(h);
         let (avail_w, avail_h) = ((w - 2.0 * free).max(1.0), (h - 2.0 * free).max(1.0));
-        if !(x0 <= x1 && y0 <= y1) {
-            (x0, x1, y0, y1) = (-radius, radius, -radius, radius);
-        }
+        let (x0, x1, y0, y1) = if x0 <= x1 && y0 <= y1 { (x0, x1, y0, y1) } else { (-radius, radius, -radius, radius) };
         // A flat extent (a curve seen edge on) must not zoom without bound.
         let min_extent = 1e-3
             * (radius
-                / match projection {
+                / match self.projection {
                     Projection::Perspective => radius / half.sin(),
                     Projection::Orthographic => 1.0,
                 });
         let (ex, ey) = ((x1 - x0).max(min_extent), (y1 - y0).max(min_extent));
         let scale = (avail_w / ex).min(avail_h / ey);
-        camera.scale = if scale.is_finite() && scale > 0.0 { scale } else { 1.0 };
+        self.scale = if scale.is_finite() && scale > 0.0 { scale } else { 1.0 };
         let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-        camera.centre = [0.5 * w - camera.scale * cx, 0.5 * h - camera.scale * cy];
-        camera
+        self.centre = [0.5 * w - self.scale * cx, 0.5 * h - self.scale * cy];
+        self
     }
 
     /// The pixel position and depth of `p`. Points behind a perspective eye get a
@@ -239,14 +238,45 @@ impl Camera {
 
 /// Radius of the bounding sphere about the box centre of the finite points (1 if none).
 pub(crate) fn bounding_radius(points: impl Iterator<Item = DVec3>) -> f64 {
-    let mut lo = DVec3::INFINITY;
-    let mut hi = DVec3::NEG_INFINITY;
-    for p in points.filter(|p| p.is_finite()) {
-        lo = lo.min(p);
-        hi = hi.max(p);
-    }
+    let (lo, hi) = bounds(points);
+    box_radius(lo, hi)
+}
+
+/// Half the diagonal of the box `lo..hi` (1 when that is empty, zero or not finite).
+pub(crate) fn box_radius(lo: DVec3, hi: DVec3) -> f64 {
     let r = 0.5 * (hi - lo).length();
     if r.is_finite() && r > 0.0 { r } else { 1.0 }
+}
+
+/// The box of the finite points (`lo > hi` when there are none).
+pub(crate) fn bounds(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
+    points.filter(|p| p.is_finite()).fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)))
+}
+
+/// The range of projected positions at scale 1 ([`Camera::zoomed`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Extent {
+    pub x0: f64,
+    pub x1: f64,
+    pub y0: f64,
+    pub y1: f64,
+}
+
+impl Extent {
+    /// No points.
+    pub const EMPTY: Self = Self { x0: f64::INFINITY, x1: f64::NEG_INFINITY, y0: f64::INFINITY, y1: f64::NEG_INFINITY };
+
+    /// With the projection `q`.
+    #[must_use]
+    pub fn with(self, q: Projected) -> Self {
+        Self { x0: self.x0.min(q.x), x1: self.x1.max(q.x), y0: self.y0.min(q.y), y1: self.y1.max(q.y) }
+    }
+
+    /// Both ranges.
+    #[must_use]
+    pub fn union(self, o: Self) -> Self {
+        Self { x0: self.x0.min(o.x0), x1: self.x1.max(o.x1), y0: self.y0.min(o.y0), y1: self.y1.max(o.y1) }
+    }
 }
 
 #[cfg(test)]
