@@ -151,7 +151,7 @@ impl Camera {
     ) -> Self {
         let (lo, hi) = bounds(points.clone().into_iter());
         let (camera, radius) = Self::aimed(view, projection, lo, hi);
-        let extent = points.into_iter().filter(|p| p.is_finite()).fold(Extent::EMPTY, |e, p| e.with(camera.project(p)));
+        let extent = points.into_iter().fold(Extent::EMPTY, |e, p| camera.extend(e, p));
         camera.zoomed(extent, radius, size, margin)
     }
 
@@ -174,6 +174,13 @@ impl Camera {
             Projection::Orthographic => target + back * (2.0 * radius),
         };
         (Self { eye, right, up, back, projection, scale: 1.0, centre: [0.0, 0.0] }, radius)
+    }
+
+    /// `extent` with the projection of `p` at this camera's scale and centre (unchanged
+    /// when `p` is not finite).
+    #[inline]
+    pub(crate) fn extend(&self, extent: Extent, p: DVec3) -> Extent {
+        if p.is_finite() { extent.with(self.project(p)) } else { extent }
     }
 
     /// This camera (from [`Self::aimed`], with its `radius`) scaled and centred so that the
@@ -250,7 +257,16 @@ pub(crate) fn box_radius(lo: DVec3, hi: DVec3) -> f64 {
 
 /// The box of the finite points (`lo > hi` when there are none).
 pub(crate) fn bounds(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
-    points.filter(|p| p.is_finite()).fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)))
+    points.fold(EMPTY_BOX, grow_box)
+}
+
+/// The box of no points.
+pub(crate) const EMPTY_BOX: (DVec3, DVec3) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+
+/// The box `(lo, hi)` grown to hold `p` (unchanged when `p` is not finite).
+#[inline]
+pub(crate) fn grow_box((lo, hi): (DVec3, DVec3), p: DVec3) -> (DVec3, DVec3) {
+    if p.is_finite() { (lo.min(p), hi.max(p)) } else { (lo, hi) }
 }
 
 /// The range of projected positions at scale 1 ([`Camera::zoomed`]).

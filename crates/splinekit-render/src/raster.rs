@@ -40,7 +40,7 @@
 use glam::{DVec3, Vec3A};
 use splinekit::TriMesh;
 
-use crate::camera::{Camera, DEFAULT_MARGIN, Extent, Projection, View, bounds, box_radius};
+use crate::camera::{Camera, DEFAULT_MARGIN, EMPTY_BOX, Extent, Projection, View, bounds, box_radius, grow_box};
 use crate::image::{Image, ImageSize, Rgb};
 use crate::marks::Mark;
 
@@ -294,18 +294,17 @@ impl Renderer {
         let (sw, sh) = (size.width as usize * ss as usize, size.height as usize * ss as usize);
         // As `Camera::fit` on every vertex and mark point, the meshes' in parallel.
         let mark_points = || marks.iter().flat_map(Mark::points);
-        let grow = |(lo, hi): (DVec3, DVec3), &p: &DVec3| if p.is_finite() { (lo.min(p), hi.max(p)) } else { (lo, hi) };
         let join = |a: (DVec3, DVec3), b: (DVec3, DVec3)| (a.0.min(b.0), a.1.max(b.1));
         let (lo, hi) = meshes
             .iter()
-            .map(|m| par_fold(&m.positions, bounds(std::iter::empty()), grow, join))
+            .map(|m| par_fold(&m.positions, EMPTY_BOX, |b, &p| grow_box(b, p), join))
             .fold(bounds(mark_points()), join);
         let (camera, radius) = Camera::aimed(options.view, options.projection, lo, hi);
-        let extent = |e: Extent, &p: &DVec3| if p.is_finite() { e.with(camera.project(p)) } else { e };
+        let marks_extent = mark_points().fold(Extent::EMPTY, |e, p| camera.extend(e, p));
         let extent = meshes
             .iter()
-            .map(|m| par_fold(&m.positions, Extent::EMPTY, extent, Extent::union))
-            .fold(mark_points().collect::<Vec<_>>().iter().fold(Extent::EMPTY, extent), Extent::union);
+            .map(|m| par_fold(&m.positions, Extent::EMPTY, |e, &p| camera.extend(e, p), Extent::union))
+            .fold(marks_extent, Extent::union);
         let camera = camera.zoomed(extent, radius, size, options.margin);
         let radius = box_radius(lo, hi);
 
@@ -393,11 +392,15 @@ impl Renderer {
                     target.triangle(t.v, t.id, false, None);
                 }
             }
-            target.farthest_per_tile(&mut scratch.tiles);
+            // (Only when some mesh triangle could be skipped.)
+            let tiles = bins.iter().any(|part| part[2 * b + 1].iter().any(|t| u64::from(t.id) < mark_base));
+            if tiles {
+                target.farthest_per_tile(&mut scratch.tiles);
+            }
             for part in bins {
                 for t in &part[2 * b + 1] {
                     let mark = u64::from(t.id) >= mark_base;
-                    target.triangle(t.v, t.id, mark, (!mark).then_some(&scratch.tiles[..]));
+                    target.triangle(t.v, t.id, mark, (tiles && !mark).then_some(&scratch.tiles[..]));
                 }
             }
             // Shading pass.
