@@ -16,6 +16,9 @@
 #
 # seconds  = median over K runs of the median of R repeats (splinekit: Q, default 25) of the subdivision alone (no file I/O; see each driver's header
 #            for exactly what is timed), levels N (default 3), peers on one thread;
+# memory fill = bench/drivers/fill_scaling: GB/s filling 128 MB of fresh pages and of mapped
+#            memory on 1 and 2 threads, before and after the runs (the 2-thread ceiling of
+#            memory-bound work on this machine);
 # rss_MB   = peak resident memory of the whole process (GNU time %M: input, output, everything);
 # out_MB   = size of the output arrays, V*3*8 + F*k*4 bytes (f64 positions, u32 corners: k = 3 for
 #            triangles, 4 for quads; splinekit's quads also carry F*4 bytes of face offsets).
@@ -49,7 +52,7 @@ while [ $# -gt 0 ]; do
     --no-install) install=0; shift ;;
     --no-igl) igl=0; shift ;;
     --no-splinekit) splinekit=0; shift ;;
-    *) sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+    *) sed -n '2,/^set -euo/{/^#/p}' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
     esac
 done
 case "$scheme" in
@@ -115,6 +118,20 @@ echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; $levels levels; 
 if ! python3 -c 'import sys; sys.exit(float(sys.argv[1]) >= 0.5)' "$load"; then
     notes+=("the machine was busy at the start (load average $load): other work inflates every time")
 fi
+# The machine's own two-thread ceiling for memory-bound work (bench/drivers/fill_scaling.cpp):
+# filling fresh pages (faults and clearing, which every new output pays) and memory already
+# mapped, on one thread and on two. It varies from run to run on a virtual machine, so it is
+# measured before and after the runs.
+fill() { # when
+    [ -x "$peers/fill_scaling" ] || return 0
+    "$peers/fill_scaling" 128 | python3 -c '
+import json, sys
+j = json.load(sys.stdin)
+f, w = j["fresh_gbps"], j["warm_gbps"]
+print("# memory fill %s, GB/s on 1 / 2 threads: fresh pages %.1f / %.1f (%.2fx), mapped memory %.1f / %.1f (%.2fx)"
+      % (sys.argv[1], f[0], f[1], f[1] / f[0], w[0], w[1], w[1] / w[0]))' "$1"
+}
+fill before
 declare -A secs counts
 fmt='%-18s %-13s %6s %10s %10s %10s %9s %9s\n'
 printf "$fmt" tool mesh levels seconds vertices faces rss_MB out_MB
@@ -188,6 +205,7 @@ if [ "$scheme" != loop ]; then
 fi
 
 # ---- ratios (issue #4 and #7 targets: OpenSubdiv / splinekit-t1 >= 8, splinekit t1 / t2 >= 1.7)
+fill after
 echo
 if [ "$splinekit" = 1 ]; then
     printf '%-13s %22s %22s %20s\n' mesh "opensubdiv/splinekit-t1" "opensubdiv/splinekit-t2" "splinekit t1/t2"

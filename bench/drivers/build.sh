@@ -33,3 +33,4 @@ build osd_catmark /usr/include/opensubdiv/far/primvarRefiner.h -losdCPU
 build cgal_loop /usr/include/CGAL/subdivision_method_3.h -lgmp -lmpfr
 build cgal_sqrt3_doosabin /usr/include/CGAL/subdivision_method_3.h -lgmp -lmpfr
 build openmesh_loop /usr/include/OpenMesh/Tools/Subdivider/Uniform/LoopT.hh -lOpenMeshCore
+build fill_scaling /usr/include/stdlib.h -pthread
