@@ -71,14 +71,22 @@ trait Corners: Sync {
     /// How many edges the corners of child face `c` own.
     #[inline]
     fn child_owners(&self, c: u32) -> u32 {
-        owned(c, self.child_twins(c))
+        owner_bits(c, self.child_twins(c)).count_ones()
     }
 }
 
-/// How many edges the corners of child face `c`, whose twins are `t`, own.
+/// The owner bits of quad `q` whose corners' twins are `t`: bit `k` when corner `4q + k` owns
+/// its edge (it has no twin, or comes before it).
 #[inline]
-fn owned(c: u32, t: [u32; 4]) -> u32 {
-    (0..4).map(|j| u32::from(4 * c + j < t[j as usize])).sum()
+fn owner_bits(q: u32, t: [u32; 4]) -> u32 {
+    (0..4).fold(0, |m, k| m | u32::from(4 * q + k < t[k as usize]) << k)
+}
+
+/// The twins of the corners of quad `q`.
+#[inline]
+fn quad_twins(twin: &[u32], q: u32) -> [u32; 4] {
+    let i = 4 * q as usize;
+    [twin[i], twin[i + 1], twin[i + 2], twin[i + 3]]
 }
 
 impl Corners for Rings<'_> {
@@ -210,8 +218,7 @@ impl QuadLevel {
     /// taking over the adjacency's twins and edges.
     pub(super) fn from_quad_rings(rings: Rings<'_>) -> Self {
         let Rings { mesh, mut adj } = rings;
-        let edge_base =
-            counts_before(mesh.num_faces(), |q| (4 * q..4 * q + 4).map(|c| u32::from(c < adj.twin[c as usize])).sum());
+        let edge_base = counts_before(mesh.num_faces(), |q| owner_bits(q, quad_twins(&adj.twin, q)).count_ones());
         let mut vertex_start = Vec::new();
         (0..mesh.num_vertices() as u32)
             .into_par_iter()
@@ -234,8 +241,7 @@ impl QuadLevel {
     /// The owner bits of the corners of face `q` (bit `k` for corner `4q + k`).
     #[inline]
     fn owners(&self, q: u32) -> u32 {
-        let t = &self.twin[4 * q as usize..4 * q as usize + 4];
-        (0..4).fold(0, |m, k| m | u32::from(4 * q + k < t[k as usize]) << k)
+        owner_bits(q, quad_twins(&self.twin, q))
     }
 
     /// The edge of corner `c`.
@@ -415,7 +421,7 @@ impl QuadLevel {
             .with_min_len(MIN_LEN)
             .map(|c| {
                 let t = self.child_twins(c);
-                (t, owned(c, t))
+                (t, owner_bits(c, t).count_ones())
             })
             .unzip_into_vecs(&mut twin, &mut counts);
         let edge_base = prefix_sums(counts);
@@ -461,10 +467,7 @@ impl QuadLevel {
                 let mut m = 0;
                 for k in 0..4 {
                     let c = 4 * q + k;
-                    let t = self.child_twins(c);
-                    for j in 0..4 {
-                        m |= u32::from(4 * c + j < t[j as usize]) << (4 * k + j);
-                    }
+                    m |= owner_bits(c, self.child_twins(c)) << (4 * k);
                 }
                 m
             })
@@ -583,14 +586,13 @@ impl Grandchild<'_> {
                 for (q, on_face) in (q0..).zip(on_faces) {
                     let mv = self.m_faces(q);
                     let at = |k: usize, j: usize| pm[mv[k][j] as usize];
-                    let i = 4 * q as usize;
-                    let tw = [s.twin[i], s.twin[i + 1], s.twin[i + 2], s.twin[i + 3]];
+                    let tw = quad_twins(&s.twin, q);
                     // The M vertex on S face q: valence 4, its corners 16q + 4k + 2 ascending.
                     let ring = (0..4).fold(T::default(), |r, k| r + at(k, 3));
                     let centres = (0..4).fold(T::default(), |r, k| r + fp(4 * q + k as u32));
                     *on_face = at(0, 2) * 0.5 + (ring + centres) * 0.0625;
                     // The M vertices on the S edges q owns.
-                    let mut owners = (0..4).fold(0, |m, k| m | u32::from(4 * q + k < tw[k as usize]) << k);
+                    let mut owners = owner_bits(q, tw);
                     while owners != 0 {
                         let o = 4 * q + owners.trailing_zeros();
                         owners &= owners - 1;
