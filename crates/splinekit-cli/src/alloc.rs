@@ -26,7 +26,7 @@
 //! pages in again.
 //!
 //! This is the workspace's only unsafe code: implementing [`GlobalAlloc`] is unsafe by
-//! definition, and `mmap`, `mremap`, `munmap` and `madvise` and `mallopt` are foreign functions.
+//! definition, and `mmap`, `mremap`, `munmap`, `madvise` and `mallopt` are foreign functions.
 #![allow(unsafe_code)]
 
 use std::alloc::{GlobalAlloc, Layout, System};
