@@ -355,8 +355,8 @@ fn one_shot_equals_the_pyramid_to_the_bit() {
                 for color_by_level in [false, true] {
                     let o = LoopOptions { weights, boundary, color_by_level };
                     let mut pyramid = LoopPyramid::new(&mesh, o).unwrap();
-                    pyramid.refine_to(4, |_| {});
-                    for levels in 0..=4 {
+                    pyramid.refine_to(5, |_| {});
+                    for levels in 0..=5 {
                         let mut seen = Vec::new();
                         let fine = LoopPyramid::new(&mesh, o).unwrap().into_refined(levels, |k| seen.push(k));
                         assert_eq!(seen, (1..=levels).collect::<Vec<_>>());

@@ -35,7 +35,9 @@
 //! further: it makes each level from the tables of the level two above it (`grandchild`), and
 //! the finest from those three above it (`great`), so tables and triangles are made only up
 //! to three levels above the finest (for three levels: none beyond the base), and the finest
-//! level's triangles and values are written straight from them.
+//! level's triangles and values are written straight from them, the triangles side by side
+//! with the last steps' values (`rayon::join`), so that on several threads neither waits at
+//! the ends of the other's passes.
 
 use core::ops::{Add, Mul};
 use std::borrow::Cow;
@@ -640,7 +642,7 @@ impl LoopPyramid {
     /// levels up to `levels − 3` below get tables and triangles, and besides the output at
     /// most the values of its parent and the tables of two levels are alive.
     #[must_use]
-    pub fn into_refined(mut self, levels: usize, mut progress: impl FnMut(usize)) -> LoopLevel {
+    pub fn into_refined(mut self, levels: usize, mut progress: impl FnMut(usize) + Send) -> LoopLevel {
         let last = self.levels.len() - 1;
         if levels < 2 || self.levels[last].normals.is_some() || self.levels[last].uvs.is_some() {
             for k in 1..=levels {
@@ -657,20 +659,17 @@ impl LoopPyramid {
         self.ensure_topology(last);
         let mut level = self.levels.pop().expect("a pyramid has a base level");
         self.levels.clear();
-        let (mut positions, mut colors) = self.child_values(&level.table(), &level);
-        (level.positions, level.colors) = (Vec::new(), Vec::new());
-        progress(1);
         let d0 = level.depth;
-        for k in 2..=levels {
-            // `positions` and `colors` are level k − 1's; `level` is level k − 2, except at the
-            // last of three or more steps, where it is level k − 3 (see `finest_level`).
-            if k == levels {
-                let finest = self.finest_level(&level, positions, colors, d0 + k);
-                progress(k);
-                return finest;
-            }
-            let (fine, fine_colors) = self.grandchild_values(&level.table(), &positions, colors, d0 + k);
-            if k + 1 < levels {
+        // Steps 1 to levels − 2 when there are four or more, each followed (from step 2 on) by
+        // the tables of the level one step below `level`, until `level` is level
+        // `levels − 3`, whose tables make the finest level's triangles.
+        let before = if levels >= 4 { levels - 2 } else { 0 };
+        let mut values = None;
+        for k in 1..=before {
+            let step = self.value_step(&level, k, levels, values.take());
+            if k == 1 {
+                (level.positions, level.colors) = (Vec::new(), Vec::new());
+            } else {
                 let (triangles, topology) = child_level(&level.table());
                 level = LoopLevel {
                     triangles,
@@ -682,20 +681,49 @@ impl LoopPyramid {
                     uvs: None,
                 };
             }
-            (positions, colors) = (fine, fine_colors);
+            values = Some(step);
             progress(k);
         }
-        unreachable!("the loop returns at k = levels ≥ 2")
+        // The last steps (all of them for two or three levels), side by side with the
+        // finest level's triangles, which only need `level`'s tables: on several threads each
+        // fills the other's waits at the ends of its passes. On one thread the steps run first
+        // and drop their inputs, whose memory then serves the triangles (see the CLI's
+        // allocator).
+        let great = levels >= 3;
+        let ((positions, colors), triangles) = rayon::join(
+            || {
+                for k in before + 1..=levels {
+                    values = Some(self.value_step(&level, k, levels, values.take()));
+                    progress(k);
+                }
+                values.expect("at least one step")
+            },
+            || {
+                let table = level.table();
+                if great { great_grandchild_triangles(&table) } else { grandchild_triangles(&table) }
+            },
+        );
+        LoopLevel { triangles, positions, colors, depth: d0 + levels, topology: None, normals: None, uvs: None }
     }
 
-    /// The finest level, level `depth`, from the positions and colours of level `depth − 1`
-    /// and the tables of `level`: level `depth − 3` (the great-grandchild passes), or
-    /// `depth − 2` when there are only two steps.
-    fn finest_level(&self, level: &LoopLevel, positions: Vec<DVec3>, colors: Vec<DVec3>, depth: usize) -> LoopLevel {
+    /// The positions and colours made by step `k` of `levels` from `parent`, those of the
+    /// step before (dropped before it returns; `None` for `k = 1`, which makes the child of
+    /// `level` from `level`'s own values), with the tables of `level`: the level two steps
+    /// above the one made, or three for the finest of three or more steps.
+    fn value_step(
+        &self,
+        level: &LoopLevel,
+        k: usize,
+        levels: usize,
+        parent: Option<(Vec<DVec3>, Vec<DVec3>)>,
+    ) -> (Vec<DVec3>, Vec<DVec3>) {
         let table = level.table();
-        let great = level.depth + 3 == depth;
+        let Some((positions, colors)) = parent else {
+            return self.child_values(&table, level);
+        };
+        let depth = level.depth + if k == levels && levels >= 3 { 3 } else { 2 };
         let values = |p: &[DVec3]| {
-            if great {
+            if depth == level.depth + 3 {
                 great_grandchild_values(&table, p, &self.rules)
             } else {
                 grandchild_values(&table, p, &self.rules)
@@ -704,26 +732,6 @@ impl LoopPyramid {
         let fine = values(&positions);
         drop(positions);
         let fine_colors = child_colors(self.options.color_by_level, &colors, fine.len(), depth, values);
-        drop(colors);
-        // Made last, so that the memory of the inputs just dropped serves it (see the CLI's
-        // allocator).
-        let triangles = if great { great_grandchild_triangles(&table) } else { grandchild_triangles(&table) };
-        LoopLevel { triangles, positions: fine, colors: fine_colors, depth, topology: None, normals: None, uvs: None }
-    }
-
-    /// The positions and colours two steps below `s`, from those one step below, making
-    /// level `depth`.
-    fn grandchild_values(
-        &self,
-        s: &Table<'_>,
-        positions: &[DVec3],
-        colors: Vec<DVec3>,
-        depth: usize,
-    ) -> (Vec<DVec3>, Vec<DVec3>) {
-        let fine = grandchild_values(s, positions, &self.rules);
-        let fine_colors = child_colors(self.options.color_by_level, &colors, fine.len(), depth, |c| {
-            grandchild_values(s, c, &self.rules)
-        });
         (fine, fine_colors)
     }
 

@@ -137,12 +137,7 @@ impl Topology {
         };
         let (offsets, leaving) = leaving_lists(triangles, nv)?;
         // (half-edge, its head) pairs.
-        let out = |v: u32| {
-            leaving[offsets[v as usize] as usize..offsets[v as usize + 1] as usize]
-                .iter()
-                .map(|c| c.load(Ordering::Relaxed))
-                .map(|c| [c as u32, (c >> 32) as u32])
-        };
+        let out = |v: u32| leaving_from(&offsets, &leaving, v);
         let mut twin = Vec::new();
         (0..nh as u32)
             .into_par_iter()
@@ -166,36 +161,43 @@ impl Topology {
         if problem.load(Ordering::Relaxed) {
             return None;
         }
-        let mut vertex_start = Vec::new();
-        (0..nv as u32)
-            .into_par_iter()
-            .with_min_len(MIN_RINGS)
-            .map(|v| {
-                let corners = offsets[v as usize + 1] - offsets[v as usize];
-                let Some([first, _]) = out(v).next() else { return NONE };
-                let start = out(v).map(|[h, _]| h).filter(|&h| twin[h as usize] == NONE).last().unwrap_or(first);
-                // Every corner must be reached by rotating from the start.
-                let mut h = start;
-                let mut n = 1;
-                loop {
-                    let t = twin[(h - h % 3 + prev(h % 3)) as usize];
-                    if t == NONE || t == start {
-                        break;
+        // The starts and the edge numbers only read the twins: side by side, so that on several
+        // threads neither waits at the end of its passes. The leaving lists go with the starts,
+        // freed before the edges are numbered when there is one thread.
+        let tw = &twin;
+        let starts = move || {
+            let out = |v: u32| leaving_from(&offsets, &leaving, v);
+            let mut vertex_start = Vec::new();
+            (0..nv as u32)
+                .into_par_iter()
+                .with_min_len(MIN_RINGS)
+                .map(|v| {
+                    let corners = offsets[v as usize + 1] - offsets[v as usize];
+                    let Some([first, _]) = out(v).next() else { return NONE };
+                    let start = out(v).map(|[h, _]| h).filter(|&h| tw[h as usize] == NONE).last().unwrap_or(first);
+                    // Every corner must be reached by rotating from the start.
+                    let mut h = start;
+                    let mut n = 1;
+                    loop {
+                        let t = tw[(h - h % 3 + prev(h % 3)) as usize];
+                        if t == NONE || t == start {
+                            break;
+                        }
+                        h = t;
+                        n += 1;
+                        if n > corners {
+                            return fail();
+                        }
                     }
-                    h = t;
-                    n += 1;
-                    if n > corners {
-                        return fail();
-                    }
-                }
-                if n == corners { start } else { fail() }
-            })
-            .collect_into_vec(&mut vertex_start);
+                    if n == corners { start } else { fail() }
+                })
+                .collect_into_vec(&mut vertex_start);
+            vertex_start
+        };
+        let (vertex_start, (edge_of, edge_owner)) = rayon::join(starts, || number_edges(tw));
         if problem.load(Ordering::Relaxed) {
             return None;
         }
-        drop(leaving); // no longer read: less memory alive while the edges are numbered
-        let (edge_of, edge_owner) = number_edges(&twin);
         Some(Self { twin, edge_of, edge_owner, vertex_start })
     }
 
@@ -304,6 +306,15 @@ impl Topology {
             (child_triangles(&level), None)
         }
     }
+}
+
+/// The half-edges leaving vertex `v` and their heads, `[h, head]`, from [`leaving_lists`].
+#[inline]
+fn leaving_from<'a>(offsets: &[u32], leaving: &'a [AtomicU64], v: u32) -> impl Iterator<Item = [u32; 2]> + 'a {
+    leaving[offsets[v as usize] as usize..offsets[v as usize + 1] as usize]
+        .iter()
+        .map(|c| c.load(Ordering::Relaxed))
+        .map(|c| [c as u32, (c >> 32) as u32])
 }
 
 /// The half-edges leaving each vertex, in half-edge order, each as `h | head << 32` (the
