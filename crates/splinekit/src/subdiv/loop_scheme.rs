@@ -721,9 +721,10 @@ impl LoopPyramid {
         let Some((positions, colors)) = parent else {
             return self.child_values(&table, level);
         };
-        let depth = level.depth + if k == levels && levels >= 3 { 3 } else { 2 };
+        let great = k == levels && levels >= 3;
+        let depth = level.depth + if great { 3 } else { 2 };
         let values = |p: &[DVec3]| {
-            if depth == level.depth + 3 {
+            if great {
                 great_grandchild_values(&table, p, &self.rules)
             } else {
                 grandchild_values(&table, p, &self.rules)
