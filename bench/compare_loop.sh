@@ -4,7 +4,7 @@
 # triangle meshes; Catmull-Clark (issue #7): OpenSubdiv's catmark and splinekit (1 and 2 threads)
 # on a 100k-quad torus.
 #
-#   bench/compare_loop.sh [--scheme loop|catmull-clark|all] [--levels N] [--repeat R] [--sk-repeat Q]
+#   bench/compare_loop.sh [--scheme loop|catmull-clark|all] [--levels N] [--repeat R] [--sk-repeat Q|auto]
 #                         [--rounds K] [--settle S] [--no-install] [--no-igl] [--no-splinekit]
 #
 # --scheme picks the comparisons (default all: Loop, then Catmull-Clark).
@@ -14,7 +14,7 @@
 # target/bench-meshes/ (once; target is $CARGO_TARGET_DIR when set, as for cargo), and runs every tool K times (default 3) per mesh with --repeat R,
 # each run after S seconds of rest (default 1: a peer's freed memory slows the next process).
 #
-# seconds  = median over K runs of the median of R repeats (splinekit: Q, default 25) of the subdivision alone (no file I/O; see each driver's header
+# seconds  = median over K runs of the median of R repeats (splinekit: Q, default auto, see below) of the subdivision alone (no file I/O; see each driver's header
 #            for exactly what is timed), levels N (default 3), peers on one thread;
 # memory fill = bench/drivers/fill_scaling: GB/s filling 128 MB of fresh pages and of mapped
 #            memory on 1 and 2 threads, before and after the runs (the 2-thread ceiling of
@@ -26,7 +26,11 @@
 # Why splinekit repeats more: the first one or two subdivisions of a process run on memory the
 # virtual machine's host has not backed yet and take up to 7x longer (grid50k, one thread: 0.23 s
 # for the first run, 0.033 s for the next ones). A peer's median of 5 repeats of 0.3-0.6 s is past
-# that; splinekit's repeats take 10-30 ms, so 25 of them make the same ~1 s of steady state.
+# that and spans 1.5-3 s. splinekit's repeats take 6-160 ms, so with --sk-repeat auto (the
+# default) each run repeats enough times to span about one second too (at least 25; a probe run of
+# 3 repeats sets the count). Fewer would make the two-thread median hostage to the host: on this
+# machine a vCPU is now and then taken away for 50-300 ms at a time (two-thread repeats then take
+# the one-thread time; see bench/README.md), which can be most of 25 repeats of 6 ms.
 #
 # Documentation and measurement only: never run by CI, asserts nothing. Takes about five minutes.
 set -euo pipefail
@@ -35,7 +39,7 @@ root="$(cd "$here/.." && pwd)"
 scheme=all
 levels=3
 repeat=5
-sk_repeat=25
+sk_repeat=auto
 rounds=3
 settle=1
 install=1
@@ -114,7 +118,7 @@ fi
 
 # ---- runs
 load="$(cut -d' ' -f1 /proc/loadavg)"
-echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; $levels levels; each line the median over $rounds runs of the median of $repeat repeats ($sk_repeat for splinekit); peers on one thread"
+echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; $levels levels; each line the median over $rounds runs of the median of $repeat repeats (splinekit: $sk_repeat; auto = enough for about 1 s per run, at least 25); peers on one thread"
 if ! python3 -c 'import sys; sys.exit(float(sys.argv[1]) >= 0.5)' "$load"; then
     notes+=("the machine was busy at the start (load average $load): other work inflates every time")
 fi
@@ -173,6 +177,21 @@ PY
     fi
     printf "$fmt" "$tool" "$mesh" "$levels" "$s" "$v" "$f" "$rss" "$outmb"
 }
+# Repeats per splinekit run: --sk-repeat, or with auto enough for about one second (at least 25),
+# from a probe run of 3 repeats.
+sk_repeats() { # command...
+    if [ "$sk_repeat" != auto ]; then
+        echo "$sk_repeat"
+        return 0
+    fi
+    "$@" --repeat 3 2>/dev/null | python3 -c '
+import json, math, sys
+try:
+    s = float(json.loads(sys.stdin.read().strip().splitlines()[-1])["seconds"])
+except Exception:
+    s = 0.04
+print(min(2000, max(25, math.ceil(1.0 / max(s, 1e-4)))))'
+}
 if [ "$scheme" != catmull-clark ]; then
     echo "# Loop"
     for m in "${loop_meshes[@]}"; do
@@ -185,7 +204,8 @@ if [ "$scheme" != catmull-clark ]; then
         fi
         if [ "$splinekit" = 1 ]; then
             for t in 1 2; do
-                run "splinekit-t$t" "$m" "$sk" subdivide "$in" -n "$levels" --json --repeat "$sk_repeat" --threads "$t"
+                q="$(sk_repeats "$sk" subdivide "$in" -n "$levels" --json --threads "$t")"
+                run "splinekit-t$t" "$m" "$sk" subdivide "$in" -n "$levels" --json --repeat "$q" --threads "$t"
             done
         fi
     done
@@ -197,8 +217,9 @@ if [ "$scheme" != loop ]; then
         [ -x "$peers/osd_catmark" ] && run opensubdiv "$m" "$peers/osd_catmark" "$in" -n "$levels" --repeat "$repeat"
         if [ "$splinekit" = 1 ]; then
             for t in 1 2; do
+                q="$(sk_repeats "$sk" subdivide "$in" -n "$levels" --scheme catmull-clark --json --threads "$t")"
                 run "splinekit-t$t" "$m" "$sk" subdivide "$in" -n "$levels" --scheme catmull-clark --json \
-                    --repeat "$sk_repeat" --threads "$t"
+                    --repeat "$q" --threads "$t"
             done
         fi
     done

@@ -22,8 +22,12 @@ use rayon::prelude::*;
 
 use crate::mesh::{Adjacency, NONE};
 
-/// Work items per rayon task (large, so that one thread runs at full speed).
-pub(crate) const MIN_LEN: usize = 1 << 13;
+/// Work items per rayon task, at least. A pass ends when its last task does, so the thread
+/// that finishes first waits for at most one task: small tasks keep two threads together
+/// (on a 20k-triangle icosphere, 2¹³ items per task lost 4–5 % on two threads to that wait
+/// against 2¹⁰), and 2¹⁰ items still dwarf a task's cost of about a microsecond. One thread
+/// runs a pass as one or two tasks whatever this is.
+pub(crate) const MIN_LEN: usize = 1 << 10;
 
 /// Vertices per rayon task in passes that walk vertex rings: each costs several items' worth,
 /// and smaller tasks balance two threads on small meshes.
