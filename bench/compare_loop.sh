@@ -28,7 +28,8 @@
 # for the first run, 0.033 s for the next ones). A peer's median of 5 repeats of 0.3-0.6 s is past
 # that and spans 1.5-3 s. splinekit's repeats take 6-160 ms, so with --sk-repeat auto (the
 # default) each run repeats enough times to span about one second too (at least 25; a probe run of
-# 3 repeats sets the count). Fewer would make the two-thread median hostage to the host: on this
+# 3 repeats sets the count, and as its median can be one of the slow first repeats, runs span
+# 0.5-1 s). Fewer would make the two-thread median hostage to the host: on this
 # machine a vCPU is now and then taken away for 50-300 ms at a time (two-thread repeats then take
 # the one-thread time; see bench/README.md), which can be most of 25 repeats of 6 ms.
 #
@@ -118,7 +119,7 @@ fi
 
 # ---- runs
 load="$(cut -d' ' -f1 /proc/loadavg)"
-echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; $levels levels; each line the median over $rounds runs of the median of $repeat repeats (splinekit: $sk_repeat; auto = enough for about 1 s per run, at least 25); peers on one thread"
+echo "# $(getconf _NPROCESSORS_ONLN) cores, load average $load; $levels levels; each line the median over $rounds runs of the median of $repeat repeats (splinekit: $sk_repeat; auto = about 0.5-1 s per run, at least 25); peers on one thread"
 if ! python3 -c 'import sys; sys.exit(float(sys.argv[1]) >= 0.5)' "$load"; then
     notes+=("the machine was busy at the start (load average $load): other work inflates every time")
 fi
@@ -178,13 +179,13 @@ PY
     printf "$fmt" "$tool" "$mesh" "$levels" "$s" "$v" "$f" "$rss" "$outmb"
 }
 # Repeats per splinekit run: --sk-repeat, or with auto enough for about one second (at least 25),
-# from a probe run of 3 repeats.
+# from a probe run of 3 repeats. A probe that fails gives 25, and `run` then reports the failure.
 sk_repeats() { # command...
     if [ "$sk_repeat" != auto ]; then
         echo "$sk_repeat"
         return 0
     fi
-    "$@" --repeat 3 2>/dev/null | python3 -c '
+    { "$@" --repeat 3 2>/dev/null || true; } | python3 -c '
 import json, math, sys
 try:
     s = float(json.loads(sys.stdin.read().strip().splitlines()[-1])["seconds"])
