@@ -59,8 +59,8 @@
 //!   lower density, Wang's bound `(h²/8)·max|C″| ≤ tolerance` — valid for any chord, cusps
 //!   included — gives the density instead.
 //!
-//! The bounds are evaluated in `f32`, four cells at a time, from the power form of the
-//! curve scaled to unit size in `f64`. Every quantity that can cancel gets an explicit
+//! The bounds are evaluated in `f32` (four cells per SIMD instruction, three such groups
+//! interleaved) from the power form of the curve scaled to unit size in `f64`. Every quantity that can cancel gets an explicit
 //! rounding allowance (a multiple of the `f32` roundoff times the magnitude of its terms,
 //! computed in `f64` from the coefficients), the cells are widened by `2⁻¹⁸` to cover their
 //! `f32` middles, and `2⁻¹⁷` of the tolerance is kept back for the relative rounding of the
@@ -101,6 +101,7 @@
 //! ([`DEFAULT_TOLERANCE`] for distances, [`DEFAULT_ANGLE_TOLERANCE`] for angles). A distance
 //! tolerance below `1e-12 ×` the largest control-point coordinate (the accuracy of `f64`
 //! evaluation itself) is raised to that floor.
+//! A cubic with a control point that is not finite gives a single chord.
 
 use core::f64::consts::PI;
 
@@ -456,13 +457,19 @@ pub fn flatten_cubic_distance_with<P: Vector>(c: &CubicBezier<P>, tolerance: f64
 /// is not finite.
 fn unit_scale<P: Vector>(c: &CubicBezier<P>, tolerance: f64) -> Option<(P, P, P, f64)> {
     let tolerance = valid_or(tolerance, DEFAULT_TOLERANCE);
-    let mut magnitude = 0.0f64;
-    for p in c.points() {
+    // the largest |coordinate|, as a tree of maxima, and the sum of the coordinates times 0,
+    // which is 0 unless one of them is NaN or infinite
+    let max = |x: f64, y: f64| if y > x { y } else { x };
+    let (mut per_point, mut sum) = ([0.0f64; 4], [0.0f64; 4]);
+    for (k, p) in c.points().into_iter().enumerate() {
         for i in 0..P::DIM {
-            magnitude = magnitude.max(p.component(i).abs());
+            per_point[k] = max(per_point[k], p.component(i).abs());
+            sum[k] += p.component(i) * 0.0;
         }
     }
-    if !(magnitude > 0.0 && magnitude <= f64::MAX) {
+    let magnitude = max(max(per_point[0], per_point[1]), max(per_point[2], per_point[3]));
+    let sum = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+    if !(magnitude > 0.0 && magnitude <= f64::MAX && sum == 0.0) {
         return None;
     }
     let biased = ((magnitude.to_bits() >> 52) as i64).clamp(1, 2045);
@@ -545,15 +552,18 @@ impl CellInputs {
     fn new<P: Vector>(a: P, b: P, c: P, e8: f64, hw: f64) -> Self {
         let (a3, b3, c3) = (a.to_dvec3(), b.to_dvec3(), c.to_dvec3());
         let (aa, ba, ca) = (a3.abs(), b3.abs(), c3.abs());
-        let dm = (aa + ba * 2.0 + ca * 3.0).max_element();
-        let em = (ba * 2.0 + ca * 6.0).max_element();
-        let cm = ca.max_element();
+        // largest coordinates (plain comparisons: the curve is finite)
+        let max = |x: f64, y: f64| if y > x { y } else { x };
+        let max_element = |v: glam::DVec3| max(max(v.x, v.y), v.z);
+        let dm = max_element(aa + ba * 2.0 + ca * 3.0);
+        let em = max_element(ba * 2.0 + ca * 6.0);
+        let cm = max_element(ca);
         let bc = b3.cross(c3);
         let bcn = if P::DIM == 2 { bc.z.abs() } else { bc.length() };
         let u = F32_ROUNDOFF;
         let el = 32.0 * u * dm * cm;
         let eg = 32.0 * u * (dm * dm + hw * dm * em + 3.0 * hw * hw * dm * cm);
-        let dd = (b * 2.0).length_squared().max((b * 2.0 + c * 6.0).length_squared()).sqrt();
+        let dd = max((b * 2.0).length_squared(), (b * 2.0 + c * 6.0).length_squared()).sqrt();
         let f = |v: glam::DVec3| [v.x as f32, v.y as f32, v.z as f32];
         Self {
             a: f(a3),
@@ -580,105 +590,117 @@ impl CellInputs {
     /// the tolerance (the module docs explain why); Wang's density where the chord lemma
     /// does not apply.
     #[inline(always)]
-    fn densities<const N: usize>(&self, mid: &[f32; N], hw: f32, out: &mut [f32; N]) {
+    fn densities(&self, mid: &[f32; CELLS], hw: f32, out: &mut [f32; CELLS]) {
+        const THIRD: usize = CELLS / 3;
+        const _: () = assert!(CELLS.is_multiple_of(3));
         let hw2 = hw * hw;
         // (c·C′(m))⁻/4 from cd = 3hw²·c·C′(m), rounded up
         let icd = (1.0 + 1.0 / 65536.0) / (12.0 * hw2);
-        for j in 0..N {
-            let m = mid[j];
-            // C′(m)·C′(m), C″(m)·C′(m), c·C′(m), and the Bernstein coefficients over the
-            // cell of Q = C′×C″ (norms), and |Λ(m)| = |C′(m)×c|
-            let (ss, de, dc, n0, n1, n2, lam);
-            if self.dim == 2 {
-                let dx = self.a[0] + m * (self.b2[0] + (3.0 * m) * self.c[0]);
-                let dy = self.a[1] + m * (self.b2[1] + (3.0 * m) * self.c[1]);
-                let ex = self.b2[0] + (6.0 * m) * self.c[0];
-                let ey = self.b2[1] + (6.0 * m) * self.c[1];
-                ss = dx * dx + dy * dy;
-                de = dx * ex + dy * ey;
-                dc = dx * self.c[0] + dy * self.c[1];
-                let q = dx * ey - dy * ex;
-                let l = dx * self.c[1] - dy * self.c[0];
-                // Q(m ± hw) = Q(m) ± hw·Q′(m) + hw²·k2, Q′ = 6Λ
-                let (qd, qq) = ((6.0 * hw) * l, hw2 * self.k2[2]);
-                n0 = (q + qq - qd).abs();
-                n1 = (q - qq).abs();
-                n2 = (q + qq + qd).abs();
-                lam = l.abs();
-            } else {
-                let mut d = [0.0f32; 3];
-                let mut e = [0.0f32; 3];
-                for k in 0..3 {
-                    d[k] = self.a[k] + m * (self.b2[k] + (3.0 * m) * self.c[k]);
-                    e[k] = self.b2[k] + (6.0 * m) * self.c[k];
-                }
-                ss = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                de = d[0] * e[0] + d[1] * e[1] + d[2] * e[2];
-                dc = d[0] * self.c[0] + d[1] * self.c[1] + d[2] * self.c[2];
-                let cross = |u: [f32; 3], v: [f32; 3]| {
-                    [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
-                };
-                let (q, l) = (cross(d, e), cross(d, self.c));
-                let (mut s0, mut s1, mut s2, mut sl) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
-                for k in 0..3 {
-                    let (qd, qq) = ((6.0 * hw) * l[k], hw2 * self.k2[k]);
-                    let (v0, v1, v2) = (q[k] + qq - qd, q[k] - qq, q[k] + qq + qd);
-                    s0 += v0 * v0;
-                    s1 += v1 * v1;
-                    s2 += v2 * v2;
-                    sl += l[k] * l[k];
-                }
-                n0 = s0.sqrt();
-                n1 = s1.sqrt();
-                n2 = s2.sqrt();
-                lam = sl.sqrt();
-            }
-            // Bernstein coefficients over the cell of C′(t)·C′(m), less their allowance
-            let g = hw * de;
-            let cd = (3.0 * hw2) * dc;
-            let base = ss + cd - self.eg;
-            let (g0, g1, g2) = (base - g, ss - cd - self.eg, base + g);
-            // |C′(m)|², rounded up
-            let sse = ss + self.es;
-            // cap: at least every width the cell can certify — the leading-order width of the
-            // largest |Q| coefficient with the largest speed coefficient, √(e8·g/n)·(ss + es)^(−1/4),
-            // from the exponent bits (0 to 15 % above it) — so the higher-order terms only grow.
-            // (Wrapping: a cell with a negative speed coefficient fails below, whatever the cap.)
-            let eb = (self.e8 * max32(max32(g0, g1), g2)).to_bits() as i32;
-            let nb = (max32(max32(n0, n1), n2) + self.eq).to_bits() as i32;
-            let sb = sse.to_bits() as i32;
-            let cb = (eb.wrapping_sub(nb) >> 1)
-                .wrapping_sub(sb.wrapping_sub(ONE_BITS) >> 2)
-                .wrapping_add(ONE_BITS + 369_099);
-            let cap = min32(f32::from_bits(cb as u32), 1.0);
-            let cap2 = cap * cap;
-            // (A): the terms |k2|·h²/12 and h·|Λ|·8/(12√3) join |Q|, (h²/4)·(c·û)⁻ leaves the speed
-            let add = self.k2n * cap2 + THIRD_ORDER * cap * (lam + self.lhw) + self.eq;
-            let drop = max32(self.ecd - cd, 0.0) * icd * cap2;
-            let (a0, a1, a2) = (g0 - drop, g1 - drop, g2 - drop);
-            let (n0, n1, n2) = (n0 + add, n1 + add, n2 + add);
-            // the largest ratio nᵢ/aᵢ (all aᵢ > 0 where it counts), picked by cross-multiplying
-            let (mut nn, mut aa) = (n0, a0);
-            if n1 * aa > nn * a1 {
-                (nn, aa) = (n1, a1);
-            }
-            if n2 * aa > nn * a2 {
-                (nn, aa) = (n2, a2);
-            }
-            let gmin = min32(min32(a0, a1), a2);
-            // (B): with R = 2·gmin/|C′(m)| (gmin is a lower bound for every width up to the cap),
-            // h·(max|C″| + h·|c|) ≤ R holds for every width h up to the root hb of the
-            // quadratic, and 1/hb ≤ max|C″|/R + √(|c|/R); the chord lemma needs the smaller of
-            // its own width and hb. One division serves both: 1/(aa·gmin).
-            let s = sse.sqrt();
-            let inv = 1.0 / (aa * gmin);
-            let ir = 0.5 * s * aa * inv;
-            let ib = self.dd * ir + (self.cn * ir).sqrt();
-            // 2⁻¹² covers the rounding of the selection, the division and (B)
-            let x = max32(s * self.ie8 * nn * gmin * inv, ib * ib) * (1.0 + 1.0 / 4096.0);
-            let x = if gmin > 0.0 && x < self.wang2 { x } else { self.wang2 };
-            out[j] = max32(x, 1.0).sqrt();
+        // three independent cells per SIMD lane, so that their long dependency chains overlap
+        for j in 0..THIRD {
+            let (k, l) = (j + THIRD, j + 2 * THIRD);
+            let (x, y, z) =
+                (self.cell(mid[j], hw, hw2, icd), self.cell(mid[k], hw, hw2, icd), self.cell(mid[l], hw, hw2, icd));
+            out[j] = x;
+            out[k] = y;
+            out[l] = z;
         }
+    }
+
+    /// The density of the cell around `m` (see [`densities`](Self::densities)).
+    #[inline(always)]
+    fn cell(&self, m: f32, hw: f32, hw2: f32, icd: f32) -> f32 {
+        // C′(m)·C′(m), C″(m)·C′(m), c·C′(m), and the Bernstein coefficients over the
+        // cell of Q = C′×C″ (norms), and |Λ(m)| = |C′(m)×c|
+        let (ss, de, dc, n0, n1, n2, lam);
+        if self.dim == 2 {
+            let dx = self.a[0] + m * (self.b2[0] + (3.0 * m) * self.c[0]);
+            let dy = self.a[1] + m * (self.b2[1] + (3.0 * m) * self.c[1]);
+            let ex = self.b2[0] + (6.0 * m) * self.c[0];
+            let ey = self.b2[1] + (6.0 * m) * self.c[1];
+            ss = dx * dx + dy * dy;
+            de = dx * ex + dy * ey;
+            dc = dx * self.c[0] + dy * self.c[1];
+            let q = dx * ey - dy * ex;
+            let l = dx * self.c[1] - dy * self.c[0];
+            // Q(m ± hw) = Q(m) ± hw·Q′(m) + hw²·k2, Q′ = 6Λ
+            let (qd, qq) = ((6.0 * hw) * l, hw2 * self.k2[2]);
+            n0 = (q + qq - qd).abs();
+            n1 = (q - qq).abs();
+            n2 = (q + qq + qd).abs();
+            lam = l.abs();
+        } else {
+            let mut d = [0.0f32; 3];
+            let mut e = [0.0f32; 3];
+            for k in 0..3 {
+                d[k] = self.a[k] + m * (self.b2[k] + (3.0 * m) * self.c[k]);
+                e[k] = self.b2[k] + (6.0 * m) * self.c[k];
+            }
+            ss = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            de = d[0] * e[0] + d[1] * e[1] + d[2] * e[2];
+            dc = d[0] * self.c[0] + d[1] * self.c[1] + d[2] * self.c[2];
+            let cross = |u: [f32; 3], v: [f32; 3]| {
+                [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+            };
+            let (q, l) = (cross(d, e), cross(d, self.c));
+            let (mut s0, mut s1, mut s2, mut sl) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
+            for k in 0..3 {
+                let (qd, qq) = ((6.0 * hw) * l[k], hw2 * self.k2[k]);
+                let (v0, v1, v2) = (q[k] + qq - qd, q[k] - qq, q[k] + qq + qd);
+                s0 += v0 * v0;
+                s1 += v1 * v1;
+                s2 += v2 * v2;
+                sl += l[k] * l[k];
+            }
+            n0 = s0.sqrt();
+            n1 = s1.sqrt();
+            n2 = s2.sqrt();
+            lam = sl.sqrt();
+        }
+        // Bernstein coefficients over the cell of C′(t)·C′(m), less their allowance
+        let g = hw * de;
+        let cd = (3.0 * hw2) * dc;
+        let base = ss + cd - self.eg;
+        let (g0, g1, g2) = (base - g, ss - cd - self.eg, base + g);
+        // |C′(m)|², rounded up
+        let sse = ss + self.es;
+        // cap: at least every width the cell can certify — the leading-order width of the
+        // largest |Q| coefficient with the largest speed coefficient, √(e8·g/n)·(ss + es)^(−1/4),
+        // from the exponent bits (0 to 15 % above it) — so the higher-order terms only grow.
+        // (Wrapping: a cell with a negative speed coefficient fails below, whatever the cap.)
+        let eb = (self.e8 * max32(max32(g0, g1), g2)).to_bits() as i32;
+        let nb = (max32(max32(n0, n1), n2) + self.eq).to_bits() as i32;
+        let sb = sse.to_bits() as i32;
+        let cb =
+            (eb.wrapping_sub(nb) >> 1).wrapping_sub(sb.wrapping_sub(ONE_BITS) >> 2).wrapping_add(ONE_BITS + 369_099);
+        let cap = min32(f32::from_bits(cb as u32), 1.0);
+        let cap2 = cap * cap;
+        // (A): the terms |k2|·h²/12 and h·|Λ|·8/(12√3) join |Q|, (h²/4)·(c·û)⁻ leaves the speed
+        let add = self.k2n * cap2 + THIRD_ORDER * cap * (lam + self.lhw) + self.eq;
+        let drop = max32(self.ecd - cd, 0.0) * icd * cap2;
+        let (a0, a1, a2) = (g0 - drop, g1 - drop, g2 - drop);
+        let (n0, n1, n2) = (n0 + add, n1 + add, n2 + add);
+        // the largest ratio nᵢ/aᵢ (all aᵢ > 0 where it counts), picked by cross-multiplying
+        let (mut nn, mut aa) = (n0, a0);
+        if n1 * aa > nn * a1 {
+            (nn, aa) = (n1, a1);
+        }
+        if n2 * aa > nn * a2 {
+            (nn, aa) = (n2, a2);
+        }
+        let gmin = min32(min32(a0, a1), a2);
+        // (B): with R = 2·gmin/|C′(m)| (gmin is a lower bound for every width up to the cap),
+        // h·(max|C″| + h·|c|) ≤ R holds for every width h up to the root hb of the
+        // quadratic, and 1/hb ≤ max|C″|/R + √(|c|/R); the chord lemma needs the smaller of
+        // its own width and hb. One division serves both: 1/(aa·gmin).
+        let s = sse.sqrt();
+        let inv = 1.0 / (aa * gmin);
+        let ir = 0.5 * s * aa * inv;
+        let ib = self.dd * ir + (self.cn * ir).sqrt();
+        // 2⁻¹² covers the rounding of the selection, the division and (B)
+        let x = max32(s * self.ie8 * nn * gmin * inv, ib * ib) * (1.0 + 1.0 / 4096.0);
+        let x = if gmin > 0.0 && x < self.wang2 { x } else { self.wang2 };
+        max32(x, 1.0).sqrt()
     }
 }
 
@@ -924,16 +946,15 @@ impl ChordPlan {
     #[inline(always)]
     fn extend(&self, out: &mut Vec<f64>) {
         if self.short {
-            let mut buf = [0.0f64; CHUNK];
             let n = self.n as usize;
             let mut j = 0usize;
-            for ((slot, &k), &d) in buf.iter_mut().zip(&COUNTS[1..n]).zip(&self.inc) {
+            // slices zipped and mapped: an exact length, so `extend` writes in place
+            out.extend(COUNTS[1..n].iter().zip(&self.inc).map(|(&k, &d)| {
                 j = (j + d as usize) & 15;
                 let t = self.a[j] + k * self.b[j];
-                *slot = if t > self.start[j] { t } else { self.start[j] };
-            }
-            buf[n - 1] = 1.0;
-            out.extend_from_slice(&buf[..n]);
+                if t > self.start[j] { t } else { self.start[j] }
+            }));
+            out.push(1.0);
         } else {
             self.for_each_inner(&mut |t| out.push(t));
             out.push(1.0);
@@ -1185,8 +1206,23 @@ mod tests {
             flatten_cubic_distance(&point, tol, &mut out);
             assert_eq!(out, vec![1.0]);
         }
-        let line = cubic([(0.0, 0.0), (1.0, 1.0), (2.0, 2.0), (3.0, 3.0)]);
+        // a control point that is not finite: one chord (the curve has no finite polyline)
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for k in 0..4 {
+                let mut p = [(0.0, 0.0), (30.0, 80.0), (70.0, -20.0), (100.0, 0.0)];
+                p[k].1 = bad;
+                let mut out = Vec::new();
+                flatten_cubic_distance(&cubic(p), 1e-3, &mut out);
+                assert_eq!(out, vec![1.0], "{p:?}");
+            }
+        }
+        // huge but finite coordinates are scaled, not refused
+        let huge = cubic([(0.0, 0.0), (1e308, 1e308), (-1e308, 1e308), (1e308, 0.0)]);
         let mut out = Vec::new();
+        flatten_cubic_distance(&huge, 1e305, &mut out);
+        assert!(out.len() > 3 && out.windows(2).all(|w| w[0] < w[1]), "{out:?}");
+        let line = cubic([(0.0, 0.0), (1.0, 1.0), (2.0, 2.0), (3.0, 3.0)]);
+        out.clear();
         flatten_cubic_distance(&line, 1e-9, &mut out);
         assert_eq!(out, vec![1.0]);
         // a straight cubic that doubles back on itself must not be one chord
