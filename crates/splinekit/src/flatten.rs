@@ -60,11 +60,11 @@
 //!   included — gives the density instead.
 //!
 //! The bounds are evaluated in `f32` (four cells per SIMD instruction, three such groups
-//! interleaved) from the power form of the curve scaled to unit size in `f64`. Every quantity that can cancel gets an explicit
-//! rounding allowance (a multiple of the `f32` roundoff times the magnitude of its terms,
-//! computed in `f64` from the coefficients), the cells are widened by `2⁻¹⁸` to cover their
-//! `f32` middles, and `2⁻¹⁷` of the tolerance is kept back for the relative rounding of the
-//! rest (about `2⁻²⁰`). No chord is ever emitted unchecked, and no measurement is involved.
+//! interleaved) from the power form of the curve scaled to unit size in `f64`. Every
+//! quantity that can cancel gets an explicit rounding allowance (a multiple of the `f32`
+//! roundoff times the magnitude of its terms, computed in `f64` from the coefficients), the
+//! cells are widened by `2⁻¹⁸` to cover their `f32` middles, and `2⁻¹⁷` of the tolerance is
+//! kept back for the relative rounding of the rest (about `2⁻²⁰`). No chord is ever emitted unchecked, and no measurement is involved.
 //!
 //! # Placement
 //!
@@ -457,19 +457,13 @@ pub fn flatten_cubic_distance_with<P: Vector>(c: &CubicBezier<P>, tolerance: f64
 /// is not finite.
 fn unit_scale<P: Vector>(c: &CubicBezier<P>, tolerance: f64) -> Option<(P, P, P, f64)> {
     let tolerance = valid_or(tolerance, DEFAULT_TOLERANCE);
-    // the largest |coordinate|, as a tree of maxima, and the sum of the coordinates times 0,
-    // which is 0 unless one of them is NaN or infinite
-    let max = |x: f64, y: f64| if y > x { y } else { x };
-    let (mut per_point, mut sum) = ([0.0f64; 4], [0.0f64; 4]);
-    for (k, p) in c.points().into_iter().enumerate() {
-        for i in 0..P::DIM {
-            per_point[k] = max(per_point[k], p.component(i).abs());
-            sum[k] += p.component(i) * 0.0;
-        }
+    if !c.is_finite() {
+        return None;
     }
-    let magnitude = max(max(per_point[0], per_point[1]), max(per_point[2], per_point[3]));
-    let sum = (sum[0] + sum[1]) + (sum[2] + sum[3]);
-    if !(magnitude > 0.0 && magnitude <= f64::MAX && sum == 0.0) {
+    // the largest |coordinate|, as a tree of maxima
+    let per_point = c.points().map(|p| (0..P::DIM).fold(0.0, |m, i| max64(m, p.component(i).abs())));
+    let magnitude = max64(max64(per_point[0], per_point[1]), max64(per_point[2], per_point[3]));
+    if !(magnitude > 0.0) {
         return None;
     }
     let biased = ((magnitude.to_bits() >> 52) as i64).clamp(1, 2045);
@@ -488,6 +482,11 @@ fn unit_scale<P: Vector>(c: &CubicBezier<P>, tolerance: f64) -> Option<(P, P, P,
 
 #[inline(always)]
 fn max32(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
+}
+
+#[inline(always)]
+fn max64(a: f64, b: f64) -> f64 {
     if a > b { a } else { b }
 }
 
@@ -553,8 +552,7 @@ impl CellInputs {
         let (a3, b3, c3) = (a.to_dvec3(), b.to_dvec3(), c.to_dvec3());
         let (aa, ba, ca) = (a3.abs(), b3.abs(), c3.abs());
         // largest coordinates (plain comparisons: the curve is finite)
-        let max = |x: f64, y: f64| if y > x { y } else { x };
-        let max_element = |v: glam::DVec3| max(max(v.x, v.y), v.z);
+        let max_element = |v: glam::DVec3| max64(max64(v.x, v.y), v.z);
         let dm = max_element(aa + ba * 2.0 + ca * 3.0);
         let em = max_element(ba * 2.0 + ca * 6.0);
         let cm = max_element(ca);
@@ -563,7 +561,7 @@ impl CellInputs {
         let u = F32_ROUNDOFF;
         let el = 32.0 * u * dm * cm;
         let eg = 32.0 * u * (dm * dm + hw * dm * em + 3.0 * hw * hw * dm * cm);
-        let dd = max((b * 2.0).length_squared(), (b * 2.0 + c * 6.0).length_squared()).sqrt();
+        let dd = max64((b * 2.0).length_squared(), (b * 2.0 + c * 6.0).length_squared()).sqrt();
         let f = |v: glam::DVec3| [v.x as f32, v.y as f32, v.z as f32];
         Self {
             a: f(a3),
