@@ -451,6 +451,31 @@ pub fn flatten_cubic_distance_with<P: Vector>(c: &CubicBezier<P>, tolerance: f64
     sink(1.0, p3);
 }
 
+/// Like [`flatten_cubic_distance`], but appends the polyline's vertices after the start
+/// (`c.p0` is implied) to `out` as positions, the last exactly `c.p3`. Positions come from
+/// the power form of the cubic and agree with [`CubicBezier::eval`] to rounding.
+///
+/// This is the fast way to collect a polyline: the vertex count is known before the first
+/// one is computed, so the positions are written in place with no per-vertex check.
+///
+/// ```
+/// use glam::DVec2;
+/// use splinekit::CubicBezier;
+/// use splinekit::flatten::flatten_cubic_distance_points;
+/// let c = CubicBezier::new(DVec2::ZERO, DVec2::new(0.0, 1.0), DVec2::new(1.0, 1.0), DVec2::new(1.0, 0.0));
+/// let mut polyline = vec![c.p0];
+/// flatten_cubic_distance_points(&c, 1e-4, &mut polyline);
+/// assert_eq!(*polyline.last().unwrap(), c.p3);
+/// ```
+pub fn flatten_cubic_distance_points<P: Vector>(c: &CubicBezier<P>, tolerance: f64, out: &mut Vec<P>) {
+    let plan = ChordPlan::new(c, tolerance);
+    let p0 = c.p0;
+    let a = (c.p1 - c.p0) * 3.0;
+    let b = (c.p2 - c.p1 * 2.0 + c.p0) * 3.0;
+    let cc = c.p3 - c.p0 + (c.p1 - c.p2) * 3.0;
+    plan.extend_map(out, move |t| p0 + (a + (b + cc * t) * t) * t, c.p3);
+}
+
 /// The power form `C′(0) = a`, `b`, `c` of `c` at unit scale (the largest coordinate
 /// brought into `[1, 2)` by a power of two, which scales exactly) and `8·limit`, the scaled
 /// tolerance less the rounding allowances; `None` for a point at the origin or a curve that
@@ -502,10 +527,22 @@ fn ceil(x: f64) -> f64 {
     if r < x { r + 1.0 } else { r }
 }
 
-/// `⌊x⌋ + 1` as an integer, for `0 ≤ x < 2⁶³`.
+/// `1.5·2⁵²`: an `f64` in `[2⁵², 2⁵³)`, where the spacing is 1, so adding it to an `x` in
+/// `[−2⁵¹, 2⁵¹)` rounds `x` to an integer and leaves that integer in the low bits.
+const ROUNDER: f64 = 6_755_399_441_055_744.0;
+
+/// `⌊x⌋ + 1` as an integer for `0 ≤ x < 2⁵¹`, except that an integer `x` may give `x` instead
+/// of `x + 1` (a tie of the rounding; where this is used, both are right: see
+/// [`ChordPlan::build`]). Three instructions, no saturating conversion.
 #[inline(always)]
 fn floor_plus_one(x: f64) -> u64 {
-    x as i64 as u64 + 1
+    ((x - 0.5) + ROUNDER).to_bits().wrapping_sub(ROUNDER.to_bits()).wrapping_add(1)
+}
+
+/// An integer-valued `x` in `[0, 2⁵¹)` as a `u64`, without a saturating conversion.
+#[inline(always)]
+fn integer_to_u64(x: f64) -> u64 {
+    (x + ROUNDER).to_bits().wrapping_sub(ROUNDER.to_bits())
 }
 
 /// Per-curve inputs of the cell bounds (`f32`, at unit scale) and their rounding allowances.
@@ -841,12 +878,12 @@ impl ChordPlan {
             h[j] = 1.0 / r[j];
         }
         // the pause before cell j: (ρd − ρs)/(ρd + ρs), rounded up
+        // (the density before cell 0 is taken as its own: no pause)
+        let before: [f64; N] = core::array::from_fn(|j| r[j.saturating_sub(1)]);
         let mut pause = [0.0f64; N];
-        for j in 1..N {
-            pause[j] = (r[j - 1] - r[j]).abs() / (r[j - 1] + r[j]) * (1.0 + 1.0 / 262_144.0);
-        }
         let mut len = [0.0f64; N];
         for j in 0..N {
+            pause[j] = (before[j] - r[j]).abs() / (before[j] + r[j]) * (1.0 + 1.0 / 262_144.0);
             len[j] = pause[j] + w * r[j];
         }
         // cumulative counts at the cell starts (for 12 cells in three blocks of four)
@@ -878,6 +915,8 @@ impl ChordPlan {
         let step = total / nf;
         let inv_step = nf / total;
         let mut repeat = false;
+        // a chord end whose count falls exactly on a cell's start may be given to either
+        // cell (`floor_plus_one`): both give that start, to rounding
         for j in 0..N {
             plan.start[j] = j as f64 * w;
             plan.b[j] = step * h[j];
@@ -885,7 +924,7 @@ impl ChordPlan {
             plan.first[j] = floor_plus_one(cum[j] * inv_step);
             repeat |= pause[j] >= step;
         }
-        plan.n = nf as u64;
+        plan.n = integer_to_u64(nf);
         plan.short = plan.n <= CHUNK as u64 && !repeat;
         if plan.short {
             for j in 1..N {
@@ -943,20 +982,27 @@ impl ChordPlan {
     /// Appends the chord ends to `out`, the last `1.0`.
     #[inline(always)]
     fn extend(&self, out: &mut Vec<f64>) {
+        self.extend_map(out, |t| t, 1.0);
+    }
+
+    /// Appends `f(t)` for every chord end before the last to `out`, then `last`.
+    #[inline(always)]
+    fn extend_map<T>(&self, out: &mut Vec<T>, f: impl Fn(f64) -> T, last: T) {
         if self.short {
             let n = self.n as usize;
             let mut j = 0usize;
             // slices zipped and mapped: an exact length, so `extend` writes in place
-            out.extend(COUNTS[1..n].iter().zip(&self.inc).map(|(&k, &d)| {
+            let (a, b, start) = (&self.a, &self.b, &self.start);
+            out.extend(COUNTS[1..n].iter().zip(&self.inc).map(move |(&k, &d)| {
                 j = (j + d as usize) & 15;
-                let t = self.a[j] + k * self.b[j];
-                if t > self.start[j] { t } else { self.start[j] }
+                let t = a[j] + k * b[j];
+                f(if t > start[j] { t } else { start[j] })
             }));
-            out.push(1.0);
         } else {
-            self.for_each_inner(&mut |t| out.push(t));
-            out.push(1.0);
+            out.reserve(self.n as usize);
+            self.for_each_inner(&mut |t| out.push(f(t)));
         }
+        out.push(last);
     }
 }
 
@@ -1127,11 +1173,17 @@ mod tests {
                 }
                 // the sink variant emits the same parameters, and positions on the curve
                 let mut u = vec![0.0];
+                let mut with = vec![c.p0];
                 flatten_cubic_distance_with(c, tol, &mut |t, p| {
                     assert!(p.distance(c.eval(t)) < 1e-9, "{t}");
                     u.push(t);
+                    with.push(p);
                 });
                 assert_eq!(t, u);
+                // and so does the polyline variant, the same positions
+                let mut points = vec![c.p0];
+                flatten_cubic_distance_points(c, tol, &mut points);
+                assert_eq!(points, with);
             }
         }
         assert!(seen.iter().all(|&k| k > 0), "{seen:?}");
@@ -1165,6 +1217,27 @@ mod tests {
         let mut t = Vec::new();
         ChordPlan::place(&[0.0; CELLS]).extend(&mut t);
         assert_eq!(t, vec![1.0]);
+    }
+
+    #[test]
+    fn integer_conversions_without_saturation() {
+        // ⌊x⌋ + 1, where an integer x may also give x
+        let mut state = 9u64;
+        let mut xs: Vec<f64> = vec![0.0, 1e-300, 0.25, 0.5, 0.75, 1.0, 2.5, 3.0, 127.0, 128.0, 1e9 + 0.5];
+        xs.extend((0..2000).map(|_| rng(&mut state) * 1.3));
+        xs.extend((1..60).flat_map(|k| {
+            let k = k as f64;
+            [k, k.next_down(), k.next_up()]
+        }));
+        xs.push(((1u64 << 51) - 1) as f64);
+        for x in xs {
+            let f = floor_plus_one(x);
+            let exact = x.floor() as u64 + 1;
+            assert!(f == exact || (x.fract() == 0.0 && f == exact - 1), "{x}: {f}");
+        }
+        for n in [0u64, 1, 2, 127, 128, 1 << 20, (1 << 51) - 1] {
+            assert_eq!(integer_to_u64(n as f64), n);
+        }
     }
 
     #[test]
