@@ -443,12 +443,21 @@ pub fn flatten_cubic_distance<P: Vector>(c: &CubicBezier<P>, tolerance: f64, out
 #[inline]
 pub fn flatten_cubic_distance_with<P: Vector>(c: &CubicBezier<P>, tolerance: f64, sink: &mut impl FnMut(f64, P)) {
     let plan = ChordPlan::new(c, tolerance);
-    let (p0, p3) = (c.p0, c.p3);
+    let position = power_form(c);
+    plan.for_each_inner(&mut |t| sink(t, position(t)));
+    sink(1.0, c.p3);
+}
+
+/// The position of `c` at `t` from its power form `p0 + (a + (b + c·t)·t)·t`, for the chord
+/// ends (three multiply-adds a vertex; [`CubicBezier::eval`] takes more to hit its ends exactly,
+/// which the chord ends here do not need: the last one is `p3` itself).
+#[inline(always)]
+fn power_form<P: Vector>(c: &CubicBezier<P>) -> impl Fn(f64) -> P + Copy {
+    let p0 = c.p0;
     let a = (c.p1 - c.p0) * 3.0;
     let b = (c.p2 - c.p1 * 2.0 + c.p0) * 3.0;
     let cc = c.p3 - c.p0 + (c.p1 - c.p2) * 3.0;
-    plan.for_each_inner(&mut |t| sink(t, p0 + (a + (b + cc * t) * t) * t));
-    sink(1.0, p3);
+    move |t| p0 + (a + (b + cc * t) * t) * t
 }
 
 /// Like [`flatten_cubic_distance`], but appends the polyline's vertices after the start
@@ -468,12 +477,7 @@ pub fn flatten_cubic_distance_with<P: Vector>(c: &CubicBezier<P>, tolerance: f64
 /// assert_eq!(*polyline.last().unwrap(), c.p3);
 /// ```
 pub fn flatten_cubic_distance_points<P: Vector>(c: &CubicBezier<P>, tolerance: f64, out: &mut Vec<P>) {
-    let plan = ChordPlan::new(c, tolerance);
-    let p0 = c.p0;
-    let a = (c.p1 - c.p0) * 3.0;
-    let b = (c.p2 - c.p1 * 2.0 + c.p0) * 3.0;
-    let cc = c.p3 - c.p0 + (c.p1 - c.p2) * 3.0;
-    plan.extend_map(out, move |t| p0 + (a + (b + cc * t) * t) * t, c.p3);
+    ChordPlan::new(c, tolerance).extend_map(out, power_form(c), c.p3);
 }
 
 /// The power form `C′(0) = a`, `b`, `c` of `c` at unit scale (the largest coordinate
