@@ -39,7 +39,7 @@
 //! second is third order), and the coordinate along the chord stays within `[0, |e|]` when
 //! `2·|V| ≥ h·(|C″(tm)| + h·|c|)` (B), which fails only near cusps. Both conditions only
 //! involve the midpoint `tm` and the width `h`, so they can be *certified ahead of time*:
-//! `[0, 1]` is cut into 12 equal cells, and each cell gets a density `ρ_j` (chords per unit
+//! `[0, 1]` is cut into 8 equal cells, and each cell gets a density `ρ_j` (chords per unit
 //! of `t`) such that (A) ≤ tolerance and (B) hold for *every* chord with its midpoint in the
 //! cell (ends included) and a width of at most `1/ρ_j`:
 //!
@@ -59,7 +59,7 @@
 //!   lower density, Wang's bound `(h²/8)·max|C″| ≤ tolerance` — valid for any chord, cusps
 //!   included — gives the density instead.
 //!
-//! The bounds are evaluated in `f32` (four cells per SIMD instruction, three such groups
+//! The bounds are evaluated in `f32` (four cells per SIMD instruction, two such groups
 //! interleaved) from the power form of the curve scaled to unit size in `f64`. Every
 //! quantity that can cancel gets an explicit rounding allowance (a multiple of the `f32`
 //! roundoff times the magnitude of its terms, computed in `f64` from the coefficients), the
@@ -70,15 +70,15 @@
 //!
 //! Chords end at equal steps of the cumulative count `N(t) = ∫ρ dt`, `n = ⌈N(1)⌉` of them,
 //! so a chord inside one cell is at most `1/ρ_j` wide. Every cell is given at least one
-//! chord's worth (`ρ_j ≥ 12`), so a chord spans at most two cells. A chord that crosses from
+//! chord's worth (`ρ_j ≥ 8`), so a chord spans at most two cells. A chord that crosses from
 //! a sparser cell (density `ρs`) into a denser one (`ρd`) with its midpoint in the denser one
 //! could be too wide by a factor of up to `1 + (ρd − ρs)/(ρd + ρs)`; to prevent it, the count
 //! pauses at every cell boundary for `(ρd − ρs)/(ρd + ρs)` chords (the polyline makes no
 //! progress in `t` there), which is exactly what such a chord can lack. The pause is always
-//! shorter than a step (the denser cell alone holds `ρd/12` chords), so no chord end repeats.
+//! shorter than a step (the denser cell alone holds `ρd/8` chords), so no chord end repeats.
 //! Where the floor of one chord per cell width costs more than it saves (nearly straight
-//! curves, coarse tolerances: fewer than 24 chords), two other plans are tried and the one
-//! with the fewest chords is kept: 4 cells of three, each with the largest density of the
+//! curves, coarse tolerances: fewer than 16 chords), two other plans are tried and the one
+//! with the fewest chords is kept: 4 cells of two, each with the largest density of the
 //! cells in it; and chords placed one after the other, each as wide as the smallest `1/ρ` of
 //! the cells it overlaps (so whichever cell holds its midpoint certifies it), which is the
 //! fewest chords under that rule. A straight run gets a single chord. The chord ends come from a table: per chord, a lookup, a multiply-add and a
@@ -90,8 +90,8 @@
 //! ℓ), the first term of (A); chords spread with that local density are optimal (R. Levien,
 //! "Flattening quadratic Béziers", 2019, uses the same idea on parabolas). The cell
 //! densities follow it up to its variation inside a cell. On random cubics at a tolerance
-//! of 1 % of the size, the count is about 1.08× kurbo's (which does not guarantee the
-//! tolerance) and 0.56× lyon's; the cost is a fixed set-up of 12 cells plus `O(n)` with
+//! of 1 % of the size, the count is about 1.14× kurbo's (which does not guarantee the
+//! tolerance) and 0.59× lyon's; the cost is a fixed set-up of 8 cells plus `O(n)` with
 //! `n ∝ tolerance^-1/2`, and nothing is allocated besides the output.
 //!
 //! # Invalid input
@@ -367,7 +367,7 @@ fn angle_between<P: Vector>(a: P, b: P) -> f64 {
 // Distance mode
 
 /// Number of cells of the certified density table.
-const CELLS: usize = 12;
+const CELLS: usize = 8;
 
 /// Width of a cell.
 const CELL: f64 = 1.0 / CELLS as f64;
@@ -630,19 +630,17 @@ impl CellInputs {
     /// does not apply.
     #[inline(always)]
     fn densities(&self, mid: &[f32; CELLS], hw: f32, out: &mut [f32; CELLS]) {
-        const THIRD: usize = CELLS / 3;
-        const _: () = assert!(CELLS.is_multiple_of(3));
+        const HALF: usize = CELLS / 2;
+        const _: () = assert!(CELLS.is_multiple_of(2));
         let hw2 = hw * hw;
         // (c·C′(m))⁻/4 from cd = 3hw²·c·C′(m), rounded up
         let icd = (1.0 + 1.0 / 65536.0) / (12.0 * hw2);
-        // three independent cells per SIMD lane, so that their long dependency chains overlap
-        for j in 0..THIRD {
-            let (k, l) = (j + THIRD, j + 2 * THIRD);
-            let (x, y, z) =
-                (self.cell(mid[j], hw, hw2, icd), self.cell(mid[k], hw, hw2, icd), self.cell(mid[l], hw, hw2, icd));
+        // two independent cells per SIMD lane, so that their long dependency chains overlap
+        for j in 0..HALF {
+            let k = j + HALF;
+            let (x, y) = (self.cell(mid[j], hw, hw2, icd), self.cell(mid[k], hw, hw2, icd));
             out[j] = x;
             out[k] = y;
-            out[l] = z;
         }
     }
 
@@ -771,39 +769,39 @@ impl ChordPlan {
     }
 
     /// The plan for the densities `rho` of the cells (each certifying the chords with their
-    /// midpoint in the cell; all 0 for a single chord): on the 12 cells, or on 4 cells of
-    /// three or on one cell (taking the largest density of the cells in it, which lowers the
+    /// midpoint in the cell; all 0 for a single chord): on the 8 cells, or on 4 cells of
+    /// two or on one cell (taking the largest density of the cells in it, which lowers the
     /// floor of a chord per cell width) when that takes fewer chords.
     #[inline(always)]
     fn place(rho: &[f32; CELLS]) -> Self {
         if rho[0] == 0.0 {
             return Self::build(&[1.0]);
         }
-        let mut r12 = [0.0f64; CELLS];
+        let mut fine = [0.0f64; CELLS];
         for j in 0..CELLS {
-            r12[j] = f64::from(rho[j]);
+            fine[j] = f64::from(rho[j]);
         }
-        // the count of the 12 cells without the pauses, a lower bound of theirs
+        // the count of the 8 cells without the pauses, a lower bound of theirs
         let mut base = 0.0;
-        for &x in &r12 {
+        for &x in &fine {
             base += x.max(CELLS as f64);
         }
         if base < (2 * CELLS * CELLS) as f64 {
-            let n12 = Self::total(&r12);
-            if n12 < (2 * CELLS) as f64 {
+            let n8 = Self::total(&fine);
+            if n8 < (2 * CELLS) as f64 {
                 // nearly straight somewhere, or a coarse tolerance: the floor of a chord per
                 // cell width costs more than it saves, so try chords across cells
-                let r4: [f64; 4] = core::array::from_fn(|i| r12[3 * i].max(r12[3 * i + 1]).max(r12[3 * i + 2]));
+                let r4: [f64; 4] = core::array::from_fn(|i| fine[2 * i].max(fine[2 * i + 1]));
                 let n4 = Self::total(&r4);
-                if let Some(greedy) = Self::greedy(&r12, n4.min(n12) as u64) {
+                if let Some(greedy) = Self::greedy(&fine, n4.min(n8) as u64) {
                     return greedy;
                 }
-                if n4 < n12 {
+                if n4 < n8 {
                     return Self::build(&r4);
                 }
             }
         }
-        Self::build(&r12)
+        Self::build(&fine)
     }
 
     /// The fewest chords (if fewer than `limit`, and at most 16) each as wide as the smallest
@@ -890,23 +888,20 @@ impl ChordPlan {
             pause[j] = (before[j] - r[j]).abs() / (before[j] + r[j]) * (1.0 + 1.0 / 262_144.0);
             len[j] = pause[j] + w * r[j];
         }
-        // cumulative counts at the cell starts (for 12 cells in three blocks of four)
+        // cumulative counts at the cell starts (for 8 cells in two blocks of four)
         let mut cum = [0.0f64; N];
-        let total = if N == 12 {
-            let (mut s0, mut s1, mut s2) = (0.0, 0.0, 0.0);
+        let total = if N == 8 {
+            let (mut s0, mut s1) = (0.0, 0.0);
             for i in 0..4 {
                 cum[i] = s0;
                 cum[4 + i] = s1;
-                cum[8 + i] = s2;
                 s0 += len[i];
                 s1 += len[4 + i];
-                s2 += len[8 + i];
             }
             for i in 0..4 {
                 cum[4 + i] += s0;
-                cum[8 + i] += s0 + s1;
             }
-            s0 + s1 + s2
+            s0 + s1
         } else {
             let mut s = 0.0;
             for j in 0..N {
@@ -1144,7 +1139,7 @@ mod tests {
     fn every_chord_is_certified_by_its_midpoint() {
         // The placement invariant behind the guarantee: every chord the plan emits is at
         // most 1/ρ wide for a cell holding its midpoint (either cell at a shared end). Covers
-        // the four shapes of plan: 12, 4 or 1 equal-step cells, chords placed one by one
+        // the four shapes of plan: 8, 4 or 1 equal-step cells, chords placed one by one
         // across cells, and long plans (more than CHUNK chords).
         let mut state = 5u64;
         let mut seen = [0usize; 5];
@@ -1198,7 +1193,7 @@ mod tests {
         // With every density at least CELLS (a chord per cell width), a pause is always
         // shorter than the step: total ≥ ρd/CELLS, so step ≥ ρd/(ρd + CELLS) > (ρd − ρs)/(ρd + ρs).
         for dense in [13.0, 100.0, 1e4, 1e6] {
-            for at in [0, 5, 11] {
+            for at in [0, CELLS / 2 - 1, CELLS - 1] {
                 let mut rho = [CELLS as f64; CELLS];
                 rho[at] = dense;
                 let plan = ChordPlan::build(&rho);
@@ -1210,11 +1205,19 @@ mod tests {
         let mut rho = [CELLS as f64; CELLS];
         rho[6] = 200.0;
         let mut plan = ChordPlan::build(&rho);
+        assert!(plan.short);
         plan.a[6] -= 3.0 * plan.b[6];
+        // the short march (one end per count, no check) shows the repeats
+        let mut raw = vec![0.0];
+        plan.extend(&mut raw);
+        assert_eq!(raw.len() as u64, plan.n + 1);
+        let mut distinct = raw.clone();
+        distinct.dedup();
+        assert!(distinct.len() + 2 <= raw.len(), "{raw:?}");
         plan.short = false;
         let mut t = vec![0.0];
         plan.extend(&mut t);
-        assert_eq!(t.len() as u64, plan.n + 1 - 3, "{t:?}");
+        assert_eq!(t, distinct);
         assert!(t.windows(2).all(|w| w[1] > w[0]), "{t:?}");
         assert_eq!(*t.last().unwrap(), 1.0);
         // a single chord for a point
