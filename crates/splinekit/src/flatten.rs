@@ -64,7 +64,8 @@
 //! quantity that can cancel gets an explicit rounding allowance (a multiple of the `f32`
 //! roundoff times the magnitude of its terms, computed in `f64` from the coefficients), the
 //! cells are widened by `2⁻¹⁸` to cover their `f32` middles, and `2⁻¹⁷` of the tolerance is
-//! kept back for the relative rounding of the rest (about `2⁻²⁰`). No chord is ever emitted unchecked, and no measurement is involved.
+//! kept back for the relative rounding of the rest (about `2⁻²⁰`). No chord is ever emitted
+//! unchecked, and no measurement is involved.
 //!
 //! # Placement
 //!
@@ -81,8 +82,9 @@
 //! with the fewest chords is kept: 4 cells of two, each with the largest density of the
 //! cells in it; and chords placed one after the other, each as wide as the smallest `1/ρ` of
 //! the cells it overlaps (so whichever cell holds its midpoint certifies it), which is the
-//! fewest chords under that rule. A straight run gets a single chord. The chord ends come from a table: per chord, a lookup, a multiply-add and a
-//! maximum, with no branch and no division.
+//! fewest chords under that rule. A straight run gets a single chord. The chord ends come
+//! from a table: per chord, a lookup, a multiply-add and a maximum, with no branch and no
+//! division.
 //!
 //! # Near-optimal counts
 //!
@@ -777,27 +779,27 @@ impl ChordPlan {
         if rho[0] == 0.0 {
             return Self::build(&[1.0]);
         }
-        let mut fine = [0.0f64; CELLS];
-        for j in 0..CELLS {
-            fine[j] = f64::from(rho[j]);
-        }
+        let fine: [f64; CELLS] = core::array::from_fn(|j| f64::from(rho[j]));
         // the count of the 8 cells without the pauses, a lower bound of theirs
         let mut base = 0.0;
         for &x in &fine {
             base += x.max(CELLS as f64);
         }
         if base < (2 * CELLS * CELLS) as f64 {
-            let n8 = Self::total(&fine);
-            if n8 < (2 * CELLS) as f64 {
+            let n_fine = Self::total(&fine);
+            if n_fine < (2 * CELLS) as f64 {
                 // nearly straight somewhere, or a coarse tolerance: the floor of a chord per
                 // cell width costs more than it saves, so try chords across cells
-                let r4: [f64; 4] = core::array::from_fn(|i| fine[2 * i].max(fine[2 * i + 1]));
-                let n4 = Self::total(&r4);
-                if let Some(greedy) = Self::greedy(&fine, n4.min(n8) as u64) {
+                const GROUP: usize = CELLS / 4;
+                const _: () = assert!(CELLS.is_multiple_of(4));
+                let coarse: [f64; 4] =
+                    core::array::from_fn(|i| fine[GROUP * i..GROUP * (i + 1)].iter().fold(0.0, |m, &x| max64(m, x)));
+                let n_coarse = Self::total(&coarse);
+                if let Some(greedy) = Self::greedy(&fine, n_coarse.min(n_fine) as u64) {
                     return greedy;
                 }
-                if n4 < n8 {
-                    return Self::build(&r4);
+                if n_coarse < n_fine {
+                    return Self::build(&coarse);
                 }
             }
         }
@@ -888,18 +890,19 @@ impl ChordPlan {
             pause[j] = (before[j] - r[j]).abs() / (before[j] + r[j]) * (1.0 + 1.0 / 262_144.0);
             len[j] = pause[j] + w * r[j];
         }
-        // cumulative counts at the cell starts (for 8 cells in two blocks of four)
+        // cumulative counts at the cell starts (two halves summed side by side, then joined)
         let mut cum = [0.0f64; N];
-        let total = if N == 8 {
+        let total = if N.is_multiple_of(2) {
+            let half = N / 2;
             let (mut s0, mut s1) = (0.0, 0.0);
-            for i in 0..4 {
+            for i in 0..half {
                 cum[i] = s0;
-                cum[4 + i] = s1;
+                cum[half + i] = s1;
                 s0 += len[i];
-                s1 += len[4 + i];
+                s1 += len[half + i];
             }
-            for i in 0..4 {
-                cum[4 + i] += s0;
+            for i in 0..half {
+                cum[half + i] += s0;
             }
             s0 + s1
         } else {
@@ -1203,10 +1206,11 @@ mod tests {
         // Should a pause hold two chord ends (here forced by moving a cell's line back by
         // three steps), the long march leaves the repeats out, so the ends stay ascending.
         let mut rho = [CELLS as f64; CELLS];
-        rho[6] = 200.0;
+        let at = CELLS - 2;
+        rho[at] = 200.0;
         let mut plan = ChordPlan::build(&rho);
         assert!(plan.short);
-        plan.a[6] -= 3.0 * plan.b[6];
+        plan.a[at] -= 3.0 * plan.b[at];
         // the short march (one end per count, no check) shows the repeats
         let mut raw = vec![0.0];
         plan.extend(&mut raw);
