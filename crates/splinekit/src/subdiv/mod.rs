@@ -28,6 +28,7 @@ mod limit;
 mod loop_scheme;
 mod matrix;
 mod quads;
+mod regular;
 pub mod sqrt3;
 pub mod topology;
 

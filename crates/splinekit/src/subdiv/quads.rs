@@ -33,17 +33,17 @@ use super::topology::{MIN_LEN, MIN_RINGS};
 use crate::mesh::{NONE, PolyMesh};
 
 /// Faces per parallel task in the per-face passes.
-const FACES: usize = MIN_LEN / 4;
+pub(super) const FACES: usize = MIN_LEN / 4;
 
 /// The next corner of a quad.
 #[inline]
-fn next(c: u32) -> u32 {
+pub(super) fn next(c: u32) -> u32 {
     (c & !3) | ((c + 1) & 3)
 }
 
 /// The previous corner of a quad.
 #[inline]
-fn prev(c: u32) -> u32 {
+pub(super) fn prev(c: u32) -> u32 {
     (c & !3) | ((c + 3) & 3)
 }
 
@@ -120,13 +120,13 @@ pub(super) struct QuadLevel {
     /// Per corner: its vertex (the level's `face_vertices`).
     pub(super) corners: Vec<u32>,
     /// Per corner: its twin, or [`NONE`].
-    twin: Vec<u32>,
+    pub(super) twin: Vec<u32>,
     /// Per face, and one more: the edges owned by the corners of the faces before it.
-    edge_base: Vec<u32>,
+    pub(super) edge_base: Vec<u32>,
     /// Per corner: its edge (looked up far more often than made).
     edge_of: Vec<u32>,
     /// Per vertex: a corner leaving it (the boundary one on a boundary), or [`NONE`].
-    vertex_start: Vec<u32>,
+    pub(super) vertex_start: Vec<u32>,
 }
 
 impl Corners for QuadLevel {
@@ -151,7 +151,7 @@ impl QuadLevel {
     }
 
     /// Number of edges.
-    fn num_edges(&self) -> usize {
+    pub(super) fn num_edges(&self) -> usize {
         *self.edge_base.last().expect("one more count than faces") as usize
     }
 
@@ -450,7 +450,7 @@ pub(super) struct Grandchild<'a> {
     /// Per `S` face: bit `i` for `M` corner `16q + i` owning its edge.
     masks: Vec<u32>,
     /// Per `S` face, and one more: the `M` edges owned by the faces before it.
-    base: Vec<u32>,
+    pub(super) base: Vec<u32>,
     /// The numbers of `S` vertices and `S` edges.
     nvs: u32,
     nes: u32,
@@ -479,12 +479,12 @@ impl QuadLevel {
 
 impl Grandchild<'_> {
     /// Number of `M` vertices.
-    fn num_m_vertices(&self) -> u32 {
+    pub(super) fn num_m_vertices(&self) -> u32 {
         (self.s.num_vertices() + self.s.num_edges() + self.s.num_faces()) as u32
     }
 
     /// Number of `M` edges.
-    fn num_m_edges(&self) -> u32 {
+    pub(super) fn num_m_edges(&self) -> u32 {
         *self.base.last().expect("one more count than faces")
     }
 
@@ -500,7 +500,7 @@ impl Grandchild<'_> {
     /// `S` face `q` read once): the halves of `S` edges may be owned across them, the `M`
     /// edges inside are owned inside.
     #[inline]
-    fn m_edges(&self, q: u32) -> [u32; 16] {
+    pub(super) fn m_edges(&self, q: u32) -> [u32; 16] {
         let i = q as usize;
         let tw = &self.s.twin[4 * i..4 * i + 4];
         let (mask, base) = (self.masks[i], self.base[i]);
@@ -527,7 +527,7 @@ impl Grandchild<'_> {
 
     /// The `M` vertices of the corners of `M` faces `4q .. 4q + 4`.
     #[inline]
-    fn m_faces(&self, q: u32) -> [[u32; 4]; 4] {
+    pub(super) fn m_faces(&self, q: u32) -> [[u32; 4]; 4] {
         let s = self.s;
         let i = 4 * q as usize;
         let (a, eo) = (&s.corners[i..i + 4], &s.edge_of[i..i + 4]);
@@ -723,7 +723,7 @@ pub(super) fn subdivide(
 }
 
 /// A mesh of quads from its positions, colours and corners.
-fn quad_mesh(positions: Vec<DVec3>, colors: Vec<DVec3>, corners: Vec<u32>) -> PolyMesh {
+pub(super) fn quad_mesh(positions: Vec<DVec3>, colors: Vec<DVec3>, corners: Vec<u32>) -> PolyMesh {
     let mut face_offsets = Vec::new();
     (0..(corners.len() / 4 + 1) as u32)
         .into_par_iter()
