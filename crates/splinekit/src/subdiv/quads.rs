@@ -500,7 +500,7 @@ impl Grandchild<'_> {
     /// `S` face `q` read once): the halves of `S` edges may be owned across them, the `M`
     /// edges inside are owned inside.
     #[inline]
-    pub(super) fn m_edges(&self, q: u32) -> [u32; 16] {
+    fn m_edges(&self, q: u32) -> [u32; 16] {
         let i = q as usize;
         let tw = &self.s.twin[4 * i..4 * i + 4];
         let (mask, base) = (self.masks[i], self.base[i]);
@@ -527,7 +527,7 @@ impl Grandchild<'_> {
 
     /// The `M` vertices of the corners of `M` faces `4q .. 4q + 4`.
     #[inline]
-    pub(super) fn m_faces(&self, q: u32) -> [[u32; 4]; 4] {
+    fn m_faces(&self, q: u32) -> [[u32; 4]; 4] {
         let s = self.s;
         let i = 4 * q as usize;
         let (a, eo) = (&s.corners[i..i + 4], &s.edge_of[i..i + 4]);
@@ -653,29 +653,33 @@ impl Grandchild<'_> {
         pv * 0.5 + (sum + centres) * 0.0625
     }
 
-    /// The faces of `F`: per `M` corner `x`, `(v_x, e(x), face of x, e(prev x))` as `F`
-    /// vertices; `S` face `q` gives `F` faces `16q .. 16q + 16`.
+    /// The faces of `F`: `S` face `q` gives `F` faces `16q .. 16q + 16` ([`Self::quads_of`]).
     pub(super) fn corners(&self) -> Vec<u32> {
-        let (nvm, nem) = (self.num_m_vertices(), self.num_m_edges());
         let mut out: Vec<[u32; 64]> = Vec::new();
         (0..self.s.num_faces() as u32)
             .into_par_iter()
             .with_min_len(FACES / 4)
-            .map(|q| {
-                let mv = self.m_faces(q);
-                let e = self.m_edges(q).map(|e| nvm + e);
-                let mut quads = [0u32; 64];
-                for k in 0..4 {
-                    for j in 0..4 {
-                        let x = 4 * k + j;
-                        let quad = [mv[k][j], e[x], nvm + nem + 4 * q + k as u32, e[4 * k + (j + 3) % 4]];
-                        quads[4 * x..4 * x + 4].copy_from_slice(&quad);
-                    }
-                }
-                quads
-            })
+            .map(|q| self.quads_of(q))
             .collect_into_vec(&mut out);
         bytemuck::cast_vec(out)
+    }
+
+    /// The corners of `F` faces `16q .. 16q + 16`: per `M` corner `x = 16q + 4k + j`,
+    /// `(v_x, e(x), face of x, e(prev x))` as `F` vertices.
+    #[inline]
+    pub(super) fn quads_of(&self, q: u32) -> [u32; 64] {
+        let (nvm, nem) = (self.num_m_vertices(), self.num_m_edges());
+        let mv = self.m_faces(q);
+        let e = self.m_edges(q).map(|e| nvm + e);
+        let mut quads = [0u32; 64];
+        for k in 0..4 {
+            for j in 0..4 {
+                let x = 4 * k + j;
+                let quad = [mv[k][j], e[x], nvm + nem + 4 * q + k as u32, e[4 * k + (j + 3) % 4]];
+                quads[4 * x..4 * x + 4].copy_from_slice(&quad);
+            }
+        }
+        quads
     }
 }
 

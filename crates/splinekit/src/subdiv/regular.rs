@@ -204,8 +204,14 @@ fn parts_and_slots(slots: &[u8; 256]) -> ([u8; SIDE * SIDE], [u8; SIDE * SIDE]) 
 /// The part of a base corner's grid point: written by the vertex pass.
 const CORNER: u8 = 6;
 
+/// The level-3 corners: made by the pass (into room for them), or made already.
+enum Quads<'a> {
+    Make(&'a mut [u32]),
+    Made(&'a [u32]),
+}
+
 /// A block of base faces `f0 .. f1` with its share of the six parts and of the corners.
-type Block<'a> = (u32, u32, [&'a mut [DVec3]; 6], Option<&'a mut [u32]>);
+type Block<'a> = (u32, u32, [&'a mut [DVec3]; 6], Quads<'a>);
 
 /// The fixed tables of a face: `A`, its columns, and per grid point its part and a slot.
 struct Tables {
@@ -250,32 +256,6 @@ impl<'a> Layout<'a> {
             (st[5] + 16 * f0 as u32, st[5] + 16 * f1 as u32),
         ]
     }
-
-    /// The 256 level-3 corners of base face `f` (its quads `64f … 64f + 63`), as
-    /// [`Grandchild::corners`] makes them for its `S` faces `4f … 4f + 3`.
-    #[inline]
-    fn quads(&self, f: u32) -> [u32; 256] {
-        let (nvm, nem) = (self.g.num_m_vertices(), self.g.num_m_edges());
-        let mut quads = [0u32; 256];
-        for k in 0..4u32 {
-            let q = 4 * f + k;
-            let mv = self.g.m_faces(q);
-            let e = self.g.m_edges(q).map(|e| nvm + e);
-            for k1 in 0..4 {
-                for j in 0..4 {
-                    let x = 4 * k1 + j;
-                    let at = 4 * (16 * k as usize + x);
-                    quads[at..at + 4].copy_from_slice(&[
-                        mv[k1][j],
-                        e[x],
-                        nvm + nem + 4 * q + k1 as u32,
-                        e[4 * k1 + (j + 3) % 4],
-                    ]);
-                }
-            }
-        }
-        quads
-    }
 }
 
 /// Three Catmull-Clark levels of the regular quad mesh with tables `base` (see
@@ -291,21 +271,18 @@ pub(super) fn subdivide3(base: QuadLevel, positions: &[DVec3], colors: &[DVec3],
     let (part, rep) = parts_and_slots(&slots);
     let tables = Tables { a, at, part, rep };
     let mut corners: Vec<u32> = bytemuck::zeroed_vec(256 * base.num_faces());
-    let fine = values(&layout, &tables, positions, Some(&mut corners));
+    let fine = values(&layout, &tables, positions, Quads::Make(&mut corners));
     let colors = if color_by_level {
         let ends = [layout.starts[0], layout.starts[2], layout.g.num_m_vertices(), layout.starts[6]];
         let mut c = Vec::with_capacity(ends[3] as usize);
-        let mut from = 0;
         for (level, &end) in ends.iter().enumerate() {
             c.resize(end as usize, super::LEVEL_COLORS[level % super::LEVEL_COLORS.len()]);
-            from = end;
         }
-        debug_assert_eq!(from as usize, c.len());
         c
     } else if colors.is_empty() {
         Vec::new()
     } else {
-        values(&layout, &tables, colors, None)
+        values(&layout, &tables, colors, Quads::Made(&corners))
     };
     drop(g);
     drop(s);
@@ -313,15 +290,14 @@ pub(super) fn subdivide3(base: QuadLevel, positions: &[DVec3], colors: &[DVec3],
     quad_mesh(fine, colors, corners)
 }
 
-/// The level-3 values of `p` (and, given room, the level-3 corners): the base vertices in
+/// The level-3 values of `p` (and the level-3 corners, if not made yet): the base vertices in
 /// one pass, everything else per base face, each base face writing the vertices in its
 /// ranges of the output ([`Layout::ranges`]).
-fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], corners: Option<&mut [u32]>) -> Vec<DVec3> {
+fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<'_>) -> Vec<DVec3> {
     let a = &tables.a;
     let base = layout.base;
     let st = layout.starts;
     let mut out: Vec<DVec3> = bytemuck::zeroed_vec(st[6] as usize);
-    let mut corners = corners;
     let (old, mut rest) = out.split_at_mut(st[0] as usize);
     // the base vertices: the grid point of the corner of their start corner
     let vertex_pass = || {
@@ -355,23 +331,38 @@ fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], corners: Option<&mu
             part_rest[i] = tail;
             head
         });
-        let quads = corners.take().map(|c| {
-            let (head, tail) = c.split_at_mut(256 * (f1 - f0));
-            corners = Some(tail);
-            head
-        });
+        let n = 256 * (f1 - f0);
+        let quads = match core::mem::replace(&mut corners, Quads::Made(&[])) {
+            Quads::Make(c) => {
+                let (head, tail) = c.split_at_mut(n);
+                corners = Quads::Make(tail);
+                Quads::Make(head)
+            }
+            Quads::Made(c) => {
+                let (head, tail) = c.split_at(n);
+                corners = Quads::Made(tail);
+                Quads::Made(head)
+            }
+        };
         parts.push((f0 as u32, f1 as u32, block, quads));
     }
     let face_pass = || {
-        parts.into_par_iter().for_each(|(f0, f1, block, mut quads_out)| {
+        parts.into_par_iter().for_each(|(f0, f1, block, mut quads)| {
             let lo = layout.ranges(f0, f1).map(|r| r.0);
             for f in f0..f1 {
                 let own = layout.ranges(f, f + 1);
-                let quads = layout.quads(f);
-                if let Some(q) = quads_out.as_deref_mut() {
-                    let at = 256 * (f - f0) as usize;
-                    q[at..at + 256].copy_from_slice(&quads);
-                }
+                // the face's 64 quads are those of its S faces 4f .. 4f + 3
+                let at = 256 * (f - f0) as usize;
+                let quads: &[u32] = match &mut quads {
+                    Quads::Make(out) => {
+                        let out = &mut out[at..at + 256];
+                        for (k, part) in out.chunks_exact_mut(64).enumerate() {
+                            part.copy_from_slice(&layout.g.quads_of(4 * f + k as u32));
+                        }
+                        out
+                    }
+                    Quads::Made(made) => &made[at..at + 256],
+                };
                 let values = grid(&tables.at, &net(base, p, f));
                 for (g, (&part, &slot)) in tables.part.iter().zip(&tables.rep).enumerate() {
                     let part = part as usize;
