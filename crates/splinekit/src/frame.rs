@@ -652,10 +652,12 @@ fn start_frame(t: DVec3, start: StartNormal) -> Frame {
         StartNormal::Auto(Side::Right) => auto_frame(t).flipped(),
         StartNormal::Up(up) => up_frame(t, up).unwrap_or_else(|| auto_frame(t)),
         StartNormal::Normal(v) => {
-            let p = v - t * v.dot(t);
-            let l = p.length();
+            // v's part across t, as (t × v) × t: orthogonal to t to rounding even when v is
+            // nearly along t (subtracting (v·t)·t would cancel there)
+            let c = t.cross(v);
+            let l = c.length();
             if l.is_finite() && l > PARALLEL_SINE * v.length() {
-                let n = p / l;
+                let n = (c / l).cross(t).normalize();
                 Frame { t, n, b: t.cross(n) }
             } else {
                 auto_frame(t)
@@ -896,6 +898,12 @@ mod tests {
             assert_eq!(rotation_minimizing(&samples, StartNormal::Up(bad))[0], auto);
         }
         assert_eq!(rotation_minimizing(&samples, StartNormal::Auto(Side::Right))[0], auto.flipped());
+        // a normal nearly along the tangent (found by the frames proptest: t·n was 2.6e-12)
+        let t = DVec3::new(0.9999999926662638, -0.00012110934177316303, 0.0);
+        let f = rotation_minimizing(&[s(DVec3::ZERO, t)], StartNormal::Normal(DVec3::X))[0];
+        assert!(f.t.dot(f.n).abs() < 1e-15, "t·n = {}", f.t.dot(f.n));
+        assert!((f.n.length() - 1.0).abs() < 1e-15 && (f.t.cross(f.n) - f.b).length() < 1e-15);
+        assert!(f.n.dot(DVec3::X) > 0.0);
     }
 
     #[test]
