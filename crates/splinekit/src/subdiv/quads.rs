@@ -246,7 +246,7 @@ impl QuadLevel {
 
     /// The edge of corner `c`.
     #[inline]
-    fn edge(&self, c: u32) -> u32 {
+    pub(super) fn edge(&self, c: u32) -> u32 {
         self.edge_of[c as usize]
     }
 
@@ -764,7 +764,7 @@ fn ascending(keys: [u32; 4]) -> [usize; 4] {
 }
 
 /// The exclusive prefix sums of `count(0), …, count(n − 1)`, and the total: `n + 1` values.
-fn counts_before(n: usize, count: impl Fn(u32) -> u32 + Sync) -> Vec<u32> {
+pub(super) fn counts_before(n: usize, count: impl Fn(u32) -> u32 + Sync) -> Vec<u32> {
     // room for the total: pushing it onto a full vector would copy the whole
     let mut out = Vec::with_capacity(n + 1);
     (0..n as u32).into_par_iter().with_min_len(MIN_LEN).map(&count).collect_into_vec(&mut out);

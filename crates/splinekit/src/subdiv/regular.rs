@@ -12,16 +12,16 @@
 //! [`subdivide3`] makes three levels of a mesh where every face is such a quad (closed, every
 //! vertex on four corners) that way: one pass over the base faces writes each face's level-3
 //! quads and the level-3 vertices it owns, one pass over the base vertices writes theirs, and
-//! the values of levels 1 and 2 are never made. The vertex and face numbers are those of the
-//! level-by-level path (level 1's tables and the grandchild numbering give them; see
-//! [`quads`](super::quads)), so the mesh is the same as [`subdivide`](super::quads::subdivide)'s
-//! but for rounding: the tensor weights sum the same values in another order (the
-//! difference is a few ulps of the coordinates).
+//! the values of levels 1 and 2 are never made. Nor are their tables: the vertex and face
+//! numbers are those of the level-by-level path (see [`quads`](super::quads)), computed in
+//! closed form from the base level's twins ([`Numbers`]), so the mesh is the same as
+//! [`subdivide`](super::quads::subdivide)'s but for rounding: the tensor weights sum the same
+//! values in another order (the difference is a few ulps of the coordinates).
 
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::quads::{FACES, Grandchild, QuadLevel, next, prev, quad_mesh};
+use super::quads::{FACES, QuadLevel, counts_before, next, prev, quad_mesh};
 use super::topology::MIN_RINGS;
 use crate::mesh::{NONE, PolyMesh};
 
@@ -124,35 +124,70 @@ fn net(level: &QuadLevel, p: &[DVec3], f: u32) -> [[DVec3; 4]; 4] {
     n
 }
 
-/// The 9 × 9 level-3 grid over a face with control points `n` (see the module docs), per
-/// coordinate, `[c][x + 9y]`: `at[a]` is column `a` of `A` (`at[a][i] = A[i][a]`). Rows of 9
-/// values throughout, so that the sums vectorize: first `Σ_b n[x][b]·A[y][b]` per `x`, then
-/// those against `A` along x.
-#[inline]
-fn grid(at: &[[f64; SIDE]; 4], n: &[[DVec3; 4]; 4]) -> [[f64; SIDE * SIDE]; 3] {
-    let mut out = [[0.0; SIDE * SIDE]; 3];
-    for (c, out) in out.iter_mut().enumerate() {
-        // rows[x][y] = Σ_b n[x][b]·A[y][b]
-        let mut rows = [[0.0; SIDE]; 4];
-        for (x, row) in rows.iter_mut().enumerate() {
-            for b in 0..4 {
-                let w = n[x][b][c];
-                for (r, &t) in row.iter_mut().zip(&at[b]) {
-                    *r += w * t;
-                }
-            }
-        }
-        for y in 0..SIDE {
-            let line = &mut out[SIDE * y..SIDE * (y + 1)];
-            for (a, row) in rows.iter().enumerate() {
-                let w = row[y];
-                for (o, &t) in line.iter_mut().zip(&at[a]) {
-                    *o += w * t;
-                }
-            }
+/// The weights of [`weights`] split by the mirror symmetry `A[8 − i][b] = A[i][3 − b]`:
+/// `(A[i][b] ± A[i][3 − b]) / 2` for `b = 0, 1` and `i = 0 … 4` (exact: dyadic fractions), so
+/// that with `sᵦ = Pᵦ + P₃₋ᵦ` and `dᵦ = Pᵦ − P₃₋ᵦ` the points `i` and `8 − i` of a line are
+/// `S ± D`, `S = Σ w⁺·s`, `D = Σ w⁻·d` (`D = 0` at `i = 4`): about half the operations of
+/// `Σ A·P`, with the same value in exact arithmetic.
+#[derive(Clone, Copy)]
+struct Halves {
+    plus: [[f64; 2]; 5],
+    minus: [[f64; 2]; 5],
+}
+
+impl Halves {
+    fn new(a: &[[f64; 4]; SIDE]) -> Self {
+        let half = |i: usize, b: usize, sign: f64| (a[i][b] + sign * a[i][3 - b]) * 0.5;
+        Self {
+            plus: core::array::from_fn(|i| [half(i, 0, 1.0), half(i, 1, 1.0)]),
+            minus: core::array::from_fn(|i| [half(i, 0, -1.0), half(i, 1, -1.0)]),
         }
     }
-    out
+
+    /// The 9 points of a line from its 4 control points `p`, each `N` values wide, into `out`
+    /// (`out[i]`, `i = 0 … 8`).
+    #[inline(always)]
+    fn line<const N: usize>(&self, p: [&[f64; N]; 4], out: &mut [[f64; N]; SIDE]) {
+        let mut s = [[0.0; N]; 2];
+        let mut d = [[0.0; N]; 2];
+        for b in 0..2 {
+            for k in 0..N {
+                s[b][k] = p[b][k] + p[3 - b][k];
+                d[b][k] = p[b][k] - p[3 - b][k];
+            }
+        }
+        for i in 0..4 {
+            let (wp, wm) = (self.plus[i], self.minus[i]);
+            let (lo, hi) = out.split_at_mut(SIDE - 1 - i);
+            for k in 0..N {
+                let sum = wp[0] * s[0][k] + wp[1] * s[1][k];
+                let diff = wm[0] * d[0][k] + wm[1] * d[1][k];
+                lo[i][k] = sum + diff;
+                hi[0][k] = sum - diff;
+            }
+        }
+        let wp = self.plus[4];
+        for k in 0..N {
+            out[4][k] = wp[0] * s[0][k] + wp[1] * s[1][k];
+        }
+    }
+}
+
+/// The 9 × 9 level-3 grid over a face with control points `n` (see the module docs),
+/// `out[y][x]` for grid point `x + 9y`: first the 9 points along x of each of the 4 rows of
+/// `n` (`n[·][b]`, 3 values wide), then those 4 × 9 points along y (27 values wide, so the
+/// second pass works on whole rows of points).
+#[inline]
+fn grid(h: &Halves, n: &[[DVec3; 4]; 4]) -> [DVec3; SIDE * SIDE] {
+    let mut rows = [[[0.0; 3]; SIDE]; 4];
+    for (b, row) in rows.iter_mut().enumerate() {
+        let p = [0, 1, 2, 3].map(|a| n[a][b].to_array());
+        h.line::<3>([&p[0], &p[1], &p[2], &p[3]], row);
+    }
+    let flat: [[f64; 3 * SIDE]; 4] = rows.map(bytemuck::cast);
+    let mut out = [[0.0; 3 * SIDE]; SIDE];
+    h.line::<{ 3 * SIDE }>([&flat[0], &flat[1], &flat[2], &flat[3]], &mut out);
+    bytemuck::cast(out)
 }
 
 /// Per grid point `x + 9y` of a base face: the part of the output its level-3 vertex is in
@@ -213,46 +248,206 @@ enum Quads<'a> {
 /// A block of base faces `f0 .. f1` with its share of the six parts and of the corners.
 type Block<'a> = (u32, u32, [&'a mut [DVec3]; 6], Quads<'a>);
 
-/// The fixed tables of a face: `A`, its columns, and per grid point its part and a slot.
+/// The fixed tables of a face: the weights of a base vertex's level-3 point, the split
+/// weights of the grid, and per grid point `(g, part, slot)` (its index `x + 9y`, its part and
+/// one of the face's 256 level-3 corners that holds it), for the points inside the face
+/// (always its own) and those on its edges (its own where it owns them).
 struct Tables {
-    a: [[f64; 4]; SIDE],
-    at: [[f64; SIDE]; 4],
-    part: [u8; SIDE * SIDE],
-    rep: [u8; SIDE * SIDE],
+    vertex: [f64; 3],
+    halves: Halves,
+    inner: Vec<(usize, usize, usize)>,
+    edges: Vec<(usize, usize, usize)>,
 }
 
-/// Where the level-3 vertices go: the output's parts (see [`QuadLevel`]'s and
-/// [`Grandchild`]'s layouts) and, per base face, the ones it writes.
-struct Layout<'a> {
+impl Tables {
+    fn new() -> Self {
+        let a = weights();
+        // a base vertex's point: the tensor weights A[0] x A[0], A[0] = (a0, a1, a0, 0)
+        // (the vertex rule is symmetric and does not reach P3)
+        debug_assert!(a[0][0] == a[0][2] && a[0][3] == 0.0);
+        let vertex = [a[0][1] * a[0][1], a[0][0] * a[0][1], a[0][0] * a[0][0]];
+        let (part, rep) = parts_and_slots(&grid_of_corners());
+        let (mut inner, mut edges) = (Vec::new(), Vec::new());
+        for g in 0..SIDE * SIDE {
+            let (x, y) = (g % SIDE, g / SIDE);
+            let point = (g, part[g] as usize, rep[g] as usize);
+            match (x % 8 == 0, y % 8 == 0) {
+                (true, true) => debug_assert_eq!(part[g], CORNER),
+                (false, false) => inner.push(point),
+                _ => edges.push(point),
+            }
+        }
+        Self { vertex, halves: Halves::new(&a), inner, edges }
+    }
+}
+
+/// The numbers of the level-1 (`S`) and level-2 (`M`) edges of a regular base level, in closed
+/// form from the base twins, with no tables of `S` or `M`.
+///
+/// The child of base corner `c` is `S` face `c` with corners `4c .. 4c + 4`, so base face `f`
+/// holds the `S` corners `16f .. 16f + 16` and the `M` corners `64f .. 64f + 64`, and their twins
+/// follow from the base twins of `f`'s four corners ([`Corners::child_twins`](super::quads)
+/// applied twice). Edges are numbered in the order of their owners (the corner before its
+/// twin), as the level-by-level path numbers them, so an edge's number is the count of owners
+/// in the base faces before its owner's (a prefix sum over base faces of the owner bits, kept
+/// per base face), plus the owners before it in that face.
+struct Numbers<'a> {
     base: &'a QuadLevel,
-    s: &'a QuadLevel,
-    g: &'a Grandchild<'a>,
+    /// Per base face: bit `i` for `S` corner `16f + i` owning its edge.
+    s_masks: Vec<u16>,
+    /// Per base face: bit `i` for `M` corner `64f + i` owning its edge.
+    m_masks: Vec<u64>,
+    /// Per base face, and one more: the `S` edges owned by the faces before it.
+    s_base: Vec<u32>,
+    /// Per base face, and one more: the `M` edges owned by the faces before it.
+    m_base: Vec<u32>,
+}
+
+/// The twins of the `S` corners `16f .. 16f + 16` and of the `M` corners `64f .. 64f + 64` of
+/// regular base face `f` (no twin is [`NONE`]).
+#[inline]
+fn twins(base: &QuadLevel, f: u32) -> ([u32; 16], [u32; 64]) {
+    // the child twins of corner c (of a quad level) whose twin is t and whose previous
+    // corner's twin is tp: the halves of c's edge swap, the edges to the face point pair up
+    let child = |c: u32, t: u32, tp: u32| [4 * next(t) + 3, 4 * next(c) + 2, 4 * prev(c) + 1, 4 * tp];
+    let tb = &base.twin[4 * f as usize..4 * f as usize + 4];
+    let mut s = [0u32; 16];
+    for k in 0..4 {
+        let c = 4 * f + k as u32;
+        s[4 * k..4 * k + 4].copy_from_slice(&child(c, tb[k], tb[(k + 3) % 4]));
+    }
+    let mut m = [0u32; 64];
+    for i in 0..16 {
+        let c = 16 * f + i as u32;
+        m[4 * i..4 * i + 4].copy_from_slice(&child(c, s[i], s[(i & !3) | ((i + 3) & 3)]));
+    }
+    (s, m)
+}
+
+/// The edges (as vertices of the next level) of the `N` corners `first ..` of one base face
+/// whose twins are `twins`: an owner's is the next number from `next` (the face's first), another's
+/// its owner's, `far(twin)` (in this face or a neighbour).
+#[inline]
+fn edges<const N: usize>(first: u32, twins: &[u32; N], mut next: u32, far: impl Fn(u32) -> u32) -> [u32; N] {
+    core::array::from_fn(|i| {
+        if first + (i as u32) < twins[i] {
+            next += 1;
+            next - 1
+        } else {
+            far(twins[i])
+        }
+    })
+}
+
+impl<'a> Numbers<'a> {
+    fn new(base: &'a QuadLevel) -> Self {
+        let mut masks: Vec<(u16, u64)> = Vec::new();
+        (0..base.num_faces() as u32)
+            .into_par_iter()
+            .with_min_len(FACES)
+            .map(|f| {
+                let (s, m) = twins(base, f);
+                let (s0, m0) = (16 * f, 64 * f);
+                let sm = (0..16).fold(0u16, |b, i| b | u16::from(s0 + i < s[i as usize]) << i);
+                let mm = (0..64).fold(0u64, |b, i| b | u64::from(m0 + i < m[i as usize]) << i);
+                (sm, mm)
+            })
+            .collect_into_vec(&mut masks);
+        let (s_masks, m_masks): (Vec<u16>, Vec<u64>) = masks.into_iter().unzip();
+        let s_base = counts_before(s_masks.len(), |f| s_masks[f as usize].count_ones());
+        let m_base = counts_before(m_masks.len(), |f| m_masks[f as usize].count_ones());
+        Self { base, s_masks, m_masks, s_base, m_base }
+    }
+
+    /// Number of `S` edges.
+    fn num_s_edges(&self) -> u32 {
+        *self.s_base.last().expect("one more count than faces")
+    }
+
+    /// Number of `M` edges.
+    fn num_m_edges(&self) -> u32 {
+        *self.m_base.last().expect("one more count than faces")
+    }
+
+    /// The `S` edge owned by `S` corner `o`.
+    #[inline]
+    fn s_edge(&self, o: u32) -> u32 {
+        let g = (o / 16) as usize;
+        self.s_base[g] + (u32::from(self.s_masks[g]) & ((1 << (o % 16)) - 1)).count_ones()
+    }
+
+    /// The `M` edge owned by `M` corner `o`.
+    #[inline]
+    fn m_edge(&self, o: u32) -> u32 {
+        let g = (o / 64) as usize;
+        self.m_base[g] + (self.m_masks[g] & ((1u64 << (o % 64)) - 1)).count_ones()
+    }
+
+    /// Writes the corners of the 64 level-3 quads of base face `f` into `out` (256 values; `F`
+    /// faces `64f .. 64f + 64`, the children of its `M` corners): per `M` corner `x`,
+    /// `(v_x, e(x), face of x, e(prev x))` as level-3 vertices, the `M` corners themselves the
+    /// children's of its `S` corners, and those of its base corners.
+    #[inline]
+    fn quads_of(&self, f: u32, starts: &[u32; 7], out: &mut [u32]) {
+        let b = self.base;
+        let (st, mt) = twins(b, f);
+        let (s0, m0) = (16 * f, 64 * f);
+        // the S vertices of the S corners (children of the base corners)
+        let mut sv = [0u32; 16];
+        for k in 0..4u32 {
+            let c = 4 * f + k;
+            let e = |c: u32| starts[0] + b.edge(c);
+            let quad = [b.corners[c as usize], e(c), starts[1] + f, e(prev(c))];
+            sv[4 * k as usize..4 * k as usize + 4].copy_from_slice(&quad);
+        }
+        // the S edges of the S corners, as M vertices
+        let e1 = edges(s0, &st, starts[2] + self.s_base[f as usize], |t| starts[2] + self.s_edge(t));
+        // the M vertices of the M corners
+        let mut mv = [0u32; 64];
+        for i in 0..16 {
+            let quad = [sv[i], e1[i], starts[3] + (s0 + i as u32) / 4, e1[(i & !3) | ((i + 3) & 3)]];
+            mv[4 * i..4 * i + 4].copy_from_slice(&quad);
+        }
+        // the M edges of the M corners, as F vertices
+        let e2 = edges(m0, &mt, starts[4] + self.m_base[f as usize], |t| starts[4] + self.m_edge(t));
+        for (x, quad) in out.chunks_exact_mut(4).enumerate() {
+            quad.copy_from_slice(&[mv[x], e2[x], starts[5] + (m0 + x as u32) / 4, e2[(x & !3) | ((x + 3) & 3)]]);
+        }
+    }
+}
+
+/// Where the level-3 vertices go: the output's parts (the level-by-level layout: base
+/// vertices, then the vertices on base edges, base faces, `S` edges, `S` faces, `M` edges, `M`
+/// faces) and, per base face, the ones it writes.
+struct Layout<'a> {
+    numbers: Numbers<'a>,
     /// The starts of the parts: base edges, base faces (the level-1 vertices on them), `S`
     /// edges, `S` faces, `M` edges, `M` faces, and the end.
     starts: [u32; 7],
 }
 
 impl<'a> Layout<'a> {
-    fn new(base: &'a QuadLevel, s: &'a QuadLevel, g: &'a Grandchild<'a>) -> Self {
+    fn new(base: &'a QuadLevel) -> Self {
+        let numbers = Numbers::new(base);
         let (nv, ne, nf) = (base.num_vertices() as u32, base.num_edges() as u32, base.num_faces() as u32);
-        let (nvs, nes, nfs) = (s.num_vertices() as u32, s.num_edges() as u32, s.num_faces() as u32);
-        let (nvm, nem) = (g.num_m_vertices(), g.num_m_edges());
-        debug_assert_eq!(nvs, nv + ne + nf);
-        let starts = [nv, nv + ne, nvs, nvs + nes, nvm, nvm + nem, nvm + nem + 4 * nfs];
-        Self { base, s, g, starts }
+        let (nvs, nes) = (nv + ne + nf, numbers.num_s_edges());
+        let (nvm, nem) = (nvs + nes + 4 * nf, numbers.num_m_edges());
+        let starts = [nv, nv + ne, nvs, nvs + nes, nvm, nvm + nem, nvm + nem + 16 * nf];
+        Self { numbers, starts }
     }
 
     /// The ranges of the parts that base faces `f0 .. f1` write (empty for the base vertices).
     fn ranges(&self, f0: u32, f1: u32) -> [(u32, u32); 6] {
         let st = &self.starts;
-        let (b, s, g) = (&self.base.edge_base, &self.s.edge_base, &self.g.base);
+        let n = &self.numbers;
+        let (b, s, m) = (&n.base.edge_base, &n.s_base, &n.m_base);
         let (f0, f1) = (f0 as usize, f1 as usize);
         [
             (st[0] + b[f0], st[0] + b[f1]),
             (st[1] + f0 as u32, st[1] + f1 as u32),
-            (st[2] + s[4 * f0], st[2] + s[4 * f1]),
+            (st[2] + s[f0], st[2] + s[f1]),
             (st[3] + 4 * f0 as u32, st[3] + 4 * f1 as u32),
-            (st[4] + g[4 * f0], st[4] + g[4 * f1]),
+            (st[4] + m[f0], st[4] + m[f1]),
             (st[5] + 16 * f0 as u32, st[5] + 16 * f1 as u32),
         ]
     }
@@ -263,17 +458,12 @@ impl<'a> Layout<'a> {
 /// `color_by_level`, the vertices coloured by the level they were born at.
 pub(super) fn subdivide3(base: QuadLevel, positions: &[DVec3], colors: &[DVec3], color_by_level: bool) -> PolyMesh {
     debug_assert!(is_regular(&base));
-    let s = base.child(base.child_corners());
-    let g = s.grandchild();
-    let layout = Layout::new(&base, &s, &g);
-    let (a, slots) = (weights(), grid_of_corners());
-    let at: [[f64; SIDE]; 4] = core::array::from_fn(|b| core::array::from_fn(|i| a[i][b]));
-    let (part, rep) = parts_and_slots(&slots);
-    let tables = Tables { a, at, part, rep };
+    let layout = Layout::new(&base);
+    let tables = Tables::new();
     let mut corners: Vec<u32> = bytemuck::zeroed_vec(256 * base.num_faces());
     let fine = values(&layout, &tables, positions, Quads::Make(&mut corners));
     let colors = if color_by_level {
-        let ends = [layout.starts[0], layout.starts[2], layout.g.num_m_vertices(), layout.starts[6]];
+        let ends = [layout.starts[0], layout.starts[2], layout.starts[4], layout.starts[6]];
         let mut c = Vec::with_capacity(ends[3] as usize);
         for (level, &end) in ends.iter().enumerate() {
             c.resize(end as usize, super::LEVEL_COLORS[level % super::LEVEL_COLORS.len()]);
@@ -284,8 +474,7 @@ pub(super) fn subdivide3(base: QuadLevel, positions: &[DVec3], colors: &[DVec3],
     } else {
         values(&layout, &tables, colors, Quads::Made(&corners))
     };
-    drop(g);
-    drop(s);
+    drop(layout);
     drop(base);
     quad_mesh(fine, colors, corners)
 }
@@ -294,24 +483,25 @@ pub(super) fn subdivide3(base: QuadLevel, positions: &[DVec3], colors: &[DVec3],
 /// one pass, everything else per base face, each base face writing the vertices in its
 /// ranges of the output ([`Layout::ranges`]).
 fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<'_>) -> Vec<DVec3> {
-    let a = &tables.a;
-    let base = layout.base;
+    let base = layout.numbers.base;
     let st = layout.starts;
     let mut out: Vec<DVec3> = bytemuck::zeroed_vec(st[6] as usize);
     let (old, mut rest) = out.split_at_mut(st[0] as usize);
-    // the base vertices: the grid point of the corner of their start corner
+    // the base vertices: the grid point at a corner, from the vertex, its four neighbours
+    // along edges and its four diagonal neighbours (corner c's next two corners, c running
+    // around the vertex from its start corner)
+    let [wv, we, wd] = tables.vertex;
     let vertex_pass = || {
         old.par_iter_mut().enumerate().with_min_len(MIN_RINGS).for_each(|(v, o)| {
-            let c = base.vertex_start[v];
-            let n = net(base, p, c / 4);
-            let (x, y) = [(0, 0), (8, 0), (8, 8), (0, 8)][(c % 4) as usize];
-            let mut sum = DVec3::ZERO;
-            for i in 0..4 {
-                for j in 0..4 {
-                    sum += n[i][j] * (a[x][i] * a[y][j]);
-                }
+            let at = |c: u32| p[base.corners[c as usize] as usize];
+            let (mut edges, mut diagonals) = (DVec3::ZERO, DVec3::ZERO);
+            let mut c = base.vertex_start[v];
+            for _ in 0..4 {
+                edges += at(next(c));
+                diagonals += at(next(next(c)));
+                c = base.twin[prev(c) as usize];
             }
-            *o = sum;
+            *o = p[v] * wv + edges * we + diagonals * wd;
         });
     };
     // the six parts, cut into blocks of base faces
@@ -356,21 +546,22 @@ fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<
                 let quads: &[u32] = match &mut quads {
                     Quads::Make(out) => {
                         let out = &mut out[at..at + 256];
-                        for (k, part) in out.chunks_exact_mut(64).enumerate() {
-                            part.copy_from_slice(&layout.g.quads_of(4 * f + k as u32));
-                        }
+                        layout.numbers.quads_of(f, &st, out);
                         out
                     }
                     Quads::Made(made) => &made[at..at + 256],
                 };
-                let values = grid(&tables.at, &net(base, p, f));
-                for (g, (&part, &slot)) in tables.part.iter().zip(&tables.rep).enumerate() {
-                    let part = part as usize;
-                    let i = quads[slot as usize];
-                    // this face's vertex (all inside it; on its edges, those it owns)
-                    if part < 6 && i >= own[part].0 && i < own[part].1 {
-                        debug_assert!(i >= st[part] && i < st[part + 1]);
-                        block[part][(i - lo[part]) as usize] = DVec3::new(values[0][g], values[1][g], values[2][g]);
+                let values = grid(&tables.halves, &net(base, p, f));
+                // the vertices inside the face, then those on its edges that it owns
+                for &(g, part, slot) in &tables.inner {
+                    let i = quads[slot];
+                    debug_assert!(i >= own[part].0 && i < own[part].1);
+                    block[part][(i - lo[part]) as usize] = values[g];
+                }
+                for &(g, part, slot) in &tables.edges {
+                    let i = quads[slot];
+                    if i >= own[part].0 && i < own[part].1 {
+                        block[part][(i - lo[part]) as usize] = values[g];
                     }
                 }
             }
