@@ -303,40 +303,88 @@ struct Numbers<'a> {
     m_base: Vec<u32>,
 }
 
-/// The twins of the `S` corners `16f .. 16f + 16` and of the `M` corners `64f .. 64f + 64` of
-/// regular base face `f` (no twin is [`NONE`]).
+/// The index of the previous corner in a quad among corners numbered from a multiple of 4.
 #[inline]
-fn twins(base: &QuadLevel, f: u32) -> ([u32; 16], [u32; 64]) {
-    // the child twins of corner c (of a quad level) whose twin is t and whose previous
-    // corner's twin is tp: the halves of c's edge swap, the edges to the face point pair up
-    let child = |c: u32, t: u32, tp: u32| [4 * next(t) + 3, 4 * next(c) + 2, 4 * prev(c) + 1, 4 * tp];
+fn prev_index(i: usize) -> usize {
+    (i & !3) | ((i + 3) & 3)
+}
+
+/// The twins of the children of corner `c` of a quad level, whose twin is `t` and whose
+/// previous corner's twin is `tp` ([`Corners::child_twins`](super::quads) without boundary):
+/// the halves of `c`'s edge swap, the edges to the face point pair up.
+#[inline]
+fn child_twin(c: u32, t: u32, tp: u32, l: usize) -> u32 {
+    match l {
+        0 => 4 * next(t) + 3,
+        1 => 4 * next(c) + 2,
+        2 => 4 * prev(c) + 1,
+        _ => 4 * tp,
+    }
+}
+
+/// The twins of the `S` corners `16f .. 16f + 16` of regular base face `f`.
+#[inline]
+fn s_twins(base: &QuadLevel, f: u32) -> [u32; 16] {
     let tb = &base.twin[4 * f as usize..4 * f as usize + 4];
-    let mut s = [0u32; 16];
-    for k in 0..4 {
-        let c = 4 * f + k as u32;
-        s[4 * k..4 * k + 4].copy_from_slice(&child(c, tb[k], tb[(k + 3) % 4]));
+    core::array::from_fn(|i| child_twin(4 * f + (i / 4) as u32, tb[i / 4], tb[prev_index(i / 4)], i % 4))
+}
+
+/// The twin of `M` corner `64f + i`, from the twins `s` of the `S` corners of base face `f`.
+#[inline]
+fn m_twin(f: u32, s: &[u32; 16], i: usize) -> u32 {
+    let j = i / 4;
+    child_twin(16 * f + j as u32, s[j], s[prev_index(j)], i % 4)
+}
+
+/// The owner bits of the children of the `N` corners `c0 ..` (`c0` a multiple of 4, `N` at most
+/// 16) of a quad level whose twins are `t`: bit `4i + l` for child corner `4(c0 + i) + l`
+/// owning its edge, i.e. coming before its twin ([`child_twin`]). With `c = c0 + i`, that is
+/// `4c < 4·next(t) + 3`, `4c + 1 < 4·next(c) + 2`, `4c + 2 < 4·prev(c) + 1` and
+/// `4c + 3 < 4·twin(prev c)`: in whole numbers, `c ≤ next(t)`, `c` not its quad's last corner,
+/// `c` its quad's first corner, and `c < twin(prev c)`.
+#[inline]
+fn child_owners<const N: usize>(c0: u32, t: &[u32; N]) -> u64 {
+    let mut bits = 0;
+    for i in 0..N {
+        let c = c0 + i as u32;
+        let own = u64::from(c <= next(t[i]))
+            | u64::from(c % 4 != 3) << 1
+            | u64::from(c.is_multiple_of(4)) << 2
+            | u64::from(c < t[prev_index(i)]) << 3;
+        bits |= own << (4 * i);
     }
-    let mut m = [0u32; 64];
-    for i in 0..16 {
-        let c = 16 * f + i as u32;
-        m[4 * i..4 * i + 4].copy_from_slice(&child(c, s[i], s[(i & !3) | ((i + 3) & 3)]));
-    }
-    (s, m)
+    bits
 }
 
 /// The edges (as vertices of the next level) of the `N` corners `first ..` of one base face
-/// whose twins are `twins`: an owner's is the next number from `next` (the face's first), another's
-/// its owner's, `far(twin)` (in this face or a neighbour).
+/// with owner bits `owners` (`N` at most 64): an owner's is the next number from `next` (the
+/// face's first), another's its owner's: found in this face (its owner, which comes before
+/// it, is done already) or `far(twin)` in a neighbour.
 #[inline]
-fn edges<const N: usize>(first: u32, twins: &[u32; N], mut next: u32, far: impl Fn(u32) -> u32) -> [u32; N] {
-    core::array::from_fn(|i| {
-        if first + (i as u32) < twins[i] {
+fn edges<const N: usize>(
+    first: u32,
+    owners: u64,
+    mut next: u32,
+    twin: impl Fn(usize) -> u32,
+    far: impl Fn(u32) -> u32,
+) -> [u32; N] {
+    let mut e = [0u32; N];
+    for i in 0..N {
+        e[i] = if owners >> i & 1 != 0 {
             next += 1;
             next - 1
         } else {
-            far(twins[i])
-        }
-    })
+            let t = twin(i);
+            let j = t.wrapping_sub(first) as usize;
+            if j < N {
+                debug_assert!(j < i);
+                e[j]
+            } else {
+                far(t)
+            }
+        };
+    }
+    e
 }
 
 impl<'a> Numbers<'a> {
@@ -346,11 +394,8 @@ impl<'a> Numbers<'a> {
             .into_par_iter()
             .with_min_len(FACES)
             .map(|f| {
-                let (s, m) = twins(base, f);
-                let (s0, m0) = (16 * f, 64 * f);
-                let sm = (0..16).fold(0u16, |b, i| b | u16::from(s0 + i < s[i as usize]) << i);
-                let mm = (0..64).fold(0u64, |b, i| b | u64::from(m0 + i < m[i as usize]) << i);
-                (sm, mm)
+                let tb: &[u32; 4] = base.twin[4 * f as usize..4 * f as usize + 4].try_into().expect("four corners");
+                (child_owners(4 * f, tb) as u16, child_owners(16 * f, &s_twins(base, f)))
             })
             .collect_into_vec(&mut masks);
         let (s_masks, m_masks): (Vec<u16>, Vec<u64>) = masks.into_iter().unzip();
@@ -390,7 +435,7 @@ impl<'a> Numbers<'a> {
     #[inline]
     fn quads_of(&self, f: u32, starts: &[u32; 7], out: &mut [u32]) {
         let b = self.base;
-        let (st, mt) = twins(b, f);
+        let st = s_twins(b, f);
         let (s0, m0) = (16 * f, 64 * f);
         // the S vertices of the S corners (children of the base corners)
         let mut sv = [0u32; 16];
@@ -401,17 +446,20 @@ impl<'a> Numbers<'a> {
             sv[4 * k as usize..4 * k as usize + 4].copy_from_slice(&quad);
         }
         // the S edges of the S corners, as M vertices
-        let e1 = edges(s0, &st, starts[2] + self.s_base[f as usize], |t| starts[2] + self.s_edge(t));
+        let fi = f as usize;
+        let s_edge = |t| starts[2] + self.s_edge(t);
+        let e1: [u32; 16] = edges(s0, self.s_masks[fi].into(), starts[2] + self.s_base[fi], |i| st[i], s_edge);
         // the M vertices of the M corners
         let mut mv = [0u32; 64];
         for i in 0..16 {
-            let quad = [sv[i], e1[i], starts[3] + (s0 + i as u32) / 4, e1[(i & !3) | ((i + 3) & 3)]];
+            let quad = [sv[i], e1[i], starts[3] + (s0 + i as u32) / 4, e1[prev_index(i)]];
             mv[4 * i..4 * i + 4].copy_from_slice(&quad);
         }
         // the M edges of the M corners, as F vertices
-        let e2 = edges(m0, &mt, starts[4] + self.m_base[f as usize], |t| starts[4] + self.m_edge(t));
+        let m_edge = |t| starts[4] + self.m_edge(t);
+        let e2: [u32; 64] = edges(m0, self.m_masks[fi], starts[4] + self.m_base[fi], |i| m_twin(f, &st, i), m_edge);
         for (x, quad) in out.chunks_exact_mut(4).enumerate() {
-            quad.copy_from_slice(&[mv[x], e2[x], starts[5] + (m0 + x as u32) / 4, e2[(x & !3) | ((x + 3) & 3)]]);
+            quad.copy_from_slice(&[mv[x], e2[x], starts[5] + (m0 + x as u32) / 4, e2[prev_index(x)]]);
         }
     }
 }
@@ -569,4 +617,35 @@ fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<
     };
     rayon::join(vertex_pass, face_pass);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The owner bits in whole numbers equal the comparisons of the child corners with their
+    /// twins, for any twins (near the corners, where the comparisons are close, and far).
+    #[test]
+    fn child_owners_compare_children_with_their_twins() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut random = |n: u32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % u64::from(n)) as u32
+        };
+        for _ in 0..2000 {
+            let c0 = 4 * random(64);
+            let t: [u32; 16] = core::array::from_fn(|_| if random(2) == 0 { c0 + random(20) } else { random(400) });
+            let bits = child_owners(c0, &t);
+            for i in 0..16 {
+                for l in 0..4 {
+                    let c = c0 + i as u32;
+                    let child = 4 * c + l as u32;
+                    let owns = child < child_twin(c, t[i], t[prev_index(i)], l);
+                    assert_eq!(bits >> (4 * i + l) & 1 == 1, owns, "c0 {c0}, twins {t:?}, corner {i}, child {l}");
+                }
+            }
+        }
+    }
 }
