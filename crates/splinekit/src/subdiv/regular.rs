@@ -249,14 +249,14 @@ enum Quads<'a> {
 type Block<'a> = (u32, u32, [&'a mut [DVec3]; 6], Quads<'a>);
 
 /// The fixed tables of a face: the weights of a base vertex's level-3 point, the split
-/// weights of the grid, and per grid point `(g, part, slot)` (its index `x + 9y`, its part and
-/// one of the face's 256 level-3 corners that holds it), for the points inside the face
-/// (always its own) and those on its edges (its own where it owns them).
+/// weights of the grid, and per part of the output its grid points `(g, slot)` (the index
+/// `x + 9y` and one of the face's 256 level-3 corners that holds the point), those inside the
+/// face (always its own) and those on its edges (its own where it owns them).
 struct Tables {
     vertex: [f64; 3],
     halves: Halves,
-    inner: Vec<(usize, usize, usize)>,
-    edges: Vec<(usize, usize, usize)>,
+    inner: [Vec<(u8, u8)>; 6],
+    edges: [Vec<(u8, u8)>; 6],
 }
 
 impl Tables {
@@ -267,14 +267,14 @@ impl Tables {
         debug_assert!(a[0][0] == a[0][2] && a[0][3] == 0.0);
         let vertex = [a[0][1] * a[0][1], a[0][0] * a[0][1], a[0][0] * a[0][0]];
         let (part, rep) = parts_and_slots(&grid_of_corners());
-        let (mut inner, mut edges) = (Vec::new(), Vec::new());
+        let (mut inner, mut edges): ([Vec<_>; 6], [Vec<_>; 6]) = Default::default();
         for g in 0..SIDE * SIDE {
             let (x, y) = (g % SIDE, g / SIDE);
-            let point = (g, part[g] as usize, rep[g] as usize);
+            let point = (g as u8, rep[g]);
             match (x % 8 == 0, y % 8 == 0) {
                 (true, true) => debug_assert_eq!(part[g], CORNER),
-                (false, false) => inner.push(point),
-                _ => edges.push(point),
+                (false, false) => inner[part[g] as usize].push(point),
+                _ => edges[part[g] as usize].push(point),
             }
         }
         Self { vertex, halves: Halves::new(&a), inner, edges }
@@ -591,25 +591,30 @@ fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<
                 let own = layout.ranges(f, f + 1);
                 // the face's 64 quads are those of its S faces 4f .. 4f + 3
                 let at = 256 * (f - f0) as usize;
-                let quads: &[u32] = match &mut quads {
+                let quads: &[u32; 256] = match &mut quads {
                     Quads::Make(out) => {
                         let out = &mut out[at..at + 256];
                         layout.numbers.quads_of(f, &st, out);
                         out
                     }
                     Quads::Made(made) => &made[at..at + 256],
-                };
+                }
+                .try_into()
+                .expect("256 corners a face");
                 let values = grid(&tables.halves, &net(base, p, f));
                 // the vertices inside the face, then those on its edges that it owns
-                for &(g, part, slot) in &tables.inner {
-                    let i = quads[slot];
-                    debug_assert!(i >= own[part].0 && i < own[part].1);
-                    block[part][(i - lo[part]) as usize] = values[g];
-                }
-                for &(g, part, slot) in &tables.edges {
-                    let i = quads[slot];
-                    if i >= own[part].0 && i < own[part].1 {
-                        block[part][(i - lo[part]) as usize] = values[g];
+                for (part, (inner, edges)) in tables.inner.iter().zip(&tables.edges).enumerate() {
+                    let (out, lo, own) = (&mut *block[part], lo[part], own[part]);
+                    for &(g, slot) in inner {
+                        let i = quads[slot as usize];
+                        debug_assert!(i >= own.0 && i < own.1);
+                        out[(i - lo) as usize] = values[g as usize];
+                    }
+                    for &(g, slot) in edges {
+                        let i = quads[slot as usize];
+                        if i >= own.0 && i < own.1 {
+                            out[(i - lo) as usize] = values[g as usize];
+                        }
                     }
                 }
             }
