@@ -485,6 +485,7 @@ impl<'a> Layout<'a> {
     }
 
     /// The ranges of the parts that base faces `f0 .. f1` write (empty for the base vertices).
+    #[inline]
     fn ranges(&self, f0: u32, f1: u32) -> [(u32, u32); 6] {
         let st = &self.starts;
         let n = &self.numbers;
