@@ -117,10 +117,20 @@ impl Adjacency {
             edge_corner.push(c as u32);
             let same = out(a).iter().filter(|&&d| to[d as usize] == b);
             let reverse = out(b).iter().filter(|&&d| to[d as usize] == a);
-            let (n_same, n_rev) = (same.clone().count(), reverse.clone().count());
+            // one walk over each fan: how many half-edges run a -> b and b -> a, and the first
+            // of the latter
+            let n_same = same.clone().count();
+            let (mut n_rev, mut first_rev) = (0, NONE);
+            for &d in reverse.clone() {
+                if n_rev == 0 {
+                    first_rev = d;
+                }
+                n_rev += 1;
+            }
             if n_same == 1 && n_rev <= 1 {
                 edge_of[c] = e;
-                if let Some(&d) = reverse.clone().next() {
+                if first_rev != NONE {
+                    let d = first_rev;
                     twin[c] = d;
                     twin[d as usize] = c as u32;
                     edge_of[d as usize] = e;
