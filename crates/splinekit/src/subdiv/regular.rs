@@ -588,14 +588,7 @@ fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<
     let face_pass = || {
         parts.into_par_iter().for_each(|(f0, f1, block, mut quads)| {
             let lo = layout.ranges(f0, f1).map(|r| r.0);
-            // each face's control points are gathered a face ahead, so that the loads that
-            // miss the cache overlap the previous face's arithmetic
-            let mut ahead = net(base, p, f0);
             for f in f0..f1 {
-                let n = ahead;
-                if f + 1 < f1 {
-                    ahead = net(base, p, f + 1);
-                }
                 let own = layout.ranges(f, f + 1);
                 // the face's 64 quads are those of its S faces 4f .. 4f + 3
                 let at = 256 * (f - f0) as usize;
@@ -609,7 +602,7 @@ fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<
                 }
                 .try_into()
                 .expect("256 corners a face");
-                let values = grid(&tables.halves, &n);
+                let values = grid(&tables.halves, &net(base, p, f));
                 // the vertices inside the face, then those on its edges that it owns
                 for (part, (inner, edges)) in tables.inner.iter().zip(&tables.edges).enumerate() {
                     let (out, lo, own) = (&mut *block[part], lo[part], own[part]);
