@@ -48,13 +48,19 @@ pub(super) fn prev(c: u32) -> u32 {
 }
 
 /// A level's corners seen from its child: twins and the corners around a face.
-trait Corners: Sync {
+pub(super) trait Corners: Sync {
     /// The twin of corner `c`, or [`NONE`].
     fn twin(&self, c: u32) -> u32;
-    /// The next corner in `c`'s face.
-    fn next(&self, c: u32) -> u32;
-    /// The previous corner in `c`'s face.
-    fn prev(&self, c: u32) -> u32;
+    /// The next corner in `c`'s face (by default, of a level of quads).
+    #[inline]
+    fn next(&self, c: u32) -> u32 {
+        next(c)
+    }
+    /// The previous corner in `c`'s face (by default, of a level of quads).
+    #[inline]
+    fn prev(&self, c: u32) -> u32 {
+        prev(c)
+    }
 
     /// The twins of the four corners of child face `c`.
     #[inline]
@@ -78,7 +84,7 @@ trait Corners: Sync {
 /// The owner bits of quad `q` whose corners' twins are `t`: bit `k` when corner `4q + k` owns
 /// its edge (it has no twin, or comes before it).
 #[inline]
-fn owner_bits(q: u32, t: [u32; 4]) -> u32 {
+pub(super) fn owner_bits(q: u32, t: [u32; 4]) -> u32 {
     (0..4).fold(0, |m, k| m | u32::from(4 * q + k < t[k as usize]) << k)
 }
 
@@ -133,14 +139,6 @@ impl Corners for QuadLevel {
     #[inline]
     fn twin(&self, c: u32) -> u32 {
         self.twin[c as usize]
-    }
-    #[inline]
-    fn next(&self, c: u32) -> u32 {
-        next(c)
-    }
-    #[inline]
-    fn prev(&self, c: u32) -> u32 {
-        prev(c)
     }
 }
 
@@ -246,7 +244,7 @@ impl QuadLevel {
 
     /// The edge of corner `c`.
     #[inline]
-    pub(super) fn edge(&self, c: u32) -> u32 {
+    fn edge(&self, c: u32) -> u32 {
         self.edge_of[c as usize]
     }
 
@@ -398,17 +396,22 @@ impl QuadLevel {
         (0..self.num_faces() as u32)
             .into_par_iter()
             .with_min_len(FACES)
-            .map(|q| {
-                let mut quads = [0u32; 16];
-                let e = [4 * q, 4 * q + 1, 4 * q + 2, 4 * q + 3].map(|c| nv + self.edge(c));
-                for k in 0..4 {
-                    let c = (4 * q) as usize + k;
-                    quads[4 * k..4 * k + 4].copy_from_slice(&[self.corners[c], e[k], nv + ne + q, e[(k + 3) % 4]]);
-                }
-                quads
-            })
+            .map(|q| self.child_corners_of(q, nv, nv + ne))
             .collect_into_vec(&mut out);
         bytemuck::cast_vec(out)
+    }
+
+    /// The corners of the child faces of face `q` ([`Self::child_corners`]), the child's
+    /// vertices on edges numbered from `on_edges`, those on faces from `on_faces`.
+    #[inline]
+    pub(super) fn child_corners_of(&self, q: u32, on_edges: u32, on_faces: u32) -> [u32; 16] {
+        let mut quads = [0u32; 16];
+        let e = [4 * q, 4 * q + 1, 4 * q + 2, 4 * q + 3].map(|c| on_edges + self.edge(c));
+        for k in 0..4 {
+            let c = (4 * q) as usize + k;
+            quads[4 * k..4 * k + 4].copy_from_slice(&[self.corners[c], e[k], on_faces + q, e[(k + 3) % 4]]);
+        }
+        quads
     }
 
     /// The child's tables, given its corners ([`Self::child_corners`]).

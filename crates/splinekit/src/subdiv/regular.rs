@@ -21,7 +21,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::quads::{FACES, QuadLevel, counts_before, next, prev, quad_mesh};
+use super::quads::{Corners, FACES, QuadLevel, counts_before, next, prev, quad_mesh};
 use super::topology::MIN_RINGS;
 use crate::mesh::{NONE, PolyMesh};
 
@@ -309,36 +309,41 @@ fn prev_index(i: usize) -> usize {
     (i & !3) | ((i + 3) & 3)
 }
 
-/// The twins of the children of corner `c` of a quad level, whose twin is `t` and whose
-/// previous corner's twin is `tp` ([`Corners::child_twins`](super::quads) without boundary):
-/// the halves of `c`'s edge swap, the edges to the face point pair up.
-#[inline]
-fn child_twin(c: u32, t: u32, tp: u32, l: usize) -> u32 {
-    match l {
-        0 => 4 * next(t) + 3,
-        1 => 4 * next(c) + 2,
-        2 => 4 * prev(c) + 1,
-        _ => 4 * tp,
+/// The `S` corners `16f .. 16f + 16` of one regular base face `f` as a quad level's corners:
+/// their twins, made from the base twins ([`Corners::child_twins`]), are all [`Corners`] needs
+/// to give their own children's twins.
+struct SCorners {
+    first: u32,
+    twins: [u32; 16],
+}
+
+impl SCorners {
+    #[inline]
+    fn new(base: &QuadLevel, f: u32) -> Self {
+        let mut twins = [0u32; 16];
+        for (k, t) in twins.chunks_exact_mut(4).enumerate() {
+            t.copy_from_slice(&base.child_twins(4 * f + k as u32));
+        }
+        Self { first: 16 * f, twins }
+    }
+
+    /// The twin of `M` corner `64f + i`.
+    #[inline]
+    fn child_twin(&self, i: usize) -> u32 {
+        self.child_twins(self.first + (i / 4) as u32)[i % 4]
     }
 }
 
-/// The twins of the `S` corners `16f .. 16f + 16` of regular base face `f`.
-#[inline]
-fn s_twins(base: &QuadLevel, f: u32) -> [u32; 16] {
-    let tb = &base.twin[4 * f as usize..4 * f as usize + 4];
-    core::array::from_fn(|i| child_twin(4 * f + (i / 4) as u32, tb[i / 4], tb[prev_index(i / 4)], i % 4))
-}
-
-/// The twin of `M` corner `64f + i`, from the twins `s` of the `S` corners of base face `f`.
-#[inline]
-fn m_twin(f: u32, s: &[u32; 16], i: usize) -> u32 {
-    let j = i / 4;
-    child_twin(16 * f + j as u32, s[j], s[prev_index(j)], i % 4)
+impl Corners for SCorners {
+    #[inline]
+    fn twin(&self, c: u32) -> u32 {
+        self.twins[(c - self.first) as usize]
+    }
 }
 
 /// The owner bits of the children of the `N` corners `c0 ..` (`c0` a multiple of 4, `N` at most
 /// 16) of a quad level whose twins are `t`: bit `4i + l` for child corner `4(c0 + i) + l`
-/// owning its edge, i.e. coming before its twin ([`child_twin`]). With `c = c0 + i`, that is
+/// owning its edge, i.e. coming before its twin ([`Corners::child_twins`]). With `c = c0 + i`, that is
 /// `4c < 4·next(t) + 3`, `4c + 1 < 4·next(c) + 2`, `4c + 2 < 4·prev(c) + 1` and
 /// `4c + 3 < 4·twin(prev c)`: in whole numbers, `c ≤ next(t)`, `c` not its quad's last corner,
 /// `c` its quad's first corner, and `c < twin(prev c)`.
@@ -389,16 +394,15 @@ fn edges<const N: usize>(
 
 impl<'a> Numbers<'a> {
     fn new(base: &'a QuadLevel) -> Self {
-        let mut masks: Vec<(u16, u64)> = Vec::new();
+        let (mut s_masks, mut m_masks) = (Vec::new(), Vec::new());
         (0..base.num_faces() as u32)
             .into_par_iter()
             .with_min_len(FACES)
             .map(|f| {
                 let tb: &[u32; 4] = base.twin[4 * f as usize..4 * f as usize + 4].try_into().expect("four corners");
-                (child_owners(4 * f, tb) as u16, child_owners(16 * f, &s_twins(base, f)))
+                (child_owners(4 * f, tb) as u16, child_owners(16 * f, &SCorners::new(base, f).twins))
             })
-            .collect_into_vec(&mut masks);
-        let (s_masks, m_masks): (Vec<u16>, Vec<u64>) = masks.into_iter().unzip();
+            .unzip_into_vecs(&mut s_masks, &mut m_masks);
         let s_base = counts_before(s_masks.len(), |f| s_masks[f as usize].count_ones());
         let m_base = counts_before(m_masks.len(), |f| m_masks[f as usize].count_ones());
         Self { base, s_masks, m_masks, s_base, m_base }
@@ -434,21 +438,14 @@ impl<'a> Numbers<'a> {
     /// children's of its `S` corners, and those of its base corners.
     #[inline]
     fn quads_of(&self, f: u32, starts: &[u32; 7], out: &mut [u32]) {
-        let b = self.base;
-        let st = s_twins(b, f);
+        let s = SCorners::new(self.base, f);
         let (s0, m0) = (16 * f, 64 * f);
         // the S vertices of the S corners (children of the base corners)
-        let mut sv = [0u32; 16];
-        for k in 0..4u32 {
-            let c = 4 * f + k;
-            let e = |c: u32| starts[0] + b.edge(c);
-            let quad = [b.corners[c as usize], e(c), starts[1] + f, e(prev(c))];
-            sv[4 * k as usize..4 * k as usize + 4].copy_from_slice(&quad);
-        }
+        let sv = self.base.child_corners_of(f, starts[0], starts[1]);
         // the S edges of the S corners, as M vertices
         let fi = f as usize;
         let s_edge = |t| starts[2] + self.s_edge(t);
-        let e1: [u32; 16] = edges(s0, self.s_masks[fi].into(), starts[2] + self.s_base[fi], |i| st[i], s_edge);
+        let e1: [u32; 16] = edges(s0, self.s_masks[fi].into(), starts[2] + self.s_base[fi], |i| s.twins[i], s_edge);
         // the M vertices of the M corners
         let mut mv = [0u32; 64];
         for i in 0..16 {
@@ -457,7 +454,7 @@ impl<'a> Numbers<'a> {
         }
         // the M edges of the M corners, as F vertices
         let m_edge = |t| starts[4] + self.m_edge(t);
-        let e2: [u32; 64] = edges(m0, self.m_masks[fi], starts[4] + self.m_base[fi], |i| m_twin(f, &st, i), m_edge);
+        let e2: [u32; 64] = edges(m0, self.m_masks[fi], starts[4] + self.m_base[fi], |i| s.child_twin(i), m_edge);
         for (x, quad) in out.chunks_exact_mut(4).enumerate() {
             quad.copy_from_slice(&[mv[x], e2[x], starts[5] + (m0 + x as u32) / 4, e2[prev_index(x)]]);
         }
@@ -630,7 +627,8 @@ mod tests {
     use super::*;
 
     /// The owner bits in whole numbers equal the comparisons of the child corners with their
-    /// twins, for any twins (near the corners, where the comparisons are close, and far).
+    /// twins ([`Corners::child_twins`] of a quad level with those twins), for any twins (near
+    /// the corners, where the comparisons are close, and far).
     #[test]
     fn child_owners_compare_children_with_their_twins() {
         let mut state = 0x2545_f491_4f6c_dd1d_u64;
@@ -644,11 +642,12 @@ mod tests {
             let c0 = 4 * random(64);
             let t: [u32; 16] = core::array::from_fn(|_| if random(2) == 0 { c0 + random(20) } else { random(400) });
             let bits = child_owners(c0, &t);
+            let level = SCorners { first: c0, twins: t };
             for i in 0..16 {
-                for l in 0..4 {
-                    let c = c0 + i as u32;
-                    let child = 4 * c + l as u32;
-                    let owns = child < child_twin(c, t[i], t[prev_index(i)], l);
+                let c = c0 + i as u32;
+                let twins = level.child_twins(c);
+                for (l, &twin) in twins.iter().enumerate() {
+                    let owns = 4 * c + (l as u32) < twin;
                     assert_eq!(bits >> (4 * i + l) & 1 == 1, owns, "c0 {c0}, twins {t:?}, corner {i}, child {l}");
                 }
             }
