@@ -25,8 +25,9 @@
 //! memory rather than hand it back, so repeated subdivisions do not fault the same small
 //! pages in again.
 //!
-//! This is the workspace's only unsafe code: implementing [`GlobalAlloc`] is unsafe by
-//! definition, and `mmap`, `mremap`, `munmap`, `madvise` and `mallopt` are foreign functions.
+//! This and the core's runtime dispatch (`splinekit/src/wide.rs`) are the workspace's only
+//! unsafe code: implementing [`GlobalAlloc`] is unsafe by definition, and `mmap`, `mremap`,
+//! `munmap`, `madvise` and `mallopt` are foreign functions.
 #![allow(unsafe_code)]
 
 use std::alloc::{GlobalAlloc, Layout, System};

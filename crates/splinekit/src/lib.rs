@@ -41,6 +41,7 @@ pub mod mesh;
 pub mod subdiv;
 pub mod sweep;
 pub mod vector;
+mod wide;
 
 pub use arclen::{
     ArcPoint, ArclenEstimate, ArclenIndex, ArclenTable, DEFAULT_ACCURACY, ResampleError, TableMethod, arclen_relative,

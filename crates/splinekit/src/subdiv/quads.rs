@@ -403,7 +403,7 @@ impl QuadLevel {
 
     /// The corners of the child faces of face `q` ([`Self::child_corners`]), the child's
     /// vertices on edges numbered from `on_edges`, those on faces from `on_faces`.
-    #[inline]
+    #[inline(always)]
     pub(super) fn child_corners_of(&self, q: u32, on_edges: u32, on_faces: u32) -> [u32; 16] {
         let mut quads = [0u32; 16];
         let e = [4 * q, 4 * q + 1, 4 * q + 2, 4 * q + 3].map(|c| on_edges + self.edge(c));

@@ -99,7 +99,7 @@ fn grid_of_corners() -> [u8; 256] {
 
 /// The 4 × 4 control points of regular base face `f`, `[x][y]`: its corners at `[1][1]`,
 /// `[2][1]`, `[2][2]`, `[1][2]` (corners `4f … 4f + 3`), the x axis along its first edge.
-#[inline]
+#[inline(always)]
 fn net(level: &QuadLevel, p: &[DVec3], f: u32) -> [[DVec3; 4]; 4] {
     let at = |c: u32| p[level.corners[c as usize] as usize];
     let tw = |c: u32| level.twin[c as usize];
@@ -177,7 +177,7 @@ impl Halves {
 /// `out[y][x]` for grid point `x + 9y`: first the 9 points along x of each of the 4 rows of
 /// `n` (`n[·][b]`, 3 values wide), then those 4 × 9 points along y (27 values wide, so the
 /// second pass works on whole rows of points).
-#[inline]
+#[inline(always)]
 fn grid(h: &Halves, n: &[[DVec3; 4]; 4]) -> [DVec3; SIDE * SIDE] {
     let mut rows = [[[0.0; 3]; SIDE]; 4];
     for (b, row) in rows.iter_mut().enumerate() {
@@ -304,7 +304,7 @@ struct Numbers<'a> {
 }
 
 /// The index of the previous corner in a quad among corners numbered from a multiple of 4.
-#[inline]
+#[inline(always)]
 fn prev_index(i: usize) -> usize {
     (i & !3) | ((i + 3) & 3)
 }
@@ -318,7 +318,7 @@ struct SCorners {
 }
 
 impl SCorners {
-    #[inline]
+    #[inline(always)]
     fn new(base: &QuadLevel, f: u32) -> Self {
         let mut twins = [0u32; 16];
         for (k, t) in twins.chunks_exact_mut(4).enumerate() {
@@ -328,14 +328,14 @@ impl SCorners {
     }
 
     /// The twin of `M` corner `64f + i`.
-    #[inline]
+    #[inline(always)]
     fn child_twin(&self, i: usize) -> u32 {
         self.child_twins(self.first + (i / 4) as u32)[i % 4]
     }
 }
 
 impl Corners for SCorners {
-    #[inline]
+    #[inline(always)]
     fn twin(&self, c: u32) -> u32 {
         self.twins[(c - self.first) as usize]
     }
@@ -347,7 +347,7 @@ impl Corners for SCorners {
 /// `4c < 4·next(t) + 3`, `4c + 1 < 4·next(c) + 2`, `4c + 2 < 4·prev(c) + 1` and
 /// `4c + 3 < 4·twin(prev c)`: in whole numbers, `c ≤ next(t)`, `c` not its quad's last corner,
 /// `c` its quad's first corner, and `c < twin(prev c)`.
-#[inline]
+#[inline(always)]
 fn child_owners<const N: usize>(c0: u32, t: &[u32; N]) -> u64 {
     let mut bits = 0;
     for i in 0..N {
@@ -365,7 +365,7 @@ fn child_owners<const N: usize>(c0: u32, t: &[u32; N]) -> u64 {
 /// with owner bits `owners` (`N` at most 64): an owner's is the next number from `next` (the
 /// face's first), another's its owner's: found in this face (its owner, which comes before
 /// it, is done already) or `far(twin)` in a neighbour.
-#[inline]
+#[inline(always)]
 fn edges<const N: usize>(
     first: u32,
     owners: u64,
@@ -419,14 +419,14 @@ impl<'a> Numbers<'a> {
     }
 
     /// The `S` edge owned by `S` corner `o`.
-    #[inline]
+    #[inline(always)]
     fn s_edge(&self, o: u32) -> u32 {
         let g = (o / 16) as usize;
         self.s_base[g] + (u32::from(self.s_masks[g]) & ((1 << (o % 16)) - 1)).count_ones()
     }
 
     /// The `M` edge owned by `M` corner `o`.
-    #[inline]
+    #[inline(always)]
     fn m_edge(&self, o: u32) -> u32 {
         let g = (o / 64) as usize;
         self.m_base[g] + (self.m_masks[g] & ((1u64 << (o % 64)) - 1)).count_ones()
@@ -436,7 +436,7 @@ impl<'a> Numbers<'a> {
     /// faces `64f .. 64f + 64`, the children of its `M` corners): per `M` corner `x`,
     /// `(v_x, e(x), face of x, e(prev x))` as level-3 vertices, the `M` corners themselves the
     /// children's of its `S` corners, and those of its base corners.
-    #[inline]
+    #[inline(always)]
     fn quads_of(&self, f: u32, starts: &[u32; 7], out: &mut [u32]) {
         let s = SCorners::new(self.base, f);
         let (s0, m0) = (16 * f, 64 * f);
@@ -482,7 +482,7 @@ impl<'a> Layout<'a> {
     }
 
     /// The ranges of the parts that base faces `f0 .. f1` write (empty for the base vertices).
-    #[inline]
+    #[inline(always)]
     fn ranges(&self, f0: u32, f1: u32) -> [(u32, u32); 6] {
         let st = &self.starts;
         let n = &self.numbers;
@@ -583,43 +583,63 @@ fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<
         parts.push((f0 as u32, f1 as u32, block, quads));
     }
     let face_pass = || {
-        parts.into_par_iter().for_each(|(f0, f1, block, mut quads)| {
-            let lo = layout.ranges(f0, f1).map(|r| r.0);
-            for f in f0..f1 {
-                let own = layout.ranges(f, f + 1);
-                // the face's 64 quads are those of its S faces 4f .. 4f + 3
-                let at = 256 * (f - f0) as usize;
-                let quads: &[u32; 256] = match &mut quads {
-                    Quads::Make(out) => {
-                        let out = &mut out[at..at + 256];
-                        layout.numbers.quads_of(f, &st, out);
-                        out
-                    }
-                    Quads::Made(made) => &made[at..at + 256],
-                }
-                .try_into()
-                .expect("256 corners a face");
-                let values = grid(&tables.halves, &net(base, p, f));
-                // the vertices inside the face, then those on its edges that it owns
-                for (part, (inner, edges)) in tables.inner.iter().zip(&tables.edges).enumerate() {
-                    let (out, lo, own) = (&mut *block[part], lo[part], own[part]);
-                    for &(g, slot) in inner {
-                        let i = quads[slot as usize];
-                        debug_assert!(i >= own.0 && i < own.1);
-                        out[(i - lo) as usize] = values[g as usize];
-                    }
-                    for &(g, slot) in edges {
-                        let i = quads[slot as usize];
-                        if i >= own.0 && i < own.1 {
-                            out[(i - lo) as usize] = values[g as usize];
-                        }
-                    }
-                }
-            }
+        parts.into_par_iter().for_each(|(f0, f1, block, quads)| {
+            crate::wide::wide(
+                #[inline(always)]
+                || face_block(layout, tables, p, f0, f1, block, quads),
+            );
         });
     };
     rayon::join(vertex_pass, face_pass);
     out
+}
+
+/// Base faces `f0 .. f1` of the face pass of [`values`]: their level-3 corners (if not made
+/// yet) and the level-3 vertices they own, into their `block` of the output.
+#[inline(always)]
+fn face_block(
+    layout: &Layout<'_>,
+    tables: &Tables,
+    p: &[DVec3],
+    f0: u32,
+    f1: u32,
+    block: [&mut [DVec3]; 6],
+    mut quads: Quads<'_>,
+) {
+    let base = layout.numbers.base;
+    let st = layout.starts;
+    let lo = layout.ranges(f0, f1).map(|r| r.0);
+    for f in f0..f1 {
+        let own = layout.ranges(f, f + 1);
+        // the face's 64 quads are those of its S faces 4f .. 4f + 3
+        let at = 256 * (f - f0) as usize;
+        let quads: &[u32; 256] = match &mut quads {
+            Quads::Make(out) => {
+                let out = &mut out[at..at + 256];
+                layout.numbers.quads_of(f, &st, out);
+                out
+            }
+            Quads::Made(made) => &made[at..at + 256],
+        }
+        .try_into()
+        .expect("256 corners a face");
+        let values = grid(&tables.halves, &net(base, p, f));
+        // the vertices inside the face, then those on its edges that it owns
+        for (part, (inner, edges)) in tables.inner.iter().zip(&tables.edges).enumerate() {
+            let (out, lo, own) = (&mut *block[part], lo[part], own[part]);
+            for &(g, slot) in inner {
+                let i = quads[slot as usize];
+                debug_assert!(i >= own.0 && i < own.1);
+                out[(i - lo) as usize] = values[g as usize];
+            }
+            for &(g, slot) in edges {
+                let i = quads[slot as usize];
+                if i >= own.0 && i < own.1 {
+                    out[(i - lo) as usize] = values[g as usize];
+                }
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -651,6 +671,45 @@ mod tests {
                     assert_eq!(bits >> (4 * i + l) & 1 == 1, owns, "c0 {c0}, twins {t:?}, corner {i}, child {l}");
                 }
             }
+        }
+    }
+
+    /// The AVX2 build of the face pass ([`crate::wide`]) gives the same mesh, bit for bit, as
+    /// the baseline build (on a processor without AVX2 both runs take the baseline path).
+    #[test]
+    fn wide_and_baseline_paths_give_the_same_bits() {
+        use crate::subdiv::{CatmullClarkOptions, catmull_clark_subdivide};
+        use std::sync::atomic::Ordering;
+        // a 12 x 7 quad torus, bumped so that no two coordinates are alike
+        let (n, m) = (12u32, 7u32);
+        let mut mesh = PolyMesh::default();
+        for i in 0..n {
+            for j in 0..m {
+                let (u, v) = (
+                    f64::from(i) / f64::from(n) * std::f64::consts::TAU,
+                    f64::from(j) / f64::from(m) * std::f64::consts::TAU,
+                );
+                let r = 3.0 + (1.0 + 0.1 * f64::from((i * 7 + j * 3) % 5)) * v.cos();
+                mesh.positions.push(DVec3::new(r * u.cos(), r * u.sin(), v.sin() + 0.01 * f64::from(i)));
+            }
+        }
+        let at = |i: u32, j: u32| (i % n) * m + j % m;
+        for i in 0..n {
+            for j in 0..m {
+                mesh.face_vertices.extend([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+                mesh.face_offsets.push(mesh.face_vertices.len() as u32);
+            }
+        }
+        let options = CatmullClarkOptions::default();
+        let wide = catmull_clark_subdivide(&mesh, 3, &options).expect("a closed quad torus");
+        crate::wide::BASELINE.store(true, Ordering::Relaxed);
+        let baseline = catmull_clark_subdivide(&mesh, 3, &options);
+        crate::wide::BASELINE.store(false, Ordering::Relaxed);
+        let baseline = baseline.expect("a closed quad torus");
+        assert_eq!(wide.face_vertices, baseline.face_vertices);
+        assert_eq!(wide.positions.len(), baseline.positions.len());
+        for (k, (a, b)) in wide.positions.iter().zip(&baseline.positions).enumerate() {
+            assert_eq!(a.to_array().map(f64::to_bits), b.to_array().map(f64::to_bits), "vertex {k}");
         }
     }
 }
