@@ -21,7 +21,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::quads::{Corners, FACES, QuadLevel, counts_before, next, prev, quad_mesh};
+use super::quads::{FACES, QuadLevel, counts_before, next, prev, quad_mesh};
 use super::topology::MIN_RINGS;
 use crate::mesh::{NONE, PolyMesh};
 
@@ -285,12 +285,14 @@ impl Tables {
 /// form from the base twins, with no tables of `S` or `M`.
 ///
 /// The child of base corner `c` is `S` face `c` with corners `4c .. 4c + 4`, so base face `f`
-/// holds the `S` corners `16f .. 16f + 16` and the `M` corners `64f .. 64f + 64`, and their twins
-/// follow from the base twins of `f`'s four corners ([`Corners::child_twins`](super::quads)
-/// applied twice). Edges are numbered in the order of their owners (the corner before its
-/// twin), as the level-by-level path numbers them, so an edge's number is the count of owners
-/// in the base faces before its owner's (a prefix sum over base faces of the owner bits, kept
-/// per base face), plus the owners before it in that face.
+/// holds the `S` corners `16f .. 16f + 16` and the `M` corners `64f .. 64f + 64`. Their twins are
+/// those of [`Corners::child_twins`](super::quads) applied twice: inside the face they are
+/// fixed (tables [`S_OWNER`], [`M_OWNER`]), and along each base edge they are the corners along
+/// the same edge of the face across it, the other way ([`S_ALONG`], [`M_ALONG`]). Edges are
+/// numbered in the order of their owners (the corner before its twin), as the level-by-level
+/// path numbers them, so an edge's number is the count of owners in the base faces before its
+/// owner's (a prefix sum over base faces of the owner bits, kept per base face), plus the
+/// owners before it in that face ([`edge_numbers`]).
 struct Numbers<'a> {
     base: &'a QuadLevel,
     /// Per base face: bit `i` for `S` corner `16f + i` owning its edge.
@@ -309,85 +311,146 @@ fn prev_index(i: usize) -> usize {
     (i & !3) | ((i + 3) & 3)
 }
 
-/// The `S` corners `16f .. 16f + 16` of one regular base face `f` as a quad level's corners:
-/// their twins, made from the base twins ([`Corners::child_twins`]), are all [`Corners`] needs
-/// to give their own children's twins.
-struct SCorners {
-    first: u32,
-    twins: [u32; 16],
+/// The index of the next corner in a quad among corners numbered from a multiple of 4.
+const fn next_index(i: usize) -> usize {
+    (i & !3) | ((i + 1) & 3)
 }
 
-impl SCorners {
-    #[inline(always)]
-    fn new(base: &QuadLevel, f: u32) -> Self {
-        let mut twins = [0u32; 16];
-        for (k, t) in twins.chunks_exact_mut(4).enumerate() {
-            t.copy_from_slice(&base.child_twins(4 * f + k as u32));
+/// A base face's `S` corners along its base edge `k`, from corner `k` to corner `k + 1`: `S`
+/// corner `16f + S_ALONG[k][p]` covers the `p`-th half. (The child of base corner `k` leaves
+/// along the edge, the last child of corner `k + 1` arrives; see `Corners::child_twins`.)
+const S_ALONG: [[u8; 2]; 4] = {
+    let mut a = [[0; 2]; 4];
+    let mut k = 0;
+    while k < 4 {
+        a[k] = [4 * k as u8, 4 * ((k as u8 + 1) % 4) + 3];
+        k += 1;
+    }
+    a
+};
+
+/// A base face's `M` corners along its base edge `k`, by quarters from corner `k` (each `S`
+/// corner's edge along it split in two: the halves of `S` corner `s` are `M` corners `4s` and
+/// `4·next(s) + 3`).
+const M_ALONG: [[u8; 4]; 4] = {
+    let mut a = [[0; 4]; 4];
+    let mut k = 0;
+    while k < 4 {
+        let (s0, s1) = (S_ALONG[k][0] as usize, S_ALONG[k][1] as usize);
+        a[k] = [(4 * s0) as u8, (4 * next_index(s0) + 3) as u8, (4 * s1) as u8, (4 * next_index(s1) + 3) as u8];
+        k += 1;
+    }
+    a
+};
+
+/// Per `S` corner of a base face (`16f + i`): the corner in the face that owns its edge, for the
+/// edges inside the face (their twins are fixed: `4c + 1 ↔ 4·next(c) + 2`); itself for those on
+/// the base edges ([`S_ALONG`]), whose twins are in the neighbours.
+const S_OWNER: [u8; 16] = {
+    let mut o = [0u8; 16];
+    let mut i = 0;
+    while i < 16 {
+        o[i] = match s_inner_twin(i) {
+            Some(t) if t < i => t as u8,
+            _ => i as u8,
+        };
+        i += 1;
+    }
+    o
+};
+
+/// The twin of `S` corner `16f + i` if it is in the same base face (`16f + twin`).
+const fn s_inner_twin(i: usize) -> Option<usize> {
+    let (k, l) = (i / 4, i % 4);
+    match l {
+        1 => Some(4 * ((k + 1) % 4) + 2),
+        2 => Some(4 * ((k + 3) % 4) + 1),
+        _ => None,
+    }
+}
+
+/// Per `M` corner of a base face (`64f + x`, the child `x % 4` of `S` corner `x / 4`): the corner
+/// in the face that owns its edge, as [`S_OWNER`]. The twins inside the face follow from
+/// `Corners::child_twins` and the `S` twins inside it.
+const M_OWNER: [u8; 64] = {
+    let mut o = [0u8; 64];
+    let mut x = 0;
+    while x < 64 {
+        let (i, l) = (x / 4, x % 4);
+        let twin = match l {
+            0 => match s_inner_twin(i) {
+                Some(t) => Some(4 * next_index(t) + 3),
+                None => None,
+            },
+            1 => Some(4 * next_index(i) + 2),
+            2 => Some(4 * ((i & !3) | ((i + 3) & 3)) + 1),
+            _ => match s_inner_twin((i & !3) | ((i + 3) & 3)) {
+                Some(t) => Some(4 * t),
+                None => None,
+            },
+        };
+        o[x] = match twin {
+            Some(t) if t < x => t as u8,
+            _ => x as u8,
+        };
+        x += 1;
+    }
+    o
+};
+
+/// The bits of the corners in `owner` that own an edge inside the face.
+const fn inner_owners(owner: &[u8]) -> u64 {
+    let mut bits = 0u64;
+    let mut i = 0;
+    while i < owner.len() {
+        if owner[i] as usize == i {
+            bits |= 1 << i;
         }
-        Self { first: 16 * f, twins }
-    }
-
-    /// The twin of `M` corner `64f + i`.
-    #[inline(always)]
-    fn child_twin(&self, i: usize) -> u32 {
-        self.child_twins(self.first + (i / 4) as u32)[i % 4]
-    }
-}
-
-impl Corners for SCorners {
-    #[inline(always)]
-    fn twin(&self, c: u32) -> u32 {
-        self.twins[(c - self.first) as usize]
-    }
-}
-
-/// The owner bits of the children of the `N` corners `c0 ..` (`c0` a multiple of 4, `N` at most
-/// 16) of a quad level whose twins are `t`: bit `4i + l` for child corner `4(c0 + i) + l`
-/// owning its edge, i.e. coming before its twin ([`Corners::child_twins`]). With `c = c0 + i`, that is
-/// `4c < 4·next(t) + 3`, `4c + 1 < 4·next(c) + 2`, `4c + 2 < 4·prev(c) + 1` and
-/// `4c + 3 < 4·twin(prev c)`: in whole numbers, `c ≤ next(t)`, `c` not its quad's last corner,
-/// `c` its quad's first corner, and `c < twin(prev c)`.
-#[inline(always)]
-fn child_owners<const N: usize>(c0: u32, t: &[u32; N]) -> u64 {
-    let mut bits = 0;
-    for i in 0..N {
-        let c = c0 + i as u32;
-        let own = u64::from(c <= next(t[i]))
-            | u64::from(c % 4 != 3) << 1
-            | u64::from(c.is_multiple_of(4)) << 2
-            | u64::from(c < t[prev_index(i)]) << 3;
-        bits |= own << (4 * i);
+        i += 1;
     }
     bits
 }
 
-/// The edges (as vertices of the next level) of the `N` corners `first ..` of one base face
-/// with owner bits `owners` (`N` at most 64): an owner's is the next number from `next` (the
-/// face's first), another's its owner's: found in this face (its owner, which comes before
-/// it, is done already) or `far(twin)` in a neighbour.
+/// The owner bits of the `N` child corners (`S`: 16, `M`: 64) of base face `f` whose base corners
+/// have twins `tb`: the fixed ones inside the face, and along each base edge `k` the corners that
+/// come before their twins, which are in the face across it (`g = tb[k] / 4`, along its edge
+/// `tb[k] % 4` the other way).
 #[inline(always)]
-fn edges<const N: usize>(
-    first: u32,
-    owners: u64,
-    mut next: u32,
-    twin: impl Fn(usize) -> u32,
-    far: impl Fn(u32) -> u32,
+fn owner_mask<const N: usize, const P: usize>(f: u32, tb: &[u32; 4], along: &[[u8; P]; 4], owner: &[u8; N]) -> u64 {
+    let mut bits = inner_owners(owner) & !along.iter().flatten().fold(0, |m, &i| m | 1u64 << i);
+    for (k, ours) in along.iter().enumerate() {
+        let (g, theirs) = (tb[k] / 4, &along[(tb[k] % 4) as usize]);
+        for p in 0..P {
+            let own = N as u32 * f + u32::from(ours[p]) < N as u32 * g + u32::from(theirs[P - 1 - p]);
+            bits |= u64::from(own) << ours[p];
+        }
+    }
+    bits
+}
+
+/// The edge numbers of the `N` child corners of base face `f` (as [`owner_mask`]): an owner's
+/// is `base[f]` plus the owners before it in the face; a corner inside the face has its
+/// owner's; one along a base edge that does not own has its twin's in the face across.
+#[inline(always)]
+fn edge_numbers<const N: usize, const P: usize>(
+    f: u32,
+    tb: &[u32; 4],
+    along: &[[u8; P]; 4],
+    owner: &[u8; N],
+    mask: impl Fn(usize) -> u64,
+    base: &[u32],
 ) -> [u32; N] {
-    let mut e = [0u32; N];
-    for i in 0..N {
-        e[i] = if owners >> i & 1 != 0 {
-            next += 1;
-            next - 1
-        } else {
-            let t = twin(i);
-            let j = t.wrapping_sub(first) as usize;
-            if j < N {
-                debug_assert!(j < i);
-                e[j]
-            } else {
-                far(t)
-            }
-        };
+    let rank = |g: usize, i: u8| base[g] + (mask(g) & ((1u64 << i) - 1)).count_ones();
+    let own: [u32; N] = core::array::from_fn(|i| rank(f as usize, i as u8));
+    let mut e: [u32; N] = core::array::from_fn(|i| own[owner[i] as usize]);
+    let m = mask(f as usize);
+    for (k, ours) in along.iter().enumerate() {
+        let (g, theirs) = ((tb[k] / 4) as usize, &along[(tb[k] % 4) as usize]);
+        for p in 0..P {
+            let i = ours[p];
+            let twin = rank(g, theirs[P - 1 - p]);
+            e[i as usize] = if m >> i & 1 != 0 { e[i as usize] } else { twin };
+        }
     }
     e
 }
@@ -399,8 +462,8 @@ impl<'a> Numbers<'a> {
             .into_par_iter()
             .with_min_len(FACES)
             .map(|f| {
-                let tb: &[u32; 4] = base.twin[4 * f as usize..4 * f as usize + 4].try_into().expect("four corners");
-                (child_owners(4 * f, tb) as u16, child_owners(16 * f, &SCorners::new(base, f).twins))
+                let tb = base_twins_of(base, f);
+                (owner_mask(f, &tb, &S_ALONG, &S_OWNER) as u16, owner_mask(f, &tb, &M_ALONG, &M_OWNER))
             })
             .unzip_into_vecs(&mut s_masks, &mut m_masks);
         let s_base = counts_before(s_masks.len(), |f| s_masks[f as usize].count_ones());
@@ -418,34 +481,19 @@ impl<'a> Numbers<'a> {
         *self.m_base.last().expect("one more count than faces")
     }
 
-    /// The `S` edge owned by `S` corner `o`.
-    #[inline(always)]
-    fn s_edge(&self, o: u32) -> u32 {
-        let g = (o / 16) as usize;
-        self.s_base[g] + (u32::from(self.s_masks[g]) & ((1 << (o % 16)) - 1)).count_ones()
-    }
-
-    /// The `M` edge owned by `M` corner `o`.
-    #[inline(always)]
-    fn m_edge(&self, o: u32) -> u32 {
-        let g = (o / 64) as usize;
-        self.m_base[g] + (self.m_masks[g] & ((1u64 << (o % 64)) - 1)).count_ones()
-    }
-
     /// Writes the corners of the 64 level-3 quads of base face `f` into `out` (256 values; `F`
     /// faces `64f .. 64f + 64`, the children of its `M` corners): per `M` corner `x`,
     /// `(v_x, e(x), face of x, e(prev x))` as level-3 vertices, the `M` corners themselves the
     /// children's of its `S` corners, and those of its base corners.
     #[inline(always)]
     fn quads_of(&self, f: u32, starts: &[u32; 7], out: &mut [u32]) {
-        let s = SCorners::new(self.base, f);
+        let tb = base_twins_of(self.base, f);
         let (s0, m0) = (16 * f, 64 * f);
         // the S vertices of the S corners (children of the base corners)
         let sv = self.base.child_corners_of(f, starts[0], starts[1]);
         // the S edges of the S corners, as M vertices
-        let fi = f as usize;
-        let s_edge = |t| starts[2] + self.s_edge(t);
-        let e1: [u32; 16] = edges(s0, self.s_masks[fi].into(), starts[2] + self.s_base[fi], |i| s.twins[i], s_edge);
+        let e1 =
+            edge_numbers(f, &tb, &S_ALONG, &S_OWNER, |g| self.s_masks[g].into(), &self.s_base).map(|e| starts[2] + e);
         // the M vertices of the M corners
         let mut mv = [0u32; 64];
         for i in 0..16 {
@@ -453,12 +501,17 @@ impl<'a> Numbers<'a> {
             mv[4 * i..4 * i + 4].copy_from_slice(&quad);
         }
         // the M edges of the M corners, as F vertices
-        let m_edge = |t| starts[4] + self.m_edge(t);
-        let e2: [u32; 64] = edges(m0, self.m_masks[fi], starts[4] + self.m_base[fi], |i| s.child_twin(i), m_edge);
+        let e2 = edge_numbers(f, &tb, &M_ALONG, &M_OWNER, |g| self.m_masks[g], &self.m_base).map(|e| starts[4] + e);
         for (x, quad) in out.chunks_exact_mut(4).enumerate() {
             quad.copy_from_slice(&[mv[x], e2[x], starts[5] + (m0 + x as u32) / 4, e2[prev_index(x)]]);
         }
     }
+}
+
+/// The twins of the four corners of base face `f`.
+#[inline(always)]
+fn base_twins_of(base: &QuadLevel, f: u32) -> [u32; 4] {
+    base.twin[4 * f as usize..4 * f as usize + 4].try_into().expect("four corners")
 }
 
 /// Where the level-3 vertices go: the output's parts (the level-by-level layout: base
@@ -645,31 +698,87 @@ fn face_block(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::subdiv::quads::Corners;
 
-    /// The owner bits in whole numbers equal the comparisons of the child corners with their
-    /// twins ([`Corners::child_twins`] of a quad level with those twins), for any twins (near
-    /// the corners, where the comparisons are close, and far).
-    #[test]
-    fn child_owners_compare_children_with_their_twins() {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut random = |n: u32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % u64::from(n)) as u32
-        };
-        for _ in 0..2000 {
-            let c0 = 4 * random(64);
-            let t: [u32; 16] = core::array::from_fn(|_| if random(2) == 0 { c0 + random(20) } else { random(400) });
-            let bits = child_owners(c0, &t);
-            let level = SCorners { first: c0, twins: t };
-            for i in 0..16 {
-                let c = c0 + i as u32;
-                let twins = level.child_twins(c);
-                for (l, &twin) in twins.iter().enumerate() {
-                    let owns = 4 * c + (l as u32) < twin;
-                    assert_eq!(bits >> (4 * i + l) & 1 == 1, owns, "c0 {c0}, twins {t:?}, corner {i}, child {l}");
+    /// A `rows` x `cols` quad torus, bumped so that no two coordinates are alike, each face's
+    /// corners rotated by a pseudo-random amount (so that neighbours meet along any pair of
+    /// their edges).
+    fn torus(rows: u32, cols: u32, rotate: bool) -> PolyMesh {
+        let mut mesh = PolyMesh::default();
+        for i in 0..rows {
+            for j in 0..cols {
+                let tau = std::f64::consts::TAU;
+                let (u, v) = (f64::from(i) / f64::from(rows) * tau, f64::from(j) / f64::from(cols) * tau);
+                let r = 3.0 + (1.0 + 0.1 * f64::from((i * 7 + j * 3) % 5)) * v.cos();
+                mesh.positions.push(DVec3::new(r * u.cos(), r * u.sin(), v.sin() + 0.01 * f64::from(i)));
+            }
+        }
+        let at = |i: u32, j: u32| (i % rows) * cols + j % cols;
+        for i in 0..rows {
+            for j in 0..cols {
+                let mut quad = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                if rotate {
+                    quad.rotate_left(((i * 5 + j * 3 + i * j) % 4) as usize);
                 }
+                mesh.face_vertices.extend(quad);
+                mesh.face_offsets.push(mesh.face_vertices.len() as u32);
+            }
+        }
+        mesh
+    }
+
+    /// A level given by its twins alone.
+    struct Twins(Vec<u32>);
+
+    impl Corners for Twins {
+        fn twin(&self, c: u32) -> u32 {
+            self.0[c as usize]
+        }
+    }
+
+    /// The owner masks and edge numbers of the fixed tables ([`owner_mask`], [`edge_numbers`])
+    /// equal those of the level-by-level rules: the `S` and `M` twins from
+    /// [`Corners::child_twins`] applied to the whole base level and then to its child, an owner
+    /// being a corner before its twin, edges numbered in the order of their owners.
+    #[test]
+    fn tables_agree_with_the_child_twins_of_whole_levels() {
+        use crate::subdiv::catmull_clark::Rings;
+        for (rows, cols, rotate) in [(3, 3, false), (3, 4, true), (12, 7, false), (12, 7, true), (5, 9, true)] {
+            let mesh = torus(rows, cols, rotate);
+            let base = QuadLevel::from_quad_rings(Rings::new(&mesh).expect("a closed quad torus"));
+            assert!(is_regular(&base));
+            let nf = base.num_faces() as u32;
+            let base_twins = Twins(base.twin.clone());
+            let s = Twins((0..4 * nf).flat_map(|c| base_twins.child_twins(c)).collect());
+            let m = Twins((0..16 * nf).flat_map(|c| s.child_twins(c)).collect());
+            // edge numbers in the order of their owners
+            let numbered = |level: &Twins| {
+                let mut number = vec![0u32; level.0.len()];
+                let mut next = 0;
+                for c in 0..level.0.len() as u32 {
+                    let t = level.twin(c);
+                    if c < t {
+                        number[c as usize] = next;
+                        next += 1;
+                    } else {
+                        number[c as usize] = number[t as usize];
+                    }
+                }
+                number
+            };
+            let (s_numbers, m_numbers) = (numbered(&s), numbered(&m));
+            let numbers = Numbers::new(&base);
+            for f in 0..nf {
+                let tb = base_twins_of(&base, f);
+                let bits = |level: &Twins, n: u32| {
+                    (0..n).fold(0u64, |b, i| b | u64::from(n * f + i < level.twin(n * f + i)) << i)
+                };
+                assert_eq!(owner_mask(f, &tb, &S_ALONG, &S_OWNER), bits(&s, 16), "S owners of face {f}");
+                assert_eq!(owner_mask(f, &tb, &M_ALONG, &M_OWNER), bits(&m, 64), "M owners of face {f}");
+                let e1 = edge_numbers(f, &tb, &S_ALONG, &S_OWNER, |g| numbers.s_masks[g].into(), &numbers.s_base);
+                let e2 = edge_numbers(f, &tb, &M_ALONG, &M_OWNER, |g| numbers.m_masks[g], &numbers.m_base);
+                assert_eq!(e1[..], s_numbers[16 * f as usize..16 * (f + 1) as usize], "S edges of face {f}");
+                assert_eq!(e2[..], m_numbers[64 * f as usize..64 * (f + 1) as usize], "M edges of face {f}");
             }
         }
     }
@@ -680,26 +789,7 @@ mod tests {
     fn wide_and_baseline_paths_give_the_same_bits() {
         use crate::subdiv::{CatmullClarkOptions, catmull_clark_subdivide};
         use std::sync::atomic::Ordering;
-        // a 12 x 7 quad torus, bumped so that no two coordinates are alike
-        let (n, m) = (12u32, 7u32);
-        let mut mesh = PolyMesh::default();
-        for i in 0..n {
-            for j in 0..m {
-                let (u, v) = (
-                    f64::from(i) / f64::from(n) * std::f64::consts::TAU,
-                    f64::from(j) / f64::from(m) * std::f64::consts::TAU,
-                );
-                let r = 3.0 + (1.0 + 0.1 * f64::from((i * 7 + j * 3) % 5)) * v.cos();
-                mesh.positions.push(DVec3::new(r * u.cos(), r * u.sin(), v.sin() + 0.01 * f64::from(i)));
-            }
-        }
-        let at = |i: u32, j: u32| (i % n) * m + j % m;
-        for i in 0..n {
-            for j in 0..m {
-                mesh.face_vertices.extend([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
-                mesh.face_offsets.push(mesh.face_vertices.len() as u32);
-            }
-        }
+        let mesh = torus(12, 7, true);
         let options = CatmullClarkOptions::default();
         let wide = catmull_clark_subdivide(&mesh, 3, &options).expect("a closed quad torus");
         crate::wide::BASELINE.store(true, Ordering::Relaxed);
