@@ -21,7 +21,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::quads::{FACES, QuadLevel, counts_before, next, prev, quad_mesh};
+use super::quads::{FACES, QuadLevel, counts_before, next, owner_bits, prev, quad_mesh};
 use super::topology::MIN_RINGS;
 use crate::mesh::{NONE, PolyMesh};
 
@@ -74,28 +74,69 @@ fn weights() -> [[f64; 4]; SIDE] {
 /// of corner `k₁` of the child of base corner `k`) and corner, its point of the face's 9 × 9
 /// grid, `x + 9y`: base corner `k` at `(0,0)`, `(8,0)`, `(8,8)`, `(0,8)` for `k = 0 … 3`, and
 /// each child `(Pₖ, mid(Pₖ, Pₖ₊₁), centre, mid(Pₖ₋₁, Pₖ))` of its parent's corners `P`.
-fn grid_of_corners() -> [u8; 256] {
-    let children = |p: [(u32, u32); 4], k: usize| {
-        let mid = |a: (u32, u32), b: (u32, u32)| ((a.0 + b.0) / 2, (a.1 + b.1) / 2);
+const GRID: [u8; 256] = {
+    /// Child `k` of a quad with corners `p`: its corner, the middle of its next edge, the
+    /// centre, the middle of its previous edge.
+    const fn children(p: [(u32, u32); 4], k: usize) -> [(u32, u32); 4] {
+        const fn mid(a: (u32, u32), b: (u32, u32)) -> (u32, u32) {
+            ((a.0 + b.0) / 2, (a.1 + b.1) / 2)
+        }
         let centre = mid(mid(p[0], p[1]), mid(p[2], p[3]));
         [p[k], mid(p[k], p[(k + 1) % 4]), centre, mid(p[(k + 3) % 4], p[k])]
-    };
+    }
     let base = [(0, 0), (8, 0), (8, 8), (0, 8)];
     let mut out = [0u8; 256];
-    for k in 0..4 {
+    let mut k = 0;
+    while k < 4 {
         let s = children(base, k);
-        for k1 in 0..4 {
+        let mut k1 = 0;
+        while k1 < 4 {
             let m = children(s, k1);
-            for k2 in 0..4 {
+            let mut k2 = 0;
+            while k2 < 4 {
                 let f = children(m, k2);
-                for (i, &(x, y)) in f.iter().enumerate() {
-                    out[4 * (16 * k + 4 * k1 + k2) + i] = (x + 9 * y) as u8;
+                let mut i = 0;
+                while i < 4 {
+                    out[4 * (16 * k + 4 * k1 + k2) + i] = (f[i].0 + 9 * f[i].1) as u8;
+                    i += 1;
                 }
+                k2 += 1;
             }
+            k1 += 1;
         }
+        k += 1;
     }
     out
+};
+
+/// The grid points of the `N` values `slot(j)` of [`GRID`].
+const fn grid_points<const N: usize>(first: usize, stride: usize) -> [u8; N] {
+    let mut g = [0u8; N];
+    let mut j = 0;
+    while j < N {
+        g[j] = GRID[first + stride * j];
+        j += 1;
+    }
+    g
 }
+
+// Where each part of the output ([`Layout`]) finds its values in a base face's grid, read off
+// the corners of its level-3 quads (`[mv[x], e2[x], face, e2[prev x]]` of `M` corner `x`, see
+// [`Numbers::quads_of`]). Vertices on edges are listed per owner corner, those on faces per face.
+
+/// Part 0, the vertices on base edges: base corner `k`'s edge is `S` corner `4k + 1`'s vertex,
+/// `M` corner `16k + 4`'s, the corner of quad `16k + 4`.
+const BASE_EDGE_GRID: [u8; 4] = grid_points(16, 64);
+/// Part 1, the base face's vertex: `S` corner `2`'s, `M` corner `8`'s.
+const FACE_GRID: u8 = GRID[32];
+/// Part 2, the vertices on `S` edges: `S` corner `i`'s edge is `M` corner `4i + 1`'s vertex.
+const S_EDGE_GRID: [u8; 16] = grid_points(4, 16);
+/// Part 3, the vertices on `S` faces: `S` face `k`'s is `M` corner `16k + 2`'s vertex.
+const S_FACE_GRID: [u8; 4] = grid_points(8, 64);
+/// Part 4, the vertices on `M` edges: `M` corner `x`'s edge is slot 1 of quad `x`.
+const M_EDGE_GRID: [u8; 64] = grid_points(1, 4);
+/// Part 5, the vertices on `M` faces: `M` face `j`'s is slot 2 of quad `4j`.
+const M_FACE_GRID: [u8; 16] = grid_points(2, 16);
 
 /// The 4 × 4 control points of regular base face `f`, `[x][y]`: its corners at `[1][1]`,
 /// `[2][1]`, `[2][2]`, `[1][2]` (corners `4f … 4f + 3`), the x axis along its first edge.
@@ -190,73 +231,14 @@ fn grid(h: &Halves, n: &[[DVec3; 4]; 4]) -> [DVec3; SIDE * SIDE] {
     bytemuck::cast(out)
 }
 
-/// Per grid point `x + 9y` of a base face: the part of the output its level-3 vertex is in
-/// (see [`Layout`]; [`CORNER`] for the base corners, which the vertex pass writes), and one
-/// slot of the face's 256 level-3 corners that holds it.
-fn parts_and_slots(slots: &[u8; 256]) -> ([u8; SIDE * SIDE], [u8; SIDE * SIDE]) {
-    let mut part = [0u8; SIDE * SIDE];
-    let mut slot = [u8::MAX; SIDE * SIDE];
-    for (i, &g) in slots.iter().enumerate() {
-        if slot[g as usize] == u8::MAX {
-            slot[g as usize] = i as u8;
-        }
-    }
-    for (g, p) in part.iter_mut().enumerate() {
-        let (x, y) = (g % SIDE, g / SIDE);
-        let edge = |u: usize| u == 0 || u == 8;
-        // on a base edge, `along` is the coordinate along it; inside, the spokes are x or y = 4
-        let (on_edge, along) = if edge(x) {
-            (true, y)
-        } else if edge(y) {
-            (true, x)
-        } else {
-            (false, 0)
-        };
-        *p = if edge(x) && edge(y) {
-            CORNER
-        } else if on_edge {
-            // level 1 at 4, level 2 at 2 and 6 (halves of the base edge), level 3 between
-            match along {
-                4 => 0,
-                2 | 6 => 2,
-                _ => 4,
-            }
-        } else if x == 4 && y == 4 {
-            1
-        } else if x % 2 == 1 && y % 2 == 1 {
-            5
-        } else if x % 2 == 0 && y % 2 == 0 && x != 4 && y != 4 {
-            3
-        } else if (x == 4 && y % 2 == 0) || (y == 4 && x % 2 == 0) {
-            2
-        } else {
-            4
-        };
-    }
-    (part, slot)
-}
+/// A block of base faces `f0 .. f1` with its share of the six parts and, if they are to be
+/// made, of the level-3 corners.
+type Block<'a> = (u32, u32, [&'a mut [DVec3]; 6], Option<&'a mut [u32]>);
 
-/// The part of a base corner's grid point: written by the vertex pass.
-const CORNER: u8 = 6;
-
-/// The level-3 corners: made by the pass (into room for them), or made already.
-enum Quads<'a> {
-    Make(&'a mut [u32]),
-    Made(&'a [u32]),
-}
-
-/// A block of base faces `f0 .. f1` with its share of the six parts and of the corners.
-type Block<'a> = (u32, u32, [&'a mut [DVec3]; 6], Quads<'a>);
-
-/// The fixed tables of a face: the weights of a base vertex's level-3 point, the split
-/// weights of the grid, and per part of the output its grid points `(g, slot)` (the index
-/// `x + 9y` and one of the face's 256 level-3 corners that holds the point), those inside the
-/// face (always its own) and those on its edges (its own where it owns them).
+/// The fixed weights: of a base vertex's level-3 point, and the split weights of the grid.
 struct Tables {
     vertex: [f64; 3],
     halves: Halves,
-    inner: [Vec<(u8, u8)>; 6],
-    edges: [Vec<(u8, u8)>; 6],
 }
 
 impl Tables {
@@ -266,18 +248,7 @@ impl Tables {
         // (the vertex rule is symmetric and does not reach P3)
         debug_assert!(a[0][0] == a[0][2] && a[0][3] == 0.0);
         let vertex = [a[0][1] * a[0][1], a[0][0] * a[0][1], a[0][0] * a[0][0]];
-        let (part, rep) = parts_and_slots(&grid_of_corners());
-        let (mut inner, mut edges): ([Vec<_>; 6], [Vec<_>; 6]) = Default::default();
-        for g in 0..SIDE * SIDE {
-            let (x, y) = (g % SIDE, g / SIDE);
-            let point = (g as u8, rep[g]);
-            match (x % 8 == 0, y % 8 == 0) {
-                (true, true) => debug_assert_eq!(part[g], CORNER),
-                (false, false) => inner[part[g] as usize].push(point),
-                _ => edges[part[g] as usize].push(point),
-            }
-        }
-        Self { vertex, halves: Halves::new(&a), inner, edges }
+        Self { vertex, halves: Halves::new(&a) }
     }
 }
 
@@ -560,7 +531,7 @@ pub(super) fn subdivide3(base: QuadLevel, positions: &[DVec3], colors: &[DVec3],
     let layout = Layout::new(&base);
     let tables = Tables::new();
     let mut corners: Vec<u32> = bytemuck::zeroed_vec(256 * base.num_faces());
-    let fine = values(&layout, &tables, positions, Quads::Make(&mut corners));
+    let fine = values(&layout, &tables, positions, Some(&mut corners));
     let colors = if color_by_level {
         let ends = [layout.starts[0], layout.starts[2], layout.starts[4], layout.starts[6]];
         let mut c = Vec::with_capacity(ends[3] as usize);
@@ -571,17 +542,17 @@ pub(super) fn subdivide3(base: QuadLevel, positions: &[DVec3], colors: &[DVec3],
     } else if colors.is_empty() {
         Vec::new()
     } else {
-        values(&layout, &tables, colors, Quads::Made(&corners))
+        values(&layout, &tables, colors, None)
     };
     drop(layout);
     drop(base);
     quad_mesh(fine, colors, corners)
 }
 
-/// The level-3 values of `p` (and the level-3 corners, if not made yet): the base vertices in
-/// one pass, everything else per base face, each base face writing the vertices in its
-/// ranges of the output ([`Layout::ranges`]).
-fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<'_>) -> Vec<DVec3> {
+/// The level-3 values of `p` (and the level-3 corners, into `corners` if given): the base
+/// vertices in one pass, everything else per base face, each base face writing the vertices in
+/// its ranges of the output ([`Layout::ranges`]).
+fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Option<&mut [u32]>) -> Vec<DVec3> {
     let base = layout.numbers.base;
     let st = layout.starts;
     let mut out: Vec<DVec3> = bytemuck::zeroed_vec(st[6] as usize);
@@ -621,18 +592,11 @@ fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<
             head
         });
         let n = 256 * (f1 - f0);
-        let quads = match core::mem::replace(&mut corners, Quads::Made(&[])) {
-            Quads::Make(c) => {
-                let (head, tail) = c.split_at_mut(n);
-                corners = Quads::Make(tail);
-                Quads::Make(head)
-            }
-            Quads::Made(c) => {
-                let (head, tail) = c.split_at(n);
-                corners = Quads::Made(tail);
-                Quads::Made(head)
-            }
-        };
+        let quads = corners.take().map(|c| {
+            let (head, tail) = c.split_at_mut(n);
+            corners = Some(tail);
+            head
+        });
         parts.push((f0 as u32, f1 as u32, block, quads));
     }
     let face_pass = || {
@@ -647,8 +611,10 @@ fn values(layout: &Layout<'_>, tables: &Tables, p: &[DVec3], mut corners: Quads<
     out
 }
 
-/// Base faces `f0 .. f1` of the face pass of [`values`]: their level-3 corners (if not made
-/// yet) and the level-3 vertices they own, into their `block` of the output.
+/// Base faces `f0 .. f1` of the face pass of [`values`]: their level-3 corners (if wanted) and
+/// the level-3 vertices they own, into their `block` of the output: the vertices on faces at
+/// fixed places, those on edges in the order of their owner corners (the edges a base face
+/// owns are numbered one after the other in that order, [`Numbers`]).
 #[inline(always)]
 fn face_block(
     layout: &Layout<'_>,
@@ -657,41 +623,37 @@ fn face_block(
     f0: u32,
     f1: u32,
     block: [&mut [DVec3]; 6],
-    mut quads: Quads<'_>,
+    mut quads: Option<&mut [u32]>,
 ) {
-    let base = layout.numbers.base;
-    let st = layout.starts;
-    let lo = layout.ranges(f0, f1).map(|r| r.0);
+    let (numbers, st) = (&layout.numbers, &layout.starts);
+    let base = numbers.base;
+    let [base_edges, faces, s_edges, s_faces, m_edges, m_faces] = block;
+    let first = |counts: &[u32], f: u32| (counts[f as usize] - counts[f0 as usize]) as usize;
     for f in f0..f1 {
-        let own = layout.ranges(f, f + 1);
-        // the face's 64 quads are those of its S faces 4f .. 4f + 3
-        let at = 256 * (f - f0) as usize;
-        let quads: &[u32; 256] = match &mut quads {
-            Quads::Make(out) => {
-                let out = &mut out[at..at + 256];
-                layout.numbers.quads_of(f, &st, out);
-                out
-            }
-            Quads::Made(made) => &made[at..at + 256],
+        let r = (f - f0) as usize;
+        if let Some(out) = &mut quads {
+            numbers.quads_of(f, st, &mut out[256 * r..256 * (r + 1)]);
         }
-        .try_into()
-        .expect("256 corners a face");
         let values = grid(&tables.halves, &net(base, p, f));
-        // the vertices inside the face, then those on its edges that it owns
-        for (part, (inner, edges)) in tables.inner.iter().zip(&tables.edges).enumerate() {
-            let (out, lo, own) = (&mut *block[part], lo[part], own[part]);
-            for &(g, slot) in inner {
-                let i = quads[slot as usize];
-                debug_assert!(i >= own.0 && i < own.1);
-                out[(i - lo) as usize] = values[g as usize];
+        let copy = |out: &mut [DVec3], grid: &[u8]| {
+            for (o, &g) in out.iter_mut().zip(grid) {
+                *o = values[g as usize];
             }
-            for &(g, slot) in edges {
-                let i = quads[slot as usize];
-                if i >= own.0 && i < own.1 {
-                    out[(i - lo) as usize] = values[g as usize];
-                }
+        };
+        // the owned edges' vertices: the owners by their bits, in order
+        let owned = |out: &mut [DVec3], start: usize, mut bits: u64, grid: &[u8]| {
+            for o in &mut out[start..start + bits.count_ones() as usize] {
+                *o = values[grid[bits.trailing_zeros() as usize] as usize];
+                bits &= bits - 1;
             }
-        }
+        };
+        faces[r] = values[FACE_GRID as usize];
+        copy(&mut s_faces[4 * r..4 * r + 4], &S_FACE_GRID);
+        copy(&mut m_faces[16 * r..16 * r + 16], &M_FACE_GRID);
+        let base_owners = owner_bits(f, base_twins_of(base, f));
+        owned(base_edges, first(&base.edge_base, f), base_owners.into(), &BASE_EDGE_GRID);
+        owned(s_edges, first(&numbers.s_base, f), numbers.s_masks[f as usize].into(), &S_EDGE_GRID);
+        owned(m_edges, first(&numbers.m_base, f), numbers.m_masks[f as usize], &M_EDGE_GRID);
     }
 }
 
@@ -780,6 +742,58 @@ mod tests {
                 assert_eq!(e1[..], s_numbers[16 * f as usize..16 * (f + 1) as usize], "S edges of face {f}");
                 assert_eq!(e2[..], m_numbers[64 * f as usize..64 * (f + 1) as usize], "M edges of face {f}");
             }
+        }
+    }
+
+    /// The grid points of the parts: with the four base corners they cover the 9 x 9 grid, no
+    /// point in two parts; the corners of one edge inside a face (a corner and its owner) find
+    /// the same point; vertices on base edges lie on the grid's border, the others inside.
+    #[test]
+    fn part_tables_cover_the_grid_once() {
+        let parts: [&[u8]; 6] = [&BASE_EDGE_GRID, &[FACE_GRID], &S_EDGE_GRID, &S_FACE_GRID, &M_EDGE_GRID, &M_FACE_GRID];
+        let mut part_of = [None; SIDE * SIDE];
+        for g in [0, 8, 80, 72] {
+            part_of[g] = Some(usize::MAX);
+        }
+        for (k, grid) in parts.iter().enumerate() {
+            for &g in *grid {
+                assert!(part_of[g as usize].is_none_or(|p| p == k), "grid point {g} in parts {part_of:?} and {k}");
+                part_of[g as usize] = Some(k);
+            }
+        }
+        assert!(part_of.iter().all(Option::is_some), "{part_of:?}");
+        for i in 0..16 {
+            assert_eq!(S_EDGE_GRID[i], S_EDGE_GRID[S_OWNER[i] as usize], "S corner {i}");
+        }
+        for x in 0..64 {
+            assert_eq!(M_EDGE_GRID[x], M_EDGE_GRID[M_OWNER[x] as usize], "M corner {x}");
+        }
+        let border = |g: u8| matches!(g % 9, 0 | 8) || matches!(g / 9, 0 | 8);
+        for k in 0..4 {
+            for (p, &i) in S_ALONG[k].iter().enumerate() {
+                assert!(border(S_EDGE_GRID[i as usize]), "S corner {i} along edge {k} ({p})");
+            }
+            for &x in &M_ALONG[k] {
+                assert!(border(M_EDGE_GRID[x as usize]), "M corner {x} along edge {k}");
+            }
+            assert!(border(BASE_EDGE_GRID[k]));
+        }
+        let on_border = parts.iter().flat_map(|grid| grid.iter()).filter(|&&g| border(g)).count();
+        assert_eq!(on_border, 4 + 8 + 16, "base edges' middles, S and M halves along them");
+    }
+
+    /// Colours carried on a regular mesh follow the weights of the positions: an affine image
+    /// of the positions stays that image of the subdivided positions.
+    #[test]
+    fn carried_colours_follow_the_positions() {
+        use crate::subdiv::{CatmullClarkOptions, catmull_clark_subdivide};
+        let mut mesh = torus(5, 9, true);
+        let image = |p: DVec3| DVec3::new(0.5 * p.x + 0.25, 0.1 * p.y - p.z, 0.3 * p.z + 0.2 * p.x);
+        mesh.colors = mesh.positions.iter().map(|&p| image(p)).collect();
+        let fine = catmull_clark_subdivide(&mesh, 3, &CatmullClarkOptions::default()).expect("a closed quad torus");
+        assert_eq!(fine.colors.len(), fine.positions.len());
+        for (k, (&p, &c)) in fine.positions.iter().zip(&fine.colors).enumerate() {
+            assert!((image(p) - c).length() < 1e-13, "vertex {k}: {c} against {}", image(p));
         }
     }
 
