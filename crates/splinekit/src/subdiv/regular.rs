@@ -215,20 +215,20 @@ impl Halves {
 }
 
 /// The 9 × 9 level-3 grid over a face with control points `n` (see the module docs),
-/// `out[y][x]` for grid point `x + 9y`: first the 9 points along x of each of the 4 rows of
-/// `n` (`n[·][b]`, 3 values wide), then those 4 × 9 points along y (27 values wide, so the
-/// second pass works on whole rows of points).
+/// into `out`, grid point `x + 9y` at `out[y][3x .. 3x + 3]`: first the 9 points along x of
+/// each of the 4 rows of `n` (`n[·][b]`, 3 values wide), then those 4 × 9 points along y (27
+/// values wide, so the second pass works on whole rows of points). Written in place and read
+/// through reference casts (returning the 81 points by value costs two copies of them);
+/// `rows` is scratch room for the first pass. (Both are the caller's, made once for many
+/// faces: a fresh zeroed array per face is a `memset` per face.)
 #[inline(always)]
-fn grid(h: &Halves, n: &[[DVec3; 4]; 4]) -> [DVec3; SIDE * SIDE] {
-    let mut rows = [[[0.0; 3]; SIDE]; 4];
+fn grid(h: &Halves, n: &[[DVec3; 4]; 4], rows: &mut [[[f64; 3]; SIDE]; 4], out: &mut [[f64; 3 * SIDE]; SIDE]) {
     for (b, row) in rows.iter_mut().enumerate() {
         let p = [0, 1, 2, 3].map(|a| n[a][b].to_array());
         h.line::<3>([&p[0], &p[1], &p[2], &p[3]], row);
     }
-    let flat: [[f64; 3 * SIDE]; 4] = rows.map(bytemuck::cast);
-    let mut out = [[0.0; 3 * SIDE]; SIDE];
-    h.line::<{ 3 * SIDE }>([&flat[0], &flat[1], &flat[2], &flat[3]], &mut out);
-    bytemuck::cast(out)
+    let flat: &[[f64; 3 * SIDE]; 4] = bytemuck::cast_ref(rows);
+    h.line::<{ 3 * SIDE }>([&flat[0], &flat[1], &flat[2], &flat[3]], out);
 }
 
 /// A block of base faces `f0 .. f1` with its share of the six parts and, if they are to be
@@ -629,12 +629,14 @@ fn face_block(
     let base = numbers.base;
     let [base_edges, faces, s_edges, s_faces, m_edges, m_faces] = block;
     let first = |counts: &[u32], f: u32| (counts[f as usize] - counts[f0 as usize]) as usize;
+    let (mut rows, mut points) = ([[[0.0; 3]; SIDE]; 4], [[0.0; 3 * SIDE]; SIDE]);
     for f in f0..f1 {
         let r = (f - f0) as usize;
         if let Some(out) = &mut quads {
             numbers.quads_of(f, st, &mut out[256 * r..256 * (r + 1)]);
         }
-        let values = grid(&tables.halves, &net(base, p, f));
+        grid(&tables.halves, &net(base, p, f), &mut rows, &mut points);
+        let values: &[DVec3; SIDE * SIDE] = bytemuck::cast_ref(&points);
         let copy = |out: &mut [DVec3], grid: &[u8]| {
             for (o, &g) in out.iter_mut().zip(grid) {
                 *o = values[g as usize];
