@@ -89,10 +89,11 @@ pub(super) fn owner_bits(q: u32, t: [u32; 4]) -> u32 {
 }
 
 /// The twins of the corners of quad `q`.
-#[inline]
-fn quad_twins(twin: &[u32], q: u32) -> [u32; 4] {
+#[inline(always)]
+pub(super) fn quad_twins(twin: &[u32], q: u32) -> [u32; 4] {
+    // one bounds check for the four
     let i = 4 * q as usize;
-    [twin[i], twin[i + 1], twin[i + 2], twin[i + 3]]
+    twin[i..i + 4].try_into().expect("four corners a quad")
 }
 
 impl Corners for Rings<'_> {
@@ -237,8 +238,8 @@ impl QuadLevel {
     }
 
     /// The owner bits of the corners of face `q` (bit `k` for corner `4q + k`).
-    #[inline]
-    fn owners(&self, q: u32) -> u32 {
+    #[inline(always)]
+    pub(super) fn owners(&self, q: u32) -> u32 {
         owner_bits(q, quad_twins(&self.twin, q))
     }
 

@@ -21,7 +21,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::quads::{FACES, QuadLevel, counts_before, next, owner_bits, prev, quad_mesh};
+use super::quads::{FACES, QuadLevel, counts_before, next, prev, quad_mesh, quad_twins};
 use super::topology::MIN_RINGS;
 use crate::mesh::{NONE, PolyMesh};
 
@@ -278,7 +278,7 @@ struct Numbers<'a> {
 
 /// The index of the previous corner in a quad among corners numbered from a multiple of 4.
 #[inline(always)]
-fn prev_index(i: usize) -> usize {
+const fn prev_index(i: usize) -> usize {
     (i & !3) | ((i + 3) & 3)
 }
 
@@ -354,8 +354,8 @@ const M_OWNER: [u8; 64] = {
                 None => None,
             },
             1 => Some(4 * next_index(i) + 2),
-            2 => Some(4 * ((i & !3) | ((i + 3) & 3)) + 1),
-            _ => match s_inner_twin((i & !3) | ((i + 3) & 3)) {
+            2 => Some(4 * prev_index(i) + 1),
+            _ => match s_inner_twin(prev_index(i)) {
                 Some(t) => Some(4 * t),
                 None => None,
             },
@@ -382,6 +382,16 @@ const fn inner_owners(owner: &[u8]) -> u64 {
     bits
 }
 
+/// The twins of the child corners along base edge `k` of a base face whose base corners have
+/// twins `tb`: the base face across the edge, `tb[k] / 4`, and there its corners along its
+/// edge `tb[k] % 4` (the same edge, the other way), reversed so that place `p` is the twin of
+/// `along[k][p]`.
+#[inline(always)]
+fn across<const P: usize>(tb: &[u32; 4], along: &[[u8; P]; 4], k: usize) -> (u32, [u8; P]) {
+    let theirs = &along[(tb[k] % 4) as usize];
+    (tb[k] / 4, core::array::from_fn(|p| theirs[P - 1 - p]))
+}
+
 /// The owner bits of the `N` child corners (`S`: 16, `M`: 64) of base face `f` whose base corners
 /// have twins `tb`: the fixed ones inside the face, and along each base edge `k` the corners that
 /// come before their twins, which are in the face across it (`g = tb[k] / 4`, along its edge
@@ -390,10 +400,10 @@ const fn inner_owners(owner: &[u8]) -> u64 {
 fn owner_mask<const N: usize, const P: usize>(f: u32, tb: &[u32; 4], along: &[[u8; P]; 4], owner: &[u8; N]) -> u64 {
     let mut bits = inner_owners(owner) & !along.iter().flatten().fold(0, |m, &i| m | 1u64 << i);
     for (k, ours) in along.iter().enumerate() {
-        let (g, theirs) = (tb[k] / 4, &along[(tb[k] % 4) as usize]);
-        for p in 0..P {
-            let own = N as u32 * f + u32::from(ours[p]) < N as u32 * g + u32::from(theirs[P - 1 - p]);
-            bits |= u64::from(own) << ours[p];
+        let (g, theirs) = across(tb, along, k);
+        for (&i, &j) in ours.iter().zip(&theirs) {
+            let own = N as u32 * f + u32::from(i) < N as u32 * g + u32::from(j);
+            bits |= u64::from(own) << i;
         }
     }
     bits
@@ -416,10 +426,9 @@ fn edge_numbers<const N: usize, const P: usize>(
     let mut e: [u32; N] = core::array::from_fn(|i| own[owner[i] as usize]);
     let m = mask(f as usize);
     for (k, ours) in along.iter().enumerate() {
-        let (g, theirs) = ((tb[k] / 4) as usize, &along[(tb[k] % 4) as usize]);
-        for p in 0..P {
-            let i = ours[p];
-            let twin = rank(g, theirs[P - 1 - p]);
+        let (g, theirs) = across(tb, along, k);
+        for (&i, &j) in ours.iter().zip(&theirs) {
+            let twin = rank(g as usize, j);
             e[i as usize] = if m >> i & 1 != 0 { e[i as usize] } else { twin };
         }
     }
@@ -433,7 +442,7 @@ impl<'a> Numbers<'a> {
             .into_par_iter()
             .with_min_len(FACES)
             .map(|f| {
-                let tb = base_twins_of(base, f);
+                let tb = quad_twins(&base.twin, f);
                 (owner_mask(f, &tb, &S_ALONG, &S_OWNER) as u16, owner_mask(f, &tb, &M_ALONG, &M_OWNER))
             })
             .unzip_into_vecs(&mut s_masks, &mut m_masks);
@@ -458,7 +467,7 @@ impl<'a> Numbers<'a> {
     /// children's of its `S` corners, and those of its base corners.
     #[inline(always)]
     fn quads_of(&self, f: u32, starts: &[u32; 7], out: &mut [u32]) {
-        let tb = base_twins_of(self.base, f);
+        let tb = quad_twins(&self.base.twin, f);
         let (s0, m0) = (16 * f, 64 * f);
         // the S vertices of the S corners (children of the base corners)
         let sv = self.base.child_corners_of(f, starts[0], starts[1]);
@@ -477,12 +486,6 @@ impl<'a> Numbers<'a> {
             quad.copy_from_slice(&[mv[x], e2[x], starts[5] + (m0 + x as u32) / 4, e2[prev_index(x)]]);
         }
     }
-}
-
-/// The twins of the four corners of base face `f`.
-#[inline(always)]
-fn base_twins_of(base: &QuadLevel, f: u32) -> [u32; 4] {
-    base.twin[4 * f as usize..4 * f as usize + 4].try_into().expect("four corners")
 }
 
 /// Where the level-3 vertices go: the output's parts (the level-by-level layout: base
@@ -652,8 +655,7 @@ fn face_block(
         faces[r] = values[FACE_GRID as usize];
         copy(&mut s_faces[4 * r..4 * r + 4], &S_FACE_GRID);
         copy(&mut m_faces[16 * r..16 * r + 16], &M_FACE_GRID);
-        let base_owners = owner_bits(f, base_twins_of(base, f));
-        owned(base_edges, first(&base.edge_base, f), base_owners.into(), &BASE_EDGE_GRID);
+        owned(base_edges, first(&base.edge_base, f), base.owners(f).into(), &BASE_EDGE_GRID);
         owned(s_edges, first(&numbers.s_base, f), numbers.s_masks[f as usize].into(), &S_EDGE_GRID);
         owned(m_edges, first(&numbers.m_base, f), numbers.m_masks[f as usize], &M_EDGE_GRID);
     }
@@ -733,7 +735,7 @@ mod tests {
             let (s_numbers, m_numbers) = (numbered(&s), numbered(&m));
             let numbers = Numbers::new(&base);
             for f in 0..nf {
-                let tb = base_twins_of(&base, f);
+                let tb = quad_twins(&base.twin, f);
                 let bits = |level: &Twins, n: u32| {
                     (0..n).fold(0u64, |b, i| b | u64::from(n * f + i < level.twin(n * f + i)) << i)
                 };
