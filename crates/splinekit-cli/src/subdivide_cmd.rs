@@ -532,11 +532,11 @@ fn subdivide(
     let start = Instant::now();
     // Buffers freed during the run serve its later allocations (see `alloc`).
     let finest = crate::alloc::recycling(|| {
-        Ok::<_, SubdivError>(LoopPyramid::new(mesh, options)?.into_refined(levels as usize, |_| {
+        LoopPyramid::new(mesh, options)?.into_refined(levels as usize, |_| {
             if let Some(p) = progress {
                 p.inc(1);
             }
-        }))
+        })
     })?;
     Ok((finest, start.elapsed()))
 }

@@ -502,3 +502,49 @@ fn bad_creases_fail_cleanly() {
     assert!(run.stderr.contains("its crease tags are ignored"), "{}", run.stderr);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Too many levels for `u32` indices: refused before any work with the counts that would not
+/// fit, a non-zero exit and no output file, for every scheme (Loop and Catmull-Clark with
+/// creases too).
+#[test]
+fn too_many_levels_fail_before_any_work() {
+    let dir = temp_dir("too-many-levels");
+    let path = |p: &Path| p.to_str().unwrap().to_owned();
+    let (cube, creased) = (dir.join("cube.obj"), dir.join("creased.obj"));
+    std::fs::write(&cube, CUBE).unwrap();
+    std::fs::write(&creased, format!("{CUBE}{TOP_LOOP}")).unwrap();
+    let tetra = dir.join("tetra.obj");
+    std::fs::write(&tetra, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n").unwrap();
+    let creased_tetra = dir.join("creased-tetra.obj");
+    std::fs::write(&creased_tetra, format!("{}t crease 2/1 0 1 2\n", std::fs::read_to_string(&tetra).unwrap()))
+        .unwrap();
+    let out = dir.join("out.obj");
+    for (input, scheme, levels, name) in [
+        (path(&tetra), "loop", "20", "Loop"),
+        (path(&tetra), "loop", "4294967295", "Loop"),
+        (path(&creased_tetra), "loop", "20", "Loop"),
+        (path(&cube), "catmull-clark", "20", "Catmull-Clark"),
+        (path(&creased), "catmull-clark", "20", "Catmull-Clark"),
+        (path(&tetra), "sqrt3", "40", "√3"),
+        (path(&tetra), "butterfly", "20", "butterfly"),
+        (path(&cube), "doo-sabin", "20", "Doo-Sabin"),
+    ] {
+        let run = splinekit(&["subdivide", &input, "-n", levels, "--scheme", scheme, "-o", &path(&out)]);
+        let err = run.fails_with_error();
+        assert!(err.contains(&format!("of {name} subdivision would make")), "{scheme} -n {levels}: {err}");
+        assert!(err.contains("; at most 4294967295 fit in u32 indices"), "{scheme} -n {levels}: {err}");
+        assert!(!out.exists(), "{scheme} -n {levels}: no output file after an error");
+    }
+    // the tetrahedron's exact numbers: 2·4ᵏ + 2 vertices, 6·4ᵏ edges, 4·4ᵏ triangles, 12·4ᵏ
+    // corners; 14 levels fit, at 15 the edges (6·4¹⁵ = 6 442 450 944) are the first count too many
+    let run = splinekit(&["subdivide", &path(&tetra), "-n", "15", "-o", &path(&out)]);
+    assert!(
+        run.fails_with_error().contains(
+            "15 levels of Loop subdivision would make 6442450944 edges; at most 4294967295 fit in u32 indices"
+        ),
+        "{}",
+        run.stderr
+    );
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -60,10 +60,12 @@ impl Demo {
             self.base.clone()
         } else {
             let options = LoopOptions { color_by_level: true, ..LoopOptions::default() };
-            match LoopPyramid::new(&PolyMesh::from(&self.base), options) {
-                Ok(pyramid) => {
+            match LoopPyramid::new(&PolyMesh::from(&self.base), options)
+                .and_then(|pyramid| pyramid.into_refined(self.levels, |_| {}))
+            {
+                Ok(fine) => {
                     self.error = None;
-                    pyramid.into_refined(self.levels, |_| {}).into_tri_mesh()
+                    fine.into_tri_mesh()
                 }
                 Err(e) => {
                     self.error = Some(format!("Loop subdivision: {e}"));

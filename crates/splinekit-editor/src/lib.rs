@@ -368,8 +368,11 @@ impl EditorApp {
         match m.scheme {
             Scheme::Loop if m.uses_pyramid() => {
                 let Ok(p) = &mut m.pyramid else { return };
-                if m.level + 1 > p.finest().depth() {
-                    p.refine();
+                if m.level + 1 > p.finest().depth()
+                    && let Err(e) = p.refine()
+                {
+                    self.status = format!("Error: {}: {e}", m.name);
+                    return;
                 }
                 m.level = (m.level + 1).min(p.finest().depth());
             }
@@ -414,7 +417,10 @@ impl EditorApp {
         if let Ok(p) = &mut m.pyramid
             && pyramid
         {
-            p.refine_to(m.level, |_| {});
+            // the level shown was made before, so it fits; were it refused, show the finest
+            if p.refine_to(m.level, |_| {}).is_err() {
+                m.level = p.finest().depth();
+            }
         }
         // the other scheme's levels made so far, again with the new colours
         let mut levels: Vec<PolyMesh> = Vec::with_capacity(m.levels.len());

@@ -163,7 +163,7 @@ fn generalized_cylinder_from_swp() {
 fn loop_levels_in_colour() {
     let base = splinekit::PolyMesh::from(&icosahedron());
     let options = LoopOptions { color_by_level: true, ..LoopOptions::default() };
-    let mesh = LoopPyramid::new(&base, options).unwrap().into_refined(2, |_| {}).into_tri_mesh();
+    let mesh = LoopPyramid::new(&base, options).unwrap().into_refined(2, |_| {}).unwrap().into_tri_mesh();
     assert_eq!(mesh.colors.len(), mesh.positions.len());
     let mut harness = harness(&mesh, false);
     harness.state_mut().view.settings.wireframe = true;

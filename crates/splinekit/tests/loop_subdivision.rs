@@ -112,7 +112,7 @@ fn naive_step(pos: &[DVec3], t: &[[u32; 3]], warren: bool, corners: bool) -> (Ve
 /// triangles correspond one to one (same order), and so do their vertices and positions.
 fn check_against_naive(mesh: &PolyMesh, levels: usize, options: LoopOptions) {
     let mut pyramid = LoopPyramid::new(mesh, options).unwrap();
-    pyramid.refine_to(levels, |_| {});
+    pyramid.refine_to(levels, |_| {}).unwrap();
     let warren = options.weights == LoopWeights::Warren;
     let corners = options.boundary == BoundaryRule::Corners;
     for k in 0..levels {
@@ -246,11 +246,11 @@ fn threads_do_not_change_a_bit() {
 fn pyramid_refines_coarsens_and_follows_edits() {
     let mesh = grid(5, 5, true);
     let mut p = LoopPyramid::new(&mesh, LoopOptions::default()).unwrap();
-    p.refine();
-    p.refine();
+    p.refine().unwrap();
+    p.refine().unwrap();
     assert_eq!(p.num_levels(), 3);
     assert!(p.coarsen());
-    p.refine();
+    p.refine().unwrap();
     let direct = loop_subdivide(&mesh, 2, &LoopOptions::default()).unwrap();
     assert_eq!(p.finest().to_mesh(), direct);
     let mut moved = mesh.positions.clone();
@@ -322,7 +322,7 @@ fn colour_by_level_marks_where_vertices_were_born() {
     use splinekit::subdiv::LEVEL_COLORS;
     let mesh = icosahedron();
     let o = LoopOptions { color_by_level: true, ..LoopOptions::default() };
-    let fine = LoopPyramid::new(&mesh, o).unwrap().into_refined(2, |_| {});
+    let fine = LoopPyramid::new(&mesh, o).unwrap().into_refined(2, |_| {}).unwrap();
     assert_eq!(fine.depth(), 2);
     // 12 base vertices, 30 born at level 1, 120 at level 2.
     assert!(fine.colors[..12].iter().all(|&c| c == LEVEL_COLORS[0]));
@@ -331,7 +331,7 @@ fn colour_by_level_marks_where_vertices_were_born() {
     assert_eq!(fine.colors.len(), 162);
     // The one-shot path and the pyramid agree.
     let mut p = LoopPyramid::new(&mesh, o).unwrap();
-    p.refine_to(2, |_| {});
+    p.refine_to(2, |_| {}).unwrap();
     assert_eq!(p.finest().to_mesh(), fine.to_mesh());
     let tri = fine.into_tri_mesh();
     assert_eq!(tri.colors.len(), tri.positions.len());
@@ -355,10 +355,10 @@ fn one_shot_equals_the_pyramid_to_the_bit() {
                 for color_by_level in [false, true] {
                     let o = LoopOptions { weights, boundary, color_by_level };
                     let mut pyramid = LoopPyramid::new(&mesh, o).unwrap();
-                    pyramid.refine_to(5, |_| {});
+                    pyramid.refine_to(5, |_| {}).unwrap();
                     for levels in 0..=5 {
                         let mut seen = Vec::new();
-                        let fine = LoopPyramid::new(&mesh, o).unwrap().into_refined(levels, |k| seen.push(k));
+                        let fine = LoopPyramid::new(&mesh, o).unwrap().into_refined(levels, |k| seen.push(k)).unwrap();
                         assert_eq!(seen, (1..=levels).collect::<Vec<_>>());
                         let want = pyramid.level(levels);
                         assert_eq!(fine.depth(), levels);
@@ -373,8 +373,8 @@ fn one_shot_equals_the_pyramid_to_the_bit() {
     // From a pyramid that already has levels, into_refined goes on from its finest.
     let mesh = grid(5, 4, false);
     let mut p = LoopPyramid::new(&mesh, LoopOptions::default()).unwrap();
-    p.refine();
-    let fine = p.clone().into_refined(3, |_| {});
-    p.refine_to(4, |_| {});
+    p.refine().unwrap();
+    let fine = p.clone().into_refined(3, |_| {}).unwrap();
+    p.refine_to(4, |_| {}).unwrap();
     assert_eq!((fine.depth(), &fine.positions, &fine.triangles), (4, &p.finest().positions, &p.finest().triangles));
 }

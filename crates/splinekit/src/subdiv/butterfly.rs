@@ -38,6 +38,7 @@
 use rayon::prelude::*;
 
 use super::catmull_clark::Rings;
+use super::counts::{self, Counts};
 use super::loop_scheme::{Attribute, SubdivError, triangles_only};
 use super::sqrt3::{TriangleLevel, triangle_level, triangle_levels};
 use super::topology::{MIN_LEN, MIN_RINGS};
@@ -59,13 +60,15 @@ pub struct ButterflyOptions {
 ///
 /// [`SubdivError::NotTriangles`] for a face that is not a triangle, [`SubdivError::Topology`]
 /// for an edge used by more than two faces or twice in the same direction, or a vertex whose
-/// faces form several fans.
+/// faces form several fans; [`SubdivError::TooLarge`] if the result would not fit `u32`
+/// indices (checked before any level is made).
 pub fn butterfly_subdivide(
     mesh: &PolyMesh,
     levels: usize,
     options: &ButterflyOptions,
 ) -> Result<PolyMesh, SubdivError> {
-    triangle_levels(mesh, levels, "butterfly", |m, depth| step(m, depth, options))
+    let check = |base| counts::loop_levels("butterfly", "vertices", base, 0, levels).map(|_| ());
+    triangle_levels(mesh, levels, "butterfly", check, |rings, depth| step(rings, depth, options))
 }
 
 /// One level of [`butterfly_subdivide`]: the child of `mesh`, which is level `depth − 1` of
@@ -78,14 +81,16 @@ pub fn butterfly_subdivide(
 /// As [`butterfly_subdivide`].
 pub fn butterfly_step(mesh: &PolyMesh, depth: usize, options: &ButterflyOptions) -> Result<PolyMesh, SubdivError> {
     triangles_only(mesh, "butterfly")?;
-    step(mesh, depth, options)
+    let rings = Rings::new(mesh)?;
+    let parent_depth = depth.saturating_sub(1);
+    counts::loop_levels("butterfly", "vertices", Counts::of_rings(&rings), parent_depth, parent_depth + 1)?;
+    Ok(step(&rings, depth, options))
 }
 
-/// [`butterfly_step`] of a mesh known to be all triangles.
-fn step(mesh: &PolyMesh, depth: usize, options: &ButterflyOptions) -> Result<PolyMesh, SubdivError> {
-    let rings = Rings::new(mesh)?;
-    let plan = Plan::new(&rings);
-    Ok(triangle_level(mesh, depth, options.color_by_level, &plan))
+/// [`butterfly_step`] of a mesh known to be all triangles, from its adjacency `rings`.
+fn step(rings: &Rings<'_>, depth: usize, options: &ButterflyOptions) -> PolyMesh {
+    let plan = Plan::new(rings);
+    triangle_level(rings.mesh, depth, options.color_by_level, &plan)
 }
 
 /// What one level needs besides the adjacency: each vertex's valence and whether it is on

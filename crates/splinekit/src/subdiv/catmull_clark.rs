@@ -34,6 +34,7 @@
 
 use rayon::prelude::*;
 
+use super::counts::{self, Counts};
 use super::loop_scheme::{Attribute, BoundaryRule, SubdivError, child_colors, parent_colors};
 use super::quads::{self, QuadLevel};
 use super::regular;
@@ -56,7 +57,8 @@ pub struct CatmullClarkOptions {
 /// # Errors
 ///
 /// [`SubdivError::Topology`] for an edge used by more than two faces or twice in the same
-/// direction, or a vertex whose faces form several fans.
+/// direction, or a vertex whose faces form several fans; [`SubdivError::TooLarge`] if the
+/// result would not fit `u32` indices (checked before any level is made).
 pub fn catmull_clark_subdivide(
     mesh: &PolyMesh,
     levels: usize,
@@ -66,6 +68,7 @@ pub fn catmull_clark_subdivide(
         return Ok(PolyMesh { normals: None, uvs: None, ..mesh.clone() });
     }
     let rings = Rings::new(mesh)?;
+    counts::catmull_clark_levels(Counts::of_rings(&rings), 0, levels)?;
     let all_quads = mesh.face_vertices.len() == 4 * mesh.num_faces()
         && mesh.face_offsets.iter().enumerate().all(|(f, &o)| o as usize == 4 * f);
     if all_quads && levels > 1 {
@@ -106,6 +109,8 @@ pub fn catmull_clark_step(
     options: &CatmullClarkOptions,
 ) -> Result<PolyMesh, SubdivError> {
     let rings = Rings::new(mesh)?;
+    let parent_depth = depth.saturating_sub(1);
+    counts::catmull_clark_levels(Counts::of_rings(&rings), parent_depth, parent_depth + 1)?;
     let positions = rings.refine(&mesh.positions, options.boundary);
     let parent = parent_colors(mesh, options.color_by_level, depth);
     let colors =

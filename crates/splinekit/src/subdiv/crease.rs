@@ -31,6 +31,7 @@
 use glam::DVec3;
 
 use super::catmull_clark::{CatmullClarkOptions, Rings, catmull_clark_subdivide};
+use super::counts::{self, Counts};
 use super::loop_scheme::{LoopOptions, Rules, child_colors, loop_subdivide, parent_colors, triangles_only};
 use super::matrix::{Builder, SubdivisionMatrix};
 use super::topology::{Table, Topology, next, prev};
@@ -528,6 +529,7 @@ pub(super) fn loop_levels(
     let mut triangles: Vec<[u32; 3]> = mesh.face_vertices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
     let rules = Rules::new(options);
     let mut topology = Topology::build(&triangles, mesh.num_vertices())?;
+    counts::loop_levels("Loop", "vertices", Counts::of_triangles(&topology, triangles.len()), 0, levels as usize)?;
     let mut creases = creases.clone();
     for level in 0..levels {
         let this = LoopLevelRules { table: Table { triangles: &triangles, topology: &topology }, rules: &rules };
@@ -556,9 +558,12 @@ pub(super) fn catmull_clark_levels(
 ) -> Result<(Creases, Option<PolyMesh>), SubdivError> {
     let mut creases = creases.clone();
     let mut current: Option<PolyMesh> = None;
-    for _ in 0..levels {
+    for depth in 0..levels {
         let m = current.as_ref().unwrap_or(mesh);
         let rings = Rings::new(m)?;
+        if depth == 0 {
+            counts::catmull_clark_levels(Counts::of_rings(&rings), 0, levels)?;
+        }
         let CreasedLevel { matrix, child } = creased_level(&rings, &creases, options.boundary, method)?;
         creases = child;
         // the child's connectivity only: its positions are never read

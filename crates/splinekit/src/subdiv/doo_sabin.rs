@@ -33,6 +33,7 @@
 use rayon::prelude::*;
 
 use super::catmull_clark::Rings;
+use super::counts::{self, DooSabin};
 use super::loop_scheme::{Attribute, SubdivError};
 use super::topology::{MIN_LEN, MIN_RINGS};
 use crate::mesh::{FaceVarying, NONE, PolyMesh};
@@ -48,15 +49,19 @@ pub struct DooSabinOptions {}
 /// # Errors
 ///
 /// [`SubdivError::Topology`] for an edge used by more than two faces or twice in the same
-/// direction, or a vertex whose faces form several fans.
+/// direction, or a vertex whose faces form several fans; [`SubdivError::TooLarge`] if the
+/// result would not fit `u32` indices (checked before any level is made).
 pub fn doo_sabin_subdivide(mesh: &PolyMesh, levels: usize, options: &DooSabinOptions) -> Result<PolyMesh, SubdivError> {
     let _ = options;
     if levels == 0 {
         return Ok(PolyMesh { normals: None, ..mesh.clone() });
     }
-    let mut level = step(mesh)?;
+    let rings = Rings::new(mesh)?;
+    counts::doo_sabin_levels(DooSabin::of_rings(&rings), levels)?;
+    let mut level = step(&rings);
     for _ in 1..levels {
-        level = step(&level)?;
+        let fine = step(&Rings::new(&level)?);
+        level = fine;
     }
     Ok(level)
 }
@@ -121,9 +126,9 @@ fn face_containing(mesh: &PolyMesh, c: usize) -> usize {
     mesh.face_offsets.partition_point(|&o| o as usize <= c) - 1
 }
 
-/// One level.
-fn step(mesh: &PolyMesh) -> Result<PolyMesh, SubdivError> {
-    let rings = Rings::new(mesh)?;
+/// One level, from the adjacency of the parent.
+fn step(rings: &Rings<'_>) -> PolyMesh {
+    let mesh = rings.mesh;
     let weights = Weights::new();
     let fv = &mesh.face_vertices;
     let positions = corner_points(mesh, &weights, |c| mesh.positions[fv[c] as usize]);
@@ -137,9 +142,9 @@ fn step(mesh: &PolyMesh) -> Result<PolyMesh, SubdivError> {
         .as_ref()
         .filter(|uv| uv.indices.len() == fv.len() && uv.indices.iter().all(|&i| (i as usize) < uv.values.len()))
         .map(|uv| corner_points(mesh, &weights, |c| uv.values[uv.indices[c] as usize]));
-    let (face_offsets, face_vertices) = child_faces(&rings);
+    let (face_offsets, face_vertices) = child_faces(rings);
     let uvs = uv_values.map(|values| FaceVarying { values, indices: face_vertices.clone() });
-    Ok(PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs })
+    PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs }
 }
 
 /// The child faces: F-faces, E-faces, V-faces (see the module docs).

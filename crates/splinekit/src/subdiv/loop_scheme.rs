@@ -45,6 +45,7 @@ use std::borrow::Cow;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
+use super::counts::{self, Counts};
 use super::grandchild::{grandchild_triangles, grandchild_values};
 use super::great::{great_grandchild_triangles, great_grandchild_values};
 use super::topology::{MIN_LEN, MIN_RINGS, Table, Topology, TopologyError, child_level, next, prev};
@@ -143,6 +144,30 @@ pub enum SubdivError {
         /// What is wrong.
         problem: String,
     },
+    /// The subdivided mesh would have more vertices, edges, faces or face corners than `u32`
+    /// indices can number. Checked before anything is made.
+    #[error(
+        "{levels} level{} of {scheme} subdivision would make {count} {what}; at most {} fit in u32 indices",
+        plural(.levels),
+        u32::MAX
+    )]
+    TooLarge {
+        /// The scheme: `Loop`, `Catmull-Clark`, `√3`, `Doo-Sabin` or `butterfly`.
+        scheme: &'static str,
+        /// The first number of levels (from the base mesh) that would not fit: at most the
+        /// number asked for.
+        levels: usize,
+        /// What there would be too many of: `vertices`, `edges`, `faces`, `face corners`,
+        /// `normal values` or `UV values`.
+        what: &'static str,
+        /// How many there would be.
+        count: u64,
+    },
+}
+
+/// `s` unless `n` is 1.
+fn plural(n: &usize) -> &'static str {
+    if *n == 1 { "" } else { "s" }
 }
 
 /// [`SubdivError::NotTriangles`] for the first face of `mesh` that is not a triangle, naming
@@ -557,18 +582,49 @@ impl LoopPyramid {
     }
 
     /// Adds one level.
-    pub fn refine(&mut self) {
+    ///
+    /// # Errors
+    /// [`SubdivError::TooLarge`] if the new level would not fit `u32` indices; then nothing
+    /// changes.
+    pub fn refine(&mut self) -> Result<(), SubdivError> {
+        self.check_depth(self.levels.len())?;
         self.refine_step(false);
+        Ok(())
     }
 
     /// Refines until there are `levels + 1` levels, calling `progress(k)` after level `k` is
     /// made. Only levels that will be refined again get adjacency tables.
-    pub fn refine_to(&mut self, levels: usize, mut progress: impl FnMut(usize)) {
+    ///
+    /// # Errors
+    /// [`SubdivError::TooLarge`] if level `levels` would not fit `u32` indices, checked
+    /// before any level is made.
+    pub fn refine_to(&mut self, levels: usize, mut progress: impl FnMut(usize)) -> Result<(), SubdivError> {
+        self.check_depth(levels)?;
         while self.levels.len() <= levels {
             let keep = self.levels.len() < levels;
             self.refine_step(keep);
             progress(self.levels.len() - 1);
         }
+        Ok(())
+    }
+
+    /// [`SubdivError::TooLarge`] if level `depth` (its positions, or the values of its normals
+    /// or UVs) would not fit `u32` indices, counted from the base level's tables.
+    fn check_depth(&self, depth: usize) -> Result<(), SubdivError> {
+        let base = &self.levels[0];
+        let topology = base.topology.as_ref().expect("the base level keeps its tables");
+        counts::loop_levels("Loop", "vertices", Counts::of_triangles(topology, base.triangles.len()), 0, depth)?;
+        let channel = |topology: Option<&Topology>, triangles: usize, what| match topology {
+            Some(t) => counts::loop_levels("Loop", what, Counts::of_triangles(t, triangles), 0, depth).map(|_| ()),
+            None => Ok(()),
+        };
+        if let Some(c) = &base.normals {
+            channel(c.topology.as_ref(), c.triangles.len(), "normal values")?;
+        }
+        if let Some(c) = &base.uvs {
+            channel(c.topology.as_ref(), c.triangles.len(), "UV values")?;
+        }
+        Ok(())
     }
 
     /// Drops the finest level (never the base). Returns whether a level was dropped.
@@ -641,16 +697,24 @@ impl LoopPyramid {
     /// finest level's values and triangles from those of the level three above it, so only
     /// levels up to `levels − 3` below get tables and triangles, and besides the output at
     /// most the values of its parent and the tables of two levels are alive.
-    #[must_use]
-    pub fn into_refined(mut self, levels: usize, mut progress: impl FnMut(usize) + Send) -> LoopLevel {
+    ///
+    /// # Errors
+    /// [`SubdivError::TooLarge`] if the finest level would not fit `u32` indices, checked
+    /// before any level is made.
+    pub fn into_refined(
+        mut self,
+        levels: usize,
+        mut progress: impl FnMut(usize) + Send,
+    ) -> Result<LoopLevel, SubdivError> {
         let last = self.levels.len() - 1;
+        self.check_depth(last.saturating_add(levels))?;
         if levels < 2 || self.levels[last].normals.is_some() || self.levels[last].uvs.is_some() {
             for k in 1..=levels {
                 self.refine_step(k < levels);
                 self.levels.remove(0);
                 progress(k);
             }
-            return self.into_finest();
+            return Ok(self.into_finest());
         }
         // Without face-varying channels: each level's values are made two steps below a level
         // with stored tables (the grandchild passes), the finest level's three steps below
@@ -703,7 +767,7 @@ impl LoopPyramid {
                 if great { great_grandchild_triangles(&table) } else { grandchild_triangles(&table) }
             },
         );
-        LoopLevel { triangles, positions, colors, depth: d0 + levels, topology: None, normals: None, uvs: None }
+        Ok(LoopLevel { triangles, positions, colors, depth: d0 + levels, topology: None, normals: None, uvs: None })
     }
 
     /// The positions and colours made by step `k` of `levels` from `parent`, those of the
@@ -800,7 +864,8 @@ fn derive_topology<T>(channel: &mut Option<Channel<T>>, parent: &Option<Channel<
 /// `levels` levels of Loop subdivision of a triangle mesh (see the module docs).
 ///
 /// # Errors
-/// As [`LoopPyramid::new`].
+/// As [`LoopPyramid::new`], and [`SubdivError::TooLarge`] if the result would not fit `u32`
+/// indices (checked before any level is made).
 pub fn loop_subdivide(mesh: &PolyMesh, levels: u32, options: &LoopOptions) -> Result<PolyMesh, SubdivError> {
-    Ok(LoopPyramid::new(mesh, *options)?.into_refined(levels as usize, |_| {}).to_mesh())
+    Ok(LoopPyramid::new(mesh, *options)?.into_refined(levels as usize, |_| {})?.to_mesh())
 }

@@ -20,6 +20,7 @@
 
 pub mod butterfly;
 mod catmull_clark;
+mod counts;
 pub mod crease;
 pub mod doo_sabin;
 mod grandchild;

@@ -45,6 +45,7 @@ use glam::DVec2;
 use rayon::prelude::*;
 
 use super::catmull_clark::Rings;
+use super::counts::{self, Counts};
 use super::loop_scheme::{Attribute, SubdivError, child_colors, parent_colors, triangles_only};
 use super::topology::{MIN_LEN, MIN_RINGS};
 use crate::mesh::{FaceVarying, NONE, PolyMesh};
@@ -65,28 +66,35 @@ pub struct Sqrt3Options {
 ///
 /// [`SubdivError::NotTriangles`] for a face that is not a triangle, [`SubdivError::Topology`]
 /// for an edge used by more than two faces or twice in the same direction, or a vertex whose
-/// faces form several fans.
+/// faces form several fans; [`SubdivError::TooLarge`] if the result would not fit `u32`
+/// indices (checked before any level is made).
 pub fn sqrt3_subdivide(mesh: &PolyMesh, levels: usize, options: &Sqrt3Options) -> Result<PolyMesh, SubdivError> {
-    triangle_levels(mesh, levels, "√3", |m, depth| step(m, depth, options))
+    let check = |base| counts::sqrt3_levels(base, levels).map(|_| ());
+    triangle_levels(mesh, levels, "√3", check, |rings, depth| step(rings, depth, options))
 }
 
-/// Level `levels` of a triangle scheme whose level `depth` is `step(level depth − 1, depth)`;
-/// level 0 is `mesh` with seamless UVs per vertex and without normals, as the levels carry
-/// them. An error naming `scheme` if `mesh` has a face that is not a triangle.
+/// Level `levels` of a triangle scheme whose level `depth` is `step(adjacency of level
+/// depth − 1, depth)`; level 0 is `mesh` with seamless UVs per vertex and without normals, as
+/// the levels carry them. An error naming `scheme` if `mesh` has a face that is not a
+/// triangle, and `check`'s error for the counts of `mesh` before any level is made.
 pub(super) fn triangle_levels(
     mesh: &PolyMesh,
     levels: usize,
     scheme: &'static str,
-    step: impl Fn(&PolyMesh, usize) -> Result<PolyMesh, SubdivError>,
+    check: impl FnOnce(Counts) -> Result<(), SubdivError>,
+    step: impl Fn(&Rings<'_>, usize) -> PolyMesh,
 ) -> Result<PolyMesh, SubdivError> {
     triangles_only(mesh, scheme)?;
     if levels == 0 {
         let uvs = per_vertex_uvs(mesh).map(|values| FaceVarying { values, indices: mesh.face_vertices.clone() });
         return Ok(PolyMesh { normals: None, uvs, ..mesh.clone() });
     }
-    let mut level = step(mesh, 1)?;
+    let rings = Rings::new(mesh)?;
+    check(Counts::of_rings(&rings))?;
+    let mut level = step(&rings, 1);
     for depth in 2..=levels {
-        level = step(&level, depth)?;
+        let fine = step(&Rings::new(&level)?, depth);
+        level = fine;
     }
     Ok(level)
 }
@@ -110,12 +118,11 @@ pub(super) fn per_vertex_uvs(mesh: &PolyMesh) -> Option<Vec<DVec2>> {
     Some(out.into_iter().map(Option::unwrap_or_default).collect())
 }
 
-/// Level `depth` of the subdivision from level `depth − 1`, `mesh` (all triangles); the
-/// boundary is refined when `depth` is even.
-fn step(mesh: &PolyMesh, depth: usize, options: &Sqrt3Options) -> Result<PolyMesh, SubdivError> {
-    let rings = Rings::new(mesh)?;
-    let plan = Plan::new(&rings, depth.is_multiple_of(2));
-    Ok(triangle_level(mesh, depth, options.color_by_level, &plan))
+/// Level `depth` of the subdivision from level `depth − 1`, the mesh of `rings` (all
+/// triangles); the boundary is refined when `depth` is even.
+fn step(rings: &Rings<'_>, depth: usize, options: &Sqrt3Options) -> PolyMesh {
+    let plan = Plan::new(rings, depth.is_multiple_of(2));
+    triangle_level(rings.mesh, depth, options.color_by_level, &plan)
 }
 
 /// How a level of a triangle scheme is made from its parent: its values from the parent's,
