@@ -59,8 +59,8 @@
 //!   lower density, Wang's bound `(h²/8)·max|C″| ≤ tolerance` — valid for any chord, cusps
 //!   included — gives the density instead.
 //!
-//! The bounds are evaluated in `f32` (four cells per SIMD instruction, two such groups
-//! interleaved) from the power form of the curve scaled to unit size in `f64`. Every
+//! The bounds are evaluated in `f32` (four cells per SIMD instruction on baseline x86-64)
+//! from the power form of the curve scaled to unit size in `f64`. Every
 //! quantity that can cancel gets an explicit rounding allowance (a multiple of the `f32`
 //! roundoff times the magnitude of its terms, computed in `f64` from the coefficients), the
 //! cells are widened by `2⁻¹⁸` to cover their `f32` middles, and `2⁻¹⁷` of the tolerance is
@@ -69,14 +69,15 @@
 //!
 //! # Placement
 //!
-//! Chords end at equal steps of the cumulative count `N(t) = ∫ρ dt`, `n = ⌈N(1)⌉` of them,
-//! so a chord inside one cell is at most `1/ρ_j` wide. Every cell is given at least one
+//! Chords end at the counts `1, 2, …, n − 1` of the cumulative count `N(t) = ∫ρ dt`,
+//! `n = ⌈N(1)⌉` chords in all (the last, up to `N(1)`, is the shortest), so a chord inside
+//! one cell is at most `1/ρ_j` wide. Every cell is given at least one
 //! chord's worth (`ρ_j ≥ 8`), so a chord spans at most two cells. A chord that crosses from
 //! a sparser cell (density `ρs`) into a denser one (`ρd`) with its midpoint in the denser one
 //! could be too wide by a factor of up to `1 + (ρd − ρs)/(ρd + ρs)`; to prevent it, the count
 //! pauses at every cell boundary for `(ρd − ρs)/(ρd + ρs)` chords (the polyline makes no
 //! progress in `t` there), which is exactly what such a chord can lack. The pause is always
-//! shorter than a step (the denser cell alone holds `ρd/8` chords), so no chord end repeats.
+//! shorter than a chord (the denser cell alone holds `ρd/8` chords), so no chord end repeats.
 //! Where the floor of one chord per cell width costs more than it saves (nearly straight
 //! curves, coarse tolerances: fewer than 16 chords), two other plans are tried and the one
 //! with the fewest chords is kept: 4 cells of two, each with the largest density of the
@@ -573,10 +574,10 @@ struct CellInputs {
     /// `8·limit` and its reciprocal.
     e8: f32,
     ie8: f32,
-    /// `max|C″|` over `[0, 1]`, `|c|`, and Wang's density squared `max|C″| / (8·limit)`.
+    /// `max|C″|` over `[0, 1]`, `|c|`, and Wang's density `√(max|C″| / (8·limit))`.
     dd: f32,
     cn: f32,
-    wang2: f32,
+    wang: f32,
     /// 2 or 3.
     dim: usize,
 }
@@ -621,7 +622,7 @@ impl CellInputs {
             ie8: (1.0 / e8) as f32,
             dd: dd as f32,
             cn: c.length() as f32,
-            wang2: (dd / e8) as f32,
+            wang: (dd / e8).sqrt() as f32,
             dim: P::DIM,
         }
     }
@@ -632,17 +633,12 @@ impl CellInputs {
     /// does not apply.
     #[inline(always)]
     fn densities(&self, mid: &[f32; CELLS], hw: f32, out: &mut [f32; CELLS]) {
-        const HALF: usize = CELLS / 2;
-        const _: () = assert!(CELLS.is_multiple_of(2));
         let hw2 = hw * hw;
         // (c·C′(m))⁻/4 from cd = 3hw²·c·C′(m), rounded up
         let icd = (1.0 + 1.0 / 65536.0) / (12.0 * hw2);
-        // two independent cells per SIMD lane, so that their long dependency chains overlap
-        for j in 0..HALF {
-            let k = j + HALF;
-            let (x, y) = (self.cell(mid[j], hw, hw2, icd), self.cell(mid[k], hw, hw2, icd));
-            out[j] = x;
-            out[k] = y;
+        // one loop over the cells, which the compiler turns into SIMD instructions
+        for j in 0..CELLS {
+            out[j] = self.cell(mid[j], hw, hw2, icd);
         }
     }
 
@@ -719,27 +715,23 @@ impl CellInputs {
         let drop = max32(self.ecd - cd, 0.0) * icd * cap2;
         let (a0, a1, a2) = (g0 - drop, g1 - drop, g2 - drop);
         let (n0, n1, n2) = (n0 + add, n1 + add, n2 + add);
-        // the largest ratio nᵢ/aᵢ (all aᵢ > 0 where it counts), picked by cross-multiplying
-        let (mut nn, mut aa) = (n0, a0);
-        if n1 * aa > nn * a1 {
-            (nn, aa) = (n1, a1);
-        }
-        if n2 * aa > nn * a2 {
-            (nn, aa) = (n2, a2);
-        }
+        // the largest ratio nᵢ/aᵢ (all aᵢ > 0 where it counts: gmin > 0); three independent
+        // divisions, so that the chain from the coefficients to the density stays short
         let gmin = min32(min32(a0, a1), a2);
+        let ratio = max32(max32(n0 / a0, n1 / a1), n2 / a2);
+        let s = sse.sqrt();
+        let lemma = (s * self.ie8 * ratio).sqrt();
         // (B): with R = 2·gmin/|C′(m)| (gmin is a lower bound for every width up to the cap),
         // h·(max|C″| + h·|c|) ≤ R holds for every width h up to the root hb of the
         // quadratic, and 1/hb ≤ max|C″|/R + √(|c|/R); the chord lemma needs the smaller of
-        // its own width and hb. One division serves both: 1/(aa·gmin).
-        let s = sse.sqrt();
-        let inv = 1.0 / (aa * gmin);
-        let ir = 0.5 * s * aa * inv;
+        // its own width and hb, so the larger density.
+        let ir = (0.5 * s) / gmin;
         let ib = self.dd * ir + (self.cn * ir).sqrt();
-        // 2⁻¹² covers the rounding of the selection, the division and (B)
-        let x = max32(s * self.ie8 * nn * gmin * inv, ib * ib) * (1.0 + 1.0 / 4096.0);
-        let x = if gmin > 0.0 && x < self.wang2 { x } else { self.wang2 };
-        max32(x, 1.0).sqrt()
+        // 2⁻¹³ on the density (2⁻¹² on its square) covers the rounding of the divisions, the
+        // square roots and (B); a NaN lemma density (ib first) falls back to Wang's
+        let x = max32(ib, lemma) * (1.0 + 1.0 / 8192.0);
+        let x = if gmin > 0.0 && x < self.wang { x } else { self.wang };
+        max32(x, 1.0)
     }
 }
 
@@ -751,7 +743,8 @@ struct ChordPlan {
     start: [f64; 16],
     /// The first chord end of each cell.
     first: [u64; 16],
-    /// `inc[k − 1]`: the number of cells whose first chord end is `k` (short plans only).
+    /// `inc[k − 1]`: 8 × the number of cells whose first chord end is `k` (short plans only;
+    /// a step of the cell's byte offset in the `f64` tables, so the walk needs no shift).
     inc: [u8; CHUNK],
     n: u64,
     /// At most `CHUNK` chords, and no pause long enough to repeat a chord end.
@@ -844,7 +837,7 @@ impl ChordPlan {
         let mut plan = Self::empty();
         plan.n = n as u64;
         plan.a[1..n].copy_from_slice(&ends[1..n]);
-        plan.inc[..n - 1].fill(1);
+        plan.inc[..n - 1].fill(8);
         Some(plan)
     }
 
@@ -913,24 +906,24 @@ impl ChordPlan {
             }
             s
         };
+        // chord ends at the counts 1, 2, …, n − 1 (the last chord, up to the count `total`,
+        // is the shortest): no division by n on the way to the first chord end
         let nf = ceil(total);
-        let step = total / nf;
-        let inv_step = nf / total;
         let mut repeat = false;
         // a chord end whose count falls exactly on a cell's start may be given to either
         // cell (`floor_plus_one`): both give that start, to rounding
         for j in 0..N {
             plan.start[j] = j as f64 * w;
-            plan.b[j] = step * h[j];
+            plan.b[j] = h[j];
             plan.a[j] = plan.start[j] - (cum[j] + pause[j]) * h[j];
-            plan.first[j] = floor_plus_one(cum[j] * inv_step);
-            repeat |= pause[j] >= step;
+            plan.first[j] = floor_plus_one(cum[j]);
+            repeat |= pause[j] >= 1.0;
         }
         plan.n = integer_to_u64(nf);
         plan.short = plan.n <= CHUNK as u64 && !repeat;
         if plan.short {
             for j in 1..N {
-                plan.inc[(plan.first[j] - 1) as usize & (CHUNK - 1)] += 1;
+                plan.inc[(plan.first[j] - 1) as usize & (CHUNK - 1)] += 8;
             }
         }
         plan
@@ -940,9 +933,10 @@ impl ChordPlan {
     #[inline(always)]
     fn for_each_inner(&self, emit: &mut impl FnMut(f64)) {
         if self.short {
-            let mut j = 0usize;
+            let mut j8 = 0usize;
             for (&k, &d) in COUNTS[1..self.n as usize].iter().zip(&self.inc) {
-                j = (j + d as usize) & 15;
+                j8 = (j8 + d as usize) & 0x78;
+                let j = j8 >> 3;
                 let t = self.a[j] + k * self.b[j];
                 emit(if t > self.start[j] { t } else { self.start[j] });
             }
@@ -992,11 +986,12 @@ impl ChordPlan {
     fn extend_map<T>(&self, out: &mut Vec<T>, f: impl Fn(f64) -> T, last: T) {
         if self.short {
             let n = self.n as usize;
-            let mut j = 0usize;
+            let mut j8 = 0usize;
             // slices zipped and mapped: an exact length, so `extend` writes in place
             let (a, b, start) = (&self.a, &self.b, &self.start);
             out.extend(COUNTS[1..n].iter().zip(&self.inc).map(move |(&k, &d)| {
-                j = (j + d as usize) & 15;
+                j8 = (j8 + d as usize) & 0x78;
+                let j = j8 >> 3;
                 let t = a[j] + k * b[j];
                 f(if t > start[j] { t } else { start[j] })
             }));
