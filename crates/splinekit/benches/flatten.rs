@@ -2,7 +2,8 @@
 //! (`kurbo::flatten`) and lyon_geom 1.0 (`CubicBezierSegment::for_each_flattened`) side by
 //! side in the same run, plus a degenerate case.
 //!
-//! Before timing, it prints for each tolerance the total segment count and the number of
+//! Before timing, it prints splinekit's time against lyon's measured in turn (see
+//! [`paired_report`]) and, for each tolerance, the total segment count and the number of
 //! curves whose two-sided Hausdorff distance to their polyline exceeds the tolerance. The
 //! distance is *measured* (independently of any library's own reasoning) by dense sampling,
 //! as a lower bound, so every reported violation is real:
@@ -13,6 +14,7 @@
 //! `cargo bench -p splinekit --bench flatten`
 
 use std::hint::black_box;
+use std::time::Instant;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::{DVec2, DVec3};
@@ -95,11 +97,80 @@ fn accuracy_report(curves: &[CubicBezier<DVec2>]) {
     }
 }
 
+/// Time of `f` per pass over the 1000 curves, in µs (the mean of `reps` passes).
+fn pass_time(reps: usize, mut f: impl FnMut() -> usize) -> f64 {
+    let start = Instant::now();
+    for _ in 0..reps {
+        black_box(f());
+    }
+    start.elapsed().as_secs_f64() / reps as f64 * 1e6
+}
+
+/// splinekit against lyon at tolerance 0.01 in short runs taken in turn (40 rounds of 100
+/// passes over the curves each), so that a machine whose speed drifts — this one's does, by up
+/// to 1.6× between spells — slows both sides of each pair alike: the fastest pass of each and
+/// the median over the rounds of splinekit's time over lyon's in the same round.
+fn paired_report(ours: &[CubicBezier<DVec2>], lyon_curves: &[CubicBezierSegment<f64>]) {
+    const ROUNDS: usize = 40;
+    const REPS: usize = 100;
+    let tol = 0.01;
+    let mut points: Vec<DVec2> = Vec::new();
+    let mut lyon_points: Vec<lyon_geom::Point<f64>> = Vec::new();
+    let mut params: Vec<f64> = Vec::new();
+    let (mut poly, mut par, mut lyon) = (Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..ROUNDS {
+        poly.push(pass_time(REPS, || {
+            let mut n = 0;
+            for c in ours {
+                points.clear();
+                points.push(c.p0);
+                flatten_cubic_distance_points(c, black_box(tol), &mut points);
+                n += points.len();
+            }
+            n
+        }));
+        par.push(pass_time(REPS, || {
+            let mut n = 0;
+            for c in ours {
+                params.clear();
+                flatten_cubic_distance(c, black_box(tol), &mut params);
+                n += params.len();
+            }
+            n
+        }));
+        lyon.push(pass_time(REPS, || {
+            let mut n = 0;
+            for c in lyon_curves {
+                lyon_points.clear();
+                lyon_points.push(c.from);
+                c.for_each_flattened(black_box(tol), &mut |s: &LineSegment<f64>| lyon_points.push(s.to));
+                n += lyon_points.len();
+            }
+            n
+        }));
+    }
+    let fastest = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+    let median_ratio = |v: &[f64]| {
+        let mut r: Vec<f64> = v.iter().zip(&lyon).map(|(a, b)| a / b).collect();
+        r.sort_by(f64::total_cmp);
+        r[ROUNDS / 2]
+    };
+    println!(
+        "flatten tolerance 1e-2 in turn with lyon ({ROUNDS} rounds): fastest pass over {N} curves: splinekit polyline {:.1} µs, parameters {:.1} µs, lyon_geom {:.1} µs; median ratio to lyon in the same round: polyline {:.3}, parameters {:.3}",
+        fastest(&poly),
+        fastest(&par),
+        fastest(&lyon),
+        median_ratio(&poly),
+        median_ratio(&par)
+    );
+}
+
 fn bench(c: &mut Criterion) {
     let ours = common::random_cubics(0x5EED, N);
     accuracy_report(&ours);
     let kurbo_paths: Vec<[PathEl; 2]> = ours.iter().map(kurbo_path).collect();
     let lyon_curves: Vec<CubicBezierSegment<f64>> = ours.iter().map(to_lyon).collect();
+    paired_report(&ours, &lyon_curves);
 
     let mut g = c.benchmark_group("flatten");
     g.throughput(Throughput::Elements(N as u64));
