@@ -743,8 +743,8 @@ struct ChordPlan {
     start: [f64; 16],
     /// The first chord end of each cell.
     first: [u64; 16],
-    /// `inc[k − 1]`: 8 × the number of cells whose first chord end is `k` (short plans only;
-    /// a step of the cell's byte offset in the `f64` tables, so the walk needs no shift).
+    /// `inc[k − 1]`: 8 × the number of cells whose first chord end is `k` (short plans only):
+    /// the step of the walk's byte offset into the `f64` tables (see [`ChordPlan::end`]).
     inc: [u8; CHUNK],
     n: u64,
     /// At most `CHUNK` chords, and no pause long enough to repeat a chord end.
@@ -935,16 +935,13 @@ impl ChordPlan {
         if self.short {
             let mut j8 = 0usize;
             for (&k, &d) in COUNTS[1..self.n as usize].iter().zip(&self.inc) {
-                j8 = (j8 + d as usize) & 0x78;
-                let j = j8 >> 3;
-                let t = self.a[j] + k * self.b[j];
-                emit(if t > self.start[j] { t } else { self.start[j] });
+                emit(self.end(&mut j8, k, d));
             }
         } else {
             let mut buf = [0.0f64; CHUNK];
-            let (mut base, mut j, mut prev) = (1u64, 0usize, 0.0f64);
+            let (mut base, mut j8, mut prev) = (1u64, 0usize, 0.0f64);
             while base < self.n {
-                let len = self.chunk(&mut base, &mut j, &mut prev, &mut buf);
+                let len = self.chunk(&mut base, &mut j8, &mut prev, &mut buf);
                 for &t in &buf[..len] {
                     emit(t);
                 }
@@ -955,24 +952,33 @@ impl ChordPlan {
     /// The chord ends from `base` on (at most `CHUNK` of them) of a long plan, leaving out
     /// any that a pause repeats.
     #[inline(always)]
-    fn chunk(&self, base: &mut u64, j: &mut usize, prev: &mut f64, buf: &mut [f64; CHUNK]) -> usize {
+    fn chunk(&self, base: &mut u64, j8: &mut usize, prev: &mut f64, buf: &mut [f64; CHUNK]) -> usize {
         let count = (self.n - *base).min(CHUNK as u64) as usize;
         let mut inc = [0u8; CHUNK + 1];
         for &f in &self.first[1..] {
-            inc[f.wrapping_sub(*base).min(CHUNK as u64) as usize] += 1;
+            inc[f.wrapping_sub(*base).min(CHUNK as u64) as usize] += 8;
         }
         let bf = *base as f64;
         let mut len = 0;
         for (i, &d) in inc[..count].iter().enumerate() {
-            *j = (*j + d as usize) & 15;
-            let t = self.a[*j] + (bf + COUNTS[i]) * self.b[*j];
-            let t = if t > self.start[*j] { t } else { self.start[*j] };
+            let t = self.end(j8, bf + COUNTS[i], d);
             buf[len] = t;
             len += usize::from(t > *prev);
             *prev = if t > *prev { t } else { *prev };
         }
         *base += count as u64;
         len
+    }
+
+    /// Chord end `k` of the walk over the cells: `j8` is the current cell's byte offset into
+    /// the `f64` tables (8 × its index, which the compiler folds into the addressing: no
+    /// shift), stepped by `d` (from `inc`) before the end is read from the cell's line.
+    #[inline(always)]
+    fn end(&self, j8: &mut usize, k: f64, d: u8) -> f64 {
+        *j8 = (*j8 + d as usize) & 0x78;
+        let j = *j8 >> 3;
+        let t = self.a[j] + k * self.b[j];
+        if t > self.start[j] { t } else { self.start[j] }
     }
 
     /// Appends the chord ends to `out`, the last `1.0`.
@@ -988,13 +994,7 @@ impl ChordPlan {
             let n = self.n as usize;
             let mut j8 = 0usize;
             // slices zipped and mapped: an exact length, so `extend` writes in place
-            let (a, b, start) = (&self.a, &self.b, &self.start);
-            out.extend(COUNTS[1..n].iter().zip(&self.inc).map(move |(&k, &d)| {
-                j8 = (j8 + d as usize) & 0x78;
-                let j = j8 >> 3;
-                let t = a[j] + k * b[j];
-                f(if t > start[j] { t } else { start[j] })
-            }));
+            out.extend(COUNTS[1..n].iter().zip(&self.inc).map(move |(&k, &d)| f(self.end(&mut j8, k, d))));
         } else {
             out.reserve(self.n as usize);
             self.for_each_inner(&mut |t| out.push(f(t)));
