@@ -408,11 +408,11 @@ const MIDDLES: [f32; CELLS] = {
     m
 };
 
-/// `0.0, 1.0, 2.0, …`
-const COUNTS: [f64; CHUNK + 1] = {
-    let mut k = [0.0; CHUNK + 1];
+/// `0.0, 1.0, 2.0, …` (two past `CHUNK` for the short walk's look-ahead)
+const COUNTS: [f64; CHUNK + 3] = {
+    let mut k = [0.0; CHUNK + 3];
     let mut i = 0;
-    while i <= CHUNK {
+    while i < CHUNK + 3 {
         k[i] = i as f64;
         i += 1;
     }
@@ -745,7 +745,7 @@ struct ChordPlan {
     first: [u64; 16],
     /// `inc[k − 1]`: 8 × the number of cells whose first chord end is `k` (short plans only):
     /// the step of the walk's byte offset into the `f64` tables (see [`ChordPlan::end`]).
-    inc: [u8; CHUNK],
+    inc: [u8; CHUNK + 2],
     n: u64,
     /// At most `CHUNK` chords, and no pause long enough to repeat a chord end.
     short: bool,
@@ -844,7 +844,15 @@ impl ChordPlan {
     /// A plan of one chord, to be filled in.
     #[inline(always)]
     fn empty() -> Self {
-        Self { a: [0.0; 16], b: [0.0; 16], start: [0.0; 16], first: [u64::MAX; 16], inc: [0; CHUNK], n: 1, short: true }
+        Self {
+            a: [0.0; 16],
+            b: [0.0; 16],
+            start: [0.0; 16],
+            first: [u64::MAX; 16],
+            inc: [0; CHUNK + 2],
+            n: 1,
+            short: true,
+        }
     }
 
     /// The cells' count `Σ w·max(ρ, 1/w)` plus the pauses, rounded up.
@@ -992,9 +1000,21 @@ impl ChordPlan {
     fn extend_map<T>(&self, out: &mut Vec<T>, f: impl Fn(f64) -> T, last: T) {
         if self.short {
             let n = self.n as usize;
+            out.reserve(n);
+            // Each chord end is read from the table two steps before `f` takes it, so that the
+            // walk runs ahead instead of every evaluation waiting for its own loads (the last
+            // two steps read past the plan's ends, which is harmless; the state moves into the
+            // closure, which keeps it in registers).
             let mut j8 = 0usize;
+            let mut t0 = self.end(&mut j8, COUNTS[1], self.inc[0]);
+            let mut t1 = self.end(&mut j8, COUNTS[2], self.inc[1]);
             // slices zipped and mapped: an exact length, so `extend` writes in place
-            out.extend(COUNTS[1..n].iter().zip(&self.inc).map(move |(&k, &d)| f(self.end(&mut j8, k, d))));
+            out.extend(COUNTS[3..n + 2].iter().zip(&self.inc[2..n + 1]).map(move |(&k, &d)| {
+                let next = self.end(&mut j8, k, d);
+                let value = f(t0);
+                (t0, t1) = (t1, next);
+                value
+            }));
         } else {
             out.reserve(self.n as usize);
             self.for_each_inner(&mut |t| out.push(f(t)));
