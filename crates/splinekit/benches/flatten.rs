@@ -116,7 +116,7 @@ fn pass_time(reps: usize, mut f: impl FnMut() -> usize) -> f64 {
 /// moved lyon's loop and made it 271 instead of 233 µs a pass, with lyon's code unchanged.
 /// Check a result that moves with an edit of this file in a build with
 /// `RUSTFLAGS="-C llvm-args=-x86-branches-within-32B-boundaries"`, where placement cannot tip it
-/// (there: lyon 231–232 µs, splinekit 278–284 µs polylines and 216 µs parameters, on 2026-11-27,
+/// (there: lyon 229–232 µs, splinekit 274 µs polylines and 215–216 µs parameters, on 2026-11-27,
 /// after the look-ahead walk; 296 µs polylines before it).
 fn paired_report(ours: &[CubicBezier<DVec2>], lyon_curves: &[CubicBezierSegment<f64>]) {
     const ROUNDS: usize = 40;
