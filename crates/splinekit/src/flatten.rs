@@ -945,10 +945,7 @@ impl ChordPlan {
     #[inline(always)]
     fn for_each_inner(&self, emit: &mut impl FnMut(f64)) {
         if self.short {
-            let mut j8 = 0usize;
-            for (&k, &d) in COUNTS[1..self.n as usize].iter().zip(&self.inc) {
-                emit(self.end(&mut j8, k, d));
-            }
+            self.short_ends().for_each(emit);
         } else {
             let mut buf = [0.0f64; CHUNK];
             let (mut base, mut j8, mut prev) = (1u64, 0usize, 0.0f64);
@@ -982,6 +979,14 @@ impl ChordPlan {
         len
     }
 
+    /// The chord ends of a short plan before the last, one step of the walk each: slices
+    /// zipped and mapped, an exact length, so that `Vec::extend` writes them in place.
+    #[inline(always)]
+    fn short_ends(&self) -> impl Iterator<Item = f64> + '_ {
+        let mut j8 = 0usize;
+        COUNTS[1..self.n as usize].iter().zip(&self.inc).map(move |(&k, &d)| self.end(&mut j8, k, d))
+    }
+
     /// Chord end `k` of the walk over the cells: `j8` is the current cell's byte offset into
     /// the `f64` tables (8 × its index, which the compiler folds into the addressing: no
     /// shift), stepped by `d` (from `inc`) before the end is read from the cell's line.
@@ -1001,10 +1006,7 @@ impl ChordPlan {
     #[inline(always)]
     fn extend(&self, out: &mut Vec<f64>) {
         if self.short {
-            let n = self.n as usize;
-            let mut j8 = 0usize;
-            // slices zipped and mapped: an exact length, so `extend` writes in place
-            out.extend(COUNTS[1..n].iter().zip(&self.inc).map(move |(&k, &d)| self.end(&mut j8, k, d)));
+            out.extend(self.short_ends());
             out.push(1.0);
         } else {
             self.extend_map(out, |t| t, 1.0);
