@@ -720,8 +720,10 @@ impl CellInputs {
         let (a0, a1, a2) = (g0 - drop, g1 - drop, g2 - drop);
         let (n0, n1, n2) = (n0 + add, n1 + add, n2 + add);
         // the largest ratio nᵢ/aᵢ (all aᵢ > 0 where it counts: gmin > 0); three independent
-        // divisions, so that the chain from the coefficients to the density stays short
-        let gmin = min32(min32(a0, a1), a2);
+        // divisions, so that the chain from the coefficients to the density stays short; the
+        // least aᵢ is the least gᵢ less the drop, to the bit (rounding is monotonic), one
+        // subtraction after the drop instead of a subtraction and two minima
+        let gmin = min32(min32(g0, g1), g2) - drop;
         let ratio = max32(max32(n0 / a0, n1 / a1), n2 / a2);
         let s = sse.sqrt();
         let lemma = (s * self.ie8 * ratio).sqrt();
@@ -734,7 +736,11 @@ impl CellInputs {
         // 2⁻¹³ on the density (2⁻¹² on its square) covers the rounding of the divisions, the
         // square roots and (B); a NaN lemma density (ib first) falls back to Wang's
         let x = max32(ib, lemma) * (1.0 + 1.0 / 8192.0);
-        let x = if gmin > 0.0 && x < self.wang { x } else { self.wang };
+        // x < wang ? x : wang, and Wang's density where gmin ≤ 0 by making x a NaN there (all
+        // bits set: the mask is ready long before x, so one `or` instead of a compare and a
+        // blend follows x)
+        let nan = if gmin > 0.0 { 0 } else { u32::MAX };
+        let x = min32(f32::from_bits(x.to_bits() | nan), self.wang);
         max32(x, 1.0)
     }
 }
