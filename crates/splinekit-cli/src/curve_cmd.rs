@@ -47,11 +47,11 @@ pub struct CurveArgs {
     pub steps: Option<u32>,
 
     /// Adaptive: the polyline stays within T (length units) of the curve, both ways
-    #[arg(long, value_name = "T", conflicts_with = "angle_tolerance")]
+    #[arg(long, value_name = "T", conflicts_with = "angle_tolerance", allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
 
     /// Adaptive by control-polygon angle, in degrees
-    #[arg(long, value_name = "DEGREES")]
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     pub angle_tolerance: Option<f64>,
 
     /// Frames: the course's sequential method (with the closed-curve fix), rotation-minimizing, or Frenet

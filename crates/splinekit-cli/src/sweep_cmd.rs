@@ -9,8 +9,8 @@ use clap::ValueEnum;
 use splinekit::TriMesh;
 use splinekit::sweep::{MeshLayout, SweepOptions};
 use splinekit_io::SwpDocument;
-use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
-use splinekit_io::surface::{SurfaceFrames, SurfaceOptions, SurfaceTessellation};
+use splinekit_io::mesh::{MeshFormat, RebuildError, RebuildOptions, SplineHeader};
+use splinekit_io::surface::{SurfaceError, SurfaceFrames, SurfaceOptions, SurfaceTessellation};
 
 use crate::select;
 
@@ -64,11 +64,11 @@ pub struct SweepArgs {
     pub compat: bool,
 
     /// Adaptive tessellation: every polyline within T (length units) of its curve (SWP only)
-    #[arg(long, value_name = "T", conflicts_with = "angle_tolerance")]
+    #[arg(long, value_name = "T", conflicts_with = "angle_tolerance", allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
 
     /// Adaptive tessellation by control-polygon angle, in degrees (SWP only)
-    #[arg(long, value_name = "DEGREES")]
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     pub angle_tolerance: Option<f64>,
 
     /// Frames along sweep curves (SWP only) [default: sequential]
@@ -83,7 +83,16 @@ pub struct SweepArgs {
     /// open curve gets flat end caps; --compat never adds them, nor does an OBJ rebuild)
     #[arg(long)]
     pub no_caps: bool,
+
+    /// Refuse, before building it, a surface that would have more triangles than this (a
+    /// tolerance far too fine for the size of the surface)
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_TRIANGLES)]
+    pub max_triangles: usize,
 }
+
+/// Default of `--max-triangles` (and the limit of `info`'s counts): a mesh of this size takes
+/// a few gigabytes in memory and as OBJ text.
+pub const DEFAULT_MAX_TRIANGLES: usize = 50_000_000;
 
 /// Mesh file formats.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -146,6 +155,7 @@ fn options(args: &SweepArgs) -> anyhow::Result<SurfaceOptions> {
             Frames::Sequential => SurfaceFrames::Sequential,
             Frames::Rmf => SurfaceFrames::RotationMinimizing,
         },
+        max_triangles: Some(args.max_triangles),
     })
 }
 
@@ -167,7 +177,11 @@ pub fn counts(doc: &SwpDocument, k: usize) -> anyhow::Result<[(usize, usize); 2]
     let mut out = [(0, 0); 2];
     for (slot, layout) in out.iter_mut().zip([MeshLayout::Compat, MeshLayout::Welded]) {
         let caps = layout == MeshLayout::Welded;
-        let opts = SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps }, ..SurfaceOptions::default() };
+        let opts = SurfaceOptions {
+            sweep: SweepOptions { layout, uvs: false, caps },
+            max_triangles: Some(DEFAULT_MAX_TRIANGLES),
+            ..SurfaceOptions::default()
+        };
         let mesh = doc.surface_mesh(k, &opts)?;
         *slot = (mesh.num_vertices(), mesh.num_triangles());
     }
@@ -186,29 +200,91 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
     }
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create output directory {}", args.output.display()))?;
-    // every surface is swept before anything is written: an error leaves no files
+    let bar = progress_bar(2 * doc.surfaces.len());
+    let result = sweep_surfaces(args, &doc, &opts, bar.as_ref(), out);
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    result
+}
+
+/// Sweeps every surface of `doc`, then writes them (an error while sweeping leaves no files),
+/// moving `bar` along.
+fn sweep_surfaces(
+    args: &SweepArgs,
+    doc: &SwpDocument,
+    opts: &SurfaceOptions,
+    bar: Option<&indicatif::ProgressBar>,
+    out: &mut impl Write,
+) -> anyhow::Result<()> {
+    let step = |done: usize, what: String| {
+        if let Some(bar) = bar {
+            bar.set_position(done as u64);
+            bar.set_message(what);
+        }
+    };
     let mut meshes = Vec::with_capacity(doc.surfaces.len());
     for k in 0..doc.surfaces.len() {
-        let mesh = doc.surface_mesh(k, &opts).with_context(|| format!("{}", args.file.display()))?;
+        step(k, format!("sweeping {}", doc.surfaces[k].display_name(k)));
+        let mesh = doc.surface_mesh(k, opts).map_err(|e| {
+            let hint = match e {
+                SurfaceError::TooLarge { .. } => {
+                    "; use a coarser --tolerance or --angle-tolerance, or raise --max-triangles"
+                }
+                _ => "",
+            };
+            anyhow!("{}: {e}{hint}", args.file.display())
+        })?;
         meshes.push(mesh);
     }
     let mut used = std::collections::HashSet::new();
     for (k, mesh) in meshes.iter().enumerate() {
-        let mut stem = file_stem(&doc, k);
+        let mut stem = file_stem(doc, k);
         if !used.insert(stem.clone()) {
             stem = format!("{stem}_{k}");
             used.insert(stem.clone());
         }
         let path: PathBuf = args.output.join(format!("{stem}.{}", args.format.extension()));
-        write_mesh(args, mesh, &path, out)?;
+        step(meshes.len() + k, format!("writing {}", path.display()));
+        save_mesh(args, mesh, &path)?;
+        // the report goes to standard output, above the bar
+        match bar {
+            Some(bar) => bar.suspend(|| report(mesh, &path, out))?,
+            None => report(mesh, &path, out)?,
+        }
     }
     Ok(())
 }
 
+/// A bar on standard error when it is a terminal: `steps` steps, the elapsed time and what is
+/// being done, redrawn while a long step runs.
+fn progress_bar(steps: usize) -> Option<indicatif::ProgressBar> {
+    use std::io::IsTerminal;
+    std::io::stderr().is_terminal().then(|| {
+        let bar = indicatif::ProgressBar::new(steps as u64);
+        let style = indicatif::ProgressStyle::with_template("[{bar:30}] {pos}/{len} {elapsed} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+            .progress_chars("=> ");
+        bar.set_style(style);
+        bar.enable_steady_tick(std::time::Duration::from_millis(200));
+        bar
+    })
+}
+
 /// Saves `mesh` to `path` in the chosen format and reports it.
 fn write_mesh(args: &SweepArgs, mesh: &TriMesh, path: &Path, out: &mut impl Write) -> anyhow::Result<()> {
+    save_mesh(args, mesh, path)?;
+    report(mesh, path, out)
+}
+
+/// Saves `mesh` to `path` in the chosen format.
+fn save_mesh(args: &SweepArgs, mesh: &TriMesh, path: &Path) -> anyhow::Result<()> {
     splinekit_io::mesh::save(mesh, path, args.format.mesh_format())
-        .with_context(|| format!("cannot write {}", path.display()))?;
+        .with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// The report line of a written mesh: its path, vertex count and triangle count.
+fn report(mesh: &TriMesh, path: &Path, out: &mut impl Write) -> anyhow::Result<()> {
     writeln!(out, "{}: {} vertices, {} triangles", path.display(), mesh.num_vertices(), mesh.num_triangles())?;
     Ok(())
 }
@@ -243,8 +319,12 @@ fn run_obj(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
     let header = SplineHeader::read(file)?
         .ok_or_else(|| anyhow!("{}: no spline header found; {EXPECTED_HEADER}", file.display()))?;
     let layout = if args.compat { MeshLayout::Compat } else { MeshLayout::Welded };
-    let options = RebuildOptions::DEFAULT.with_layout(layout).with_uvs(args.uvs);
-    let mesh = header.rebuild(&options).with_context(|| format!("cannot rebuild the surface of {}", file.display()))?;
+    let options =
+        RebuildOptions::DEFAULT.with_layout(layout).with_uvs(args.uvs).with_max_triangles(Some(args.max_triangles));
+    let mesh = header.rebuild(&options).map_err(|e| {
+        let hint = if matches!(e, RebuildError::TooLarge { .. }) { "; raise --max-triangles" } else { "" };
+        anyhow!("cannot rebuild the surface of {}: {e}{hint}", file.display())
+    })?;
     let stem = file.file_stem().and_then(|s| safe_stem(&s.to_string_lossy())).unwrap_or_else(|| "surface".into());
     let path = args.output.join(format!("{stem}.{}", args.format.extension()));
     // (an output directory that does not exist yet cannot hold the input)

@@ -9,7 +9,7 @@ use std::process::{Command, Stdio};
 use serde_json::Value;
 
 mod common;
-use common::{Run, splinekit};
+use common::{Run, splinekit, swp_dir};
 
 // ---------------------------------------------------------------------------------------
 // Harness
@@ -82,21 +82,6 @@ fn scene() -> (Dir, PathBuf) {
     let dir = Dir::new();
     let path = dir.file("scene.swp", &scene_swp());
     (dir, path)
-}
-
-/// The bundled SWP files: the io crate's test data, else the shared data directory.
-fn data_dir() -> PathBuf {
-    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let candidates = [
-        crate_dir.join("../splinekit-io/tests/data/swp"),
-        crate_dir.join("../../../shared/data/swp"),
-        crate_dir.join("../../shared/data/swp"),
-    ];
-    candidates
-        .iter()
-        .find(|d| d.join("core.swp").is_file())
-        .cloned()
-        .unwrap_or_else(|| panic!("no core.swp in any of {candidates:?}"))
 }
 
 // ---------------------------------------------------------------------------------------
@@ -294,7 +279,7 @@ fn csv_rows(text: &str) -> Vec<[f64; 4]> {
 
 #[test]
 fn curve_point_counts_on_bundled_files() {
-    let data = data_dir();
+    let data = swp_dir();
     let core = data.join("core.swp");
     for index in 0..4 {
         let rows = csv_rows(on("curve", &core, &["--curve", &index.to_string()]).ok());
@@ -402,7 +387,7 @@ fn error_unknown_curve_lists_the_curves() {
 #[test]
 fn error_bad_flag_values() {
     let (_dir, path) = scene();
-    let cases: [(&str, &[&str], &str); 13] = [
+    let cases: [(&str, &[&str], &str); 16] = [
         ("arclen", &["--samples", "0"], "--samples"),
         ("arclen", &["--samples", "-3"], "--samples"),
         ("arclen", &["--samples", "x"], "--samples"),
@@ -416,6 +401,9 @@ fn error_bad_flag_values() {
         ("arclen", &["--method", "simpson"], "--method"),
         ("curve", &["--steps", "0"], "--steps"),
         ("curve", &["--format", "xml"], "--format"),
+        ("curve", &["--tolerance", "-0.1"], "--tolerance must be a positive number"),
+        ("curve", &["--tolerance", "0"], "--tolerance must be a positive number"),
+        ("curve", &["--angle-tolerance", "-5"], "--angle-tolerance must be a positive number"),
     ];
     for (command, args, flag) in cases {
         let stderr = on(command, &path, args).fails().to_string();

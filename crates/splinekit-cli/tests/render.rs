@@ -4,10 +4,10 @@
 use std::path::{Path, PathBuf};
 
 mod common;
-use common::{course_mesh, splinekit};
+use common::{course_mesh, splinekit, swp_dir};
 
 fn swp(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../splinekit-io/tests/data/swp").join(rel)
+    swp_dir().join(rel)
 }
 
 /// Width and height from a PNG's IHDR chunk.

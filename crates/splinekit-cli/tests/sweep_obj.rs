@@ -5,32 +5,14 @@
 //! with the mesh stored in the input (read by a small reader here, independent of the
 //! crates): same counts, same triangles, positions within the files' six decimals.
 
-use std::ffi::OsStr;
 use std::fs;
 use std::path::{Path, PathBuf};
 
 mod common;
-use common::{Run, splinekit};
+use common::{entries, read_obj, report_line, splinekit, sweep};
 
 // ---------------------------------------------------------------------------------------
-// Harness (shared: tests/common)
-
-/// Runs `splinekit sweep FILE -o DIR` with more arguments.
-fn sweep(file: &Path, dir: &Path, rest: &[&str]) -> Run {
-    let mut args: Vec<&OsStr> = vec!["sweep".as_ref(), file.as_os_str(), "-o".as_ref(), dir.as_os_str()];
-    args.extend(rest.iter().map(OsStr::new));
-    splinekit(&args)
-}
-
-/// Files in a directory, sorted.
-fn entries(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = match fs::read_dir(dir) {
-        Ok(d) => d.map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect(),
-        Err(_) => Vec::new(),
-    };
-    names.sort();
-    names
-}
+// Harness (the rest is shared: tests/common)
 
 /// The bundled spline-annotated OBJ files: the io crate's test data, else the shared data.
 fn annotated_objs() -> Vec<PathBuf> {
@@ -52,30 +34,6 @@ fn annotated_objs() -> Vec<PathBuf> {
     files.sort();
     assert_eq!(files.len(), 4, "{files:?}");
     files
-}
-
-/// Positions and triangles of an OBJ file (`v`; `f` with 1-based `a`, `a/b`, `a//c` or
-/// `a/b/c` corners), 0-based.
-fn read_obj(path: &Path) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
-    let text = fs::read_to_string(path).unwrap();
-    let (mut v, mut f) = (Vec::new(), Vec::new());
-    for line in text.lines() {
-        let w: Vec<&str> = line.split_whitespace().collect();
-        match w.first() {
-            Some(&"v") => v.push([1, 2, 3].map(|i| w[i].parse::<f64>().unwrap())),
-            Some(&"f") => {
-                assert_eq!(w.len(), 4, "{line}");
-                f.push([1, 2, 3].map(|i| w[i].split('/').next().unwrap().parse::<u32>().unwrap() - 1));
-            }
-            _ => {}
-        }
-    }
-    (v, f)
-}
-
-/// `PATH: V vertices, T triangles`.
-fn report_line(path: &Path, vertices: usize, triangles: usize) -> String {
-    format!("{}: {vertices} vertices, {triangles} triangles\n", path.display())
 }
 
 // ---------------------------------------------------------------------------------------

@@ -77,6 +77,11 @@ pub struct SurfaceOptions {
     pub tessellation: SurfaceTessellation,
     /// Frames along sweep curves.
     pub frames: SurfaceFrames,
+    /// The most triangles a mesh may have (`None`: as many as 32-bit indices allow). Checked
+    /// from the sample counts before the mesh is built (each curve's as soon as it is
+    /// tessellated), so a tolerance far too fine for the size of a surface fails at once with
+    /// [`SurfaceError::TooLarge`] instead of exhausting memory.
+    pub max_triangles: Option<usize>,
 }
 
 /// Why a surface could not be swept.
@@ -111,6 +116,18 @@ pub enum SurfaceError {
         /// Display name of the surface.
         surface: String,
     },
+    /// The mesh would have more triangles than [`SurfaceOptions::max_triangles`].
+    #[error("surface {surface} would have about {triangles} triangles ({why}), more than the limit of {limit}")]
+    TooLarge {
+        /// Display name of the surface.
+        surface: String,
+        /// The triangle count the samples give (at least this many when `why` names one curve).
+        triangles: u64,
+        /// Where the count comes from, e.g. `65536 slices of a 16385-point profile`.
+        why: String,
+        /// The limit.
+        limit: usize,
+    },
     /// The sweep itself failed.
     #[error("surface {surface}: {source}")]
     Sweep {
@@ -137,6 +154,7 @@ impl SwpDocument {
                 .to_curve()
                 .map_err(|source| SurfaceError::Curve { curve: self.curves[i].display_name(i), source })
         };
+        let limit = Limit { surface: &surface_name, max: options.max_triangles };
         let profile_of = |i: usize| -> Result<Profile, SurfaceError> {
             if self.curves[i].dim == 3 {
                 return Err(SurfaceError::ProfileNot2d {
@@ -145,7 +163,7 @@ impl SwpDocument {
                 });
             }
             let c = curve(i)?;
-            let samples = sample_curve(&c, self.curves[i].steps, options);
+            let samples = sample_curve(&c, self.curves[i].steps, options, &limit)?;
             let frames = frames_for(&samples, SurfaceFrames::Sequential);
             Ok(Profile {
                 points: samples.iter().map(|s| s.position.truncate()).collect(),
@@ -157,12 +175,23 @@ impl SwpDocument {
             SwpSurfaceKind::Revolution { steps, profile } => {
                 let prof = profile_of(profile)?;
                 let steps = revolution_steps(&prof, steps, options.tessellation);
+                let p = prof.points.len();
+                // two triangles per profile segment and slice
+                limit.check(2 * steps as u64 * (p as u64).saturating_sub(1), || {
+                    format!("{steps} slices of a {p}-point profile")
+                })?;
                 sweep::revolve(&prof, steps, options.sweep).map_err(sweep_err)
             }
             SwpSurfaceKind::GeneralizedCylinder { profile, sweep: path, scale, twist } => {
                 let prof = profile_of(profile)?;
                 let c = curve(path)?;
-                let samples = sample_curve(&c, self.curves[path].steps, options);
+                let samples = sample_curve(&c, self.curves[path].steps, options, &limit)?;
+                let (p, s) = (prof.points.len(), samples.len());
+                // two triangles per quad, and the caps
+                let caps = if options.sweep.caps { 2 * (p as u64).saturating_sub(1) } else { 0 };
+                limit.check(2 * (p as u64).saturating_sub(1) * (s as u64).saturating_sub(1) + caps, || {
+                    format!("a {p}-point profile swept along {s} points")
+                })?;
                 let mut frames = frames_for(&samples, options.frames);
                 // a scale or twist curve: 2D, read at the samples' normalized arc length
                 let shape = |i: Option<usize>, role: SwpClause| -> Result<Option<AnyCurve<DVec3>>, SurfaceError> {
@@ -216,21 +245,50 @@ fn revolution_steps(profile: &Profile, file_steps: u32, mode: SurfaceTessellatio
     n.clamp(3.0, f64::from(crate::MAX_STEPS)) as usize
 }
 
+/// The triangle limit of one surface's mesh.
+struct Limit<'a> {
+    /// Display name of the surface.
+    surface: &'a str,
+    max: Option<usize>,
+}
+
+impl Limit<'_> {
+    /// Fails when `triangles` exceed the limit; `why` says where they come from.
+    fn check(&self, triangles: u64, why: impl FnOnce() -> String) -> Result<(), SurfaceError> {
+        match self.max {
+            Some(limit) if triangles > limit as u64 => {
+                Err(SurfaceError::TooLarge { surface: self.surface.to_string(), triangles, why: why(), limit })
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
 /// Tessellates a curve and samples positions and unit tangents; in the welded layout, sharp
-/// joins are sampled twice (incoming and outgoing tangent).
-fn sample_curve(curve: &AnyCurve<DVec3>, steps: u32, options: &SurfaceOptions) -> Vec<CurveSample> {
+/// joins are sampled twice (incoming and outgoing tangent). Before sampling, `limit` checks
+/// the two triangles a point makes at least (one strip of quads).
+fn sample_curve(
+    curve: &AnyCurve<DVec3>,
+    steps: u32,
+    options: &SurfaceOptions,
+    limit: &Limit<'_>,
+) -> Result<Vec<CurveSample>, SurfaceError> {
     let mode = match options.tessellation {
         SurfaceTessellation::FileSteps => Tessellation::Uniform { steps: steps.max(1) as usize },
         SurfaceTessellation::Distance(tolerance) => Tessellation::Distance { tolerance },
         SurfaceTessellation::Angle(tolerance) => Tessellation::Angle { tolerance },
     };
     let params = flatten::flatten_any(curve, mode);
-    match curve {
+    let n = params.len();
+    limit.check(2 * (n as u64).saturating_sub(1), || {
+        format!("at least that many: one of its curves alone has {n} points")
+    })?;
+    Ok(match curve {
         AnyCurve::Piecewise(pc) if options.sweep.layout == MeshLayout::Welded => {
             frame::sample_with_corners(pc, &params, CREASE_ANGLE)
         }
         _ => frame::sample(curve, &params),
-    }
+    })
 }
 
 /// The normalized arc length `s(u)/L ∈ [0, 1]` of the sweep curve at each sample (the

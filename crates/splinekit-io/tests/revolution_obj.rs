@@ -333,3 +333,36 @@ fn rebuild_errors_name_the_spline() {
     let e = header.rebuild(&compat()).unwrap_err();
     assert_eq!(e.to_string(), "swept-along spline: b-spline needs at least 3 control points, got 2");
 }
+
+#[test]
+fn the_triangle_limit_is_checked_before_the_rebuild() {
+    // the closed revolution: 2 triangles per profile sample and slice, exactly
+    let h = revolution_headers().remove(1);
+    let slices = (TAU / h.slice_tolerance).ceil() as usize;
+    let t = 2 * slices * reference_profile(&h).len();
+    let header = SplineHeader::Revolution(h.clone());
+    assert_eq!(header.rebuild(&RebuildOptions::DEFAULT.with_max_triangles(Some(t))).unwrap().num_triangles(), t);
+    // (the check counts the closed profile's repeated end point: one row of quads more)
+    let e = header.rebuild(&RebuildOptions::DEFAULT.with_max_triangles(Some(t - 1))).unwrap_err();
+    let RebuildError::TooLarge { triangles, limit, .. } = e else { panic!("{e}") };
+    assert!((triangles as usize) >= t && triangles as usize <= t + 2 * slices && limit == t - 1, "{triangles}");
+    // a slice tolerance of 1e-7 rad: 62 831 854 slices, refused at once instead of filling memory
+    let fine = SplineHeader::Revolution(RevolutionHeader { slice_tolerance: 1e-7, ..h });
+    let e = fine.rebuild(&RebuildOptions::DEFAULT.with_max_triangles(Some(50_000_000))).unwrap_err();
+    assert!(e.to_string().contains("62831854 slices of a"), "{e}");
+
+    // a sweep-tool file: the compat mesh's own count is the one checked
+    let doughnut = annotated_objs().into_iter().find(|p| p.ends_with("doughnut.obj")).unwrap();
+    let stored = read_stored(&doughnut).triangles.len();
+    assert!(rebuild_file(&doughnut, &compat().with_max_triangles(Some(stored))).num_triangles() == stored);
+    let text = fs::read_to_string(&doughnut).unwrap();
+    let Some(header) = SplineHeader::parse(&text, "doughnut.obj").unwrap() else { panic!() };
+    let e = header.rebuild(&compat().with_max_triangles(Some(stored - 1))).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "the surface would have about {stored} triangles (a 81-point cross-section swept along 81 points), more than the limit of {}",
+            stored - 1
+        )
+    );
+}

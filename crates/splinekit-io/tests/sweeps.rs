@@ -310,3 +310,58 @@ fn sharp_profile_corners_become_creases() {
         4.0 * 2.0 * std::f64::consts::PI * 3.0 * (std::f64::consts::TAU / 60.0).sin() / (std::f64::consts::TAU / 60.0);
     assert!((welded.signed_volume() - exact).abs() < 1e-6 * exact, "{} vs {exact}", welded.signed_volume());
 }
+
+#[test]
+fn the_triangle_limit_is_checked_before_the_mesh_is_built() {
+    use splinekit_io::surface::SurfaceError;
+    let limited = |o: SurfaceOptions, max: usize| SurfaceOptions { max_triangles: Some(max), ..o };
+    // compat layouts: the count the limit is checked against is the mesh's own, so a limit of
+    // exactly that count passes and one less fails, naming where the count comes from
+    for (file, _, t) in COUNTS {
+        let doc = load(file);
+        let o = opts(MeshLayout::Compat);
+        assert_eq!(doc.surface_mesh(0, &limited(o, t)).unwrap().num_triangles(), t, "{file}");
+        match doc.surface_mesh(0, &limited(o, t - 1)) {
+            Err(SurfaceError::TooLarge { triangles, limit, why, .. }) => {
+                assert_eq!((triangles, limit), (t as u64, t - 1), "{file}");
+                assert!(why.contains("slices") || why.contains("swept along"), "{file}: {why}");
+            }
+            other => panic!("{file}: {other:?}"),
+        }
+        // welded: poles and the split samples of creases drop a few triangles, so the count
+        // checked is an upper bound, within 2% here
+        let t = welded(&doc, 0).num_triangles();
+        let o = opts(MeshLayout::Welded);
+        match doc.surface_mesh(0, &limited(o, t - 1)) {
+            Err(SurfaceError::TooLarge { triangles, .. }) => {
+                assert!(triangles >= t as u64 && triangles as f64 <= 1.02 * t as f64, "{file}: {triangles} for {t}");
+                assert_eq!(doc.surface_mesh(0, &limited(o, triangles as usize)).unwrap().num_triangles(), t);
+            }
+            other => panic!("{file}: {other:?}"),
+        }
+    }
+    // a curve too finely tessellated by itself fails as soon as it is (here: 185 profile
+    // points make at least 368 triangles)
+    let doc = load("srev/wineglass.swp");
+    let e = doc.surface_mesh(0, &limited(opts(MeshLayout::Compat), 100)).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "surface wineglass would have about 368 triangles (at least that many: one of its curves alone has \
+         185 points), more than the limit of 100"
+    );
+    // caps count: an open sweep of a closed 13-point profile (12 distinct) along 4 points gets
+    // 2·12·3 side triangles and two caps of 12 − 2; the check allows 12 a cap
+    let text = "circ ring 12 1\nbez3 path 3 4 [0 0 0] [0 0 1] [0 0 2] [0 0 3]\ngcyl tube ring path\n";
+    let doc = SwpDocument::parse(text, "tube.swp").unwrap();
+    let capped = SurfaceOptions {
+        sweep: SweepOptions { layout: MeshLayout::Welded, uvs: false, caps: true },
+        ..opts(MeshLayout::Welded)
+    };
+    let m = doc.surface_mesh(0, &capped).unwrap();
+    assert_eq!(m.num_triangles(), 2 * 12 * 3 + 2 * 10);
+    match doc.surface_mesh(0, &limited(capped, 2 * 12 * 3 + 2 * 12 - 1)) {
+        Err(SurfaceError::TooLarge { triangles, .. }) => assert_eq!(triangles, 2 * 12 * 3 + 2 * 12),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(doc.surface_mesh(0, &limited(capped, 2 * 12 * 3 + 2 * 12)).unwrap(), m);
+}

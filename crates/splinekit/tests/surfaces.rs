@@ -431,3 +431,35 @@ proptest! {
         prop_assert!(m.signed_volume() > 0.0);
     }
 }
+
+#[test]
+fn sweeps_too_large_for_32_bit_indices_are_refused_before_any_allocation() {
+    use splinekit::frame::Frame;
+    use splinekit::sweep::{MeshLayout, Profile, SweepError, SweepOptions, SweepPath, generalized_cylinder, revolve};
+    let options = SweepOptions { layout: MeshLayout::Compat, uvs: false, caps: false };
+    // 3 points × (2³¹ + 1) copies (one more with UVs is counted): past u32::MAX
+    let profile = Profile {
+        points: vec![DVec2::new(1.0, 0.0), DVec2::new(1.0, 1.0), DVec2::new(1.0, 2.0)],
+        normals: vec![DVec2::X; 3],
+    };
+    match revolve(&profile, 1 << 31, options) {
+        Err(SweepError::TooLarge { vertices }) => assert_eq!(vertices, 3.0 * ((1u64 << 31) + 1) as f64),
+        other => panic!("{other:?}"),
+    }
+    // a 65536-point profile along 65536 points: (65536 + 2 caps) × 65536 > u32::MAX
+    let n = 1 << 16;
+    let ring = Profile {
+        points: (0..n).map(|i| DVec2::from_angle(TAU * i as f64 / n as f64)).collect(),
+        normals: (0..n).map(|i| DVec2::from_angle(TAU * i as f64 / n as f64)).collect(),
+    };
+    let frame = Frame { t: DVec3::Z, n: DVec3::X, b: DVec3::Y };
+    let path = SweepPath {
+        positions: (0..n).map(|k| DVec3::new(0.0, 0.0, k as f64)).collect(),
+        frames: vec![frame; n],
+        scales: Vec::new(),
+    };
+    match generalized_cylinder(&ring, &path, options) {
+        Err(SweepError::TooLarge { vertices }) => assert_eq!(vertices, (65536.0 + 2.0) * 65536.0),
+        other => panic!("{other:?}"),
+    }
+}

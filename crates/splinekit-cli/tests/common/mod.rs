@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 use std::ffi::OsStr;
+use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -64,18 +65,91 @@ pub fn splinekit<S: AsRef<OsStr>>(args: &[S]) -> Run {
     }
 }
 
-/// A course mesh (icosahedron.obj, bunny.obj, patch.obj, as shipped with their HTML lines):
-/// the io crate's test copies, else the shared data folder.
-pub fn course_mesh(name: &str) -> PathBuf {
+/// A folder of the bundled data (`obj`, `swp`) holding `probe`: the io crate's test copies,
+/// else the shared data folder.
+fn data_dir(kind: &str, probe: &str) -> PathBuf {
     let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
     let candidates = [
-        crate_dir.join("../splinekit-io/tests/data/obj"),
-        crate_dir.join("../../../shared/data/obj"),
-        crate_dir.join("../../shared/data/obj"),
+        crate_dir.join("../splinekit-io/tests/data").join(kind),
+        crate_dir.join("../../../shared/data").join(kind),
+        crate_dir.join("../../shared/data").join(kind),
     ];
     candidates
         .iter()
-        .map(|d| d.join(name))
-        .find(|p| p.is_file())
-        .unwrap_or_else(|| panic!("no {name} in any of {candidates:?}"))
+        .find(|d| d.join(probe).is_file())
+        .cloned()
+        .unwrap_or_else(|| panic!("no {probe} in any of {candidates:?}"))
+}
+
+/// A course mesh (icosahedron.obj, bunny.obj, patch.obj, as shipped with their HTML lines).
+pub fn course_mesh(name: &str) -> PathBuf {
+    data_dir("obj", name).join(name)
+}
+
+/// The bundled SWP files' folder.
+pub fn swp_dir() -> PathBuf {
+    data_dir("swp", "core.swp")
+}
+
+/// The twelve course SWP files (plain SWP: everything but the io crate's `ext` folder of
+/// extensions), relative to [`swp_dir`], sorted.
+pub fn course_swp() -> Vec<String> {
+    fn walk(dir: &Path, rel: &str, out: &mut Vec<String>) {
+        for entry in fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            let rel = if rel.is_empty() { name.clone() } else { format!("{rel}/{name}") };
+            if path.is_dir() && name != "ext" {
+                walk(&path, &rel, out);
+            } else if path.extension().is_some_and(|e| e == "swp") {
+                out.push(rel);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    walk(&swp_dir(), "", &mut files);
+    files.sort();
+    assert_eq!(files.len(), 12, "{files:?}");
+    files
+}
+
+/// Runs `splinekit sweep FILE -o DIR` with more arguments.
+pub fn sweep(file: &Path, dir: &Path, rest: &[&str]) -> Run {
+    let mut args: Vec<&OsStr> = vec!["sweep".as_ref(), file.as_os_str(), "-o".as_ref(), dir.as_os_str()];
+    args.extend(rest.iter().map(OsStr::new));
+    splinekit(&args)
+}
+
+/// Files in a directory, sorted.
+pub fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = match fs::read_dir(dir) {
+        Ok(d) => d.map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect(),
+        Err(_) => Vec::new(),
+    };
+    names.sort();
+    names
+}
+
+/// Positions and triangles of an OBJ file (`v`; `f` with 1-based `a`, `a/b`, `a//c` or
+/// `a/b/c` corners), 0-based.
+pub fn read_obj(path: &Path) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let text = fs::read_to_string(path).unwrap();
+    let (mut v, mut f) = (Vec::new(), Vec::new());
+    for line in text.lines() {
+        let w: Vec<&str> = line.split_whitespace().collect();
+        match w.first() {
+            Some(&"v") => v.push([1, 2, 3].map(|i| w[i].parse::<f64>().unwrap())),
+            Some(&"f") => {
+                assert_eq!(w.len(), 4, "{line}");
+                f.push([1, 2, 3].map(|i| w[i].split('/').next().unwrap().parse::<u32>().unwrap() - 1));
+            }
+            _ => {}
+        }
+    }
+    (v, f)
+}
+
+/// `PATH: V vertices, T triangles`.
+pub fn report_line(path: &Path, vertices: usize, triangles: usize) -> String {
+    format!("{}: {vertices} vertices, {triangles} triangles\n", path.display())
 }

@@ -89,11 +89,14 @@ pub struct RebuildOptions {
     /// Add texture coordinates: arc-length `(u, v)` for sweeps (a welded seam is then split
     /// for the jump in `u`), `(φ/2π, chord length)` for revolutions (seam split likewise).
     pub uvs: bool,
+    /// The most triangles the mesh may have (`None`: as many as 32-bit indices allow),
+    /// checked from the sample and slice counts before the mesh is built.
+    pub max_triangles: Option<usize>,
 }
 
 impl RebuildOptions {
-    /// [`MeshLayout::Welded`], no UVs.
-    pub const DEFAULT: Self = Self { layout: MeshLayout::Welded, uvs: false };
+    /// [`MeshLayout::Welded`], no UVs, no limit.
+    pub const DEFAULT: Self = Self { layout: MeshLayout::Welded, uvs: false, max_triangles: None };
 
     /// Sets the vertex layout.
     #[must_use]
@@ -107,6 +110,21 @@ impl RebuildOptions {
     pub const fn with_uvs(mut self, uvs: bool) -> Self {
         self.uvs = uvs;
         self
+    }
+
+    /// Sets the most triangles the mesh may have.
+    #[must_use]
+    pub const fn with_max_triangles(mut self, max_triangles: Option<usize>) -> Self {
+        self.max_triangles = max_triangles;
+        self
+    }
+
+    /// Fails when `triangles` exceed the limit; `why` says where they come from.
+    fn check(&self, triangles: u64, why: impl FnOnce() -> String) -> Result<(), RebuildError> {
+        match self.max_triangles {
+            Some(limit) if triangles > limit as u64 => Err(RebuildError::TooLarge { triangles, why: why(), limit }),
+            _ => Ok(()),
+        }
     }
 }
 
@@ -142,6 +160,16 @@ pub enum RebuildError {
     /// The sweep could not be built.
     #[error("sweep: {0}")]
     Sweep(SweepError),
+    /// The mesh would have more triangles than [`RebuildOptions::max_triangles`].
+    #[error("the surface would have about {triangles} triangles ({why}), more than the limit of {limit}")]
+    TooLarge {
+        /// The triangle count the samples give.
+        triangles: u64,
+        /// Where the count comes from, e.g. `6283186 slices of a 52-point cross-section`.
+        why: String,
+        /// The limit.
+        limit: usize,
+    },
 }
 
 impl SplineHeader {
@@ -247,6 +275,13 @@ impl RevolutionHeader {
         }
         let uvs = if options.uvs { UvMode::SplitSeams } else { UvMode::Omit };
         let revolve = RevolveOptions::new(self.scale, self.slice_tolerance).with_uvs(uvs);
+        if let Ok(slices) = revolve.num_slices() {
+            let p = samples.points.len();
+            // two triangles per cross-section segment and slice
+            options.check(2 * slices as u64 * (p as u64).saturating_sub(1), || {
+                format!("{slices} slices of a {p}-point cross-section")
+            })?;
+        }
         revolve_z(&samples.points, Some(&samples.normals), &revolve).map_err(RebuildError::Revolve)
     }
 }
@@ -266,6 +301,11 @@ impl SweepHeader {
         let compat = options.layout == MeshLayout::Compat;
         let cross = sweep_samples(&self.cross_section, "cross-section", compat)?;
         let along = sweep_samples(&self.swept_along, "swept-along", compat)?;
+        let (p, s) = (cross.points.len(), along.points.len());
+        // two triangles per quad
+        options.check(2 * (p as u64).saturating_sub(1) * (s as u64).saturating_sub(1), || {
+            format!("a {p}-point cross-section swept along {s} points")
+        })?;
         // the tool walked the cross-section backwards; N = +y carries the cross-section's x
         // and B = T × N its y, so the profile normal is the tool's right normal, negated
         // (generalized_cylinder negates it back)

@@ -87,6 +87,18 @@ pub enum SweepError {
         /// Index of the point.
         index: usize,
     },
+    /// The mesh would have more vertices than 32-bit indices can address.
+    #[error("about {vertices:e} vertices do not fit 32-bit indices")]
+    TooLarge {
+        /// The vertex count the mesh would have (at most; as `f64`, as it may not fit `usize`).
+        vertices: f64,
+    },
+}
+
+/// Fails when `vertices` (a product of counts, computed in `f64` so that it cannot wrap)
+/// would not fit 32-bit indices.
+fn check_vertex_count(vertices: f64) -> Result<(), SweepError> {
+    if vertices <= f64::from(u32::MAX) { Ok(()) } else { Err(SweepError::TooLarge { vertices }) }
 }
 
 /// A tessellated planar profile: points `(x, y)` and unit normals, in order along the curve.
@@ -214,13 +226,15 @@ fn normalized_lengths(steps: impl Iterator<Item = f64>) -> Vec<f64> {
 /// axis become single pole vertices, and the triangles that would collapse there are left out.
 ///
 /// # Errors
-/// Fewer than two profile points, mismatched normals, non-finite input, `steps == 0`.
+/// Fewer than two profile points, mismatched normals, non-finite input, `steps == 0`, more
+/// vertices than 32-bit indices can address.
 pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result<TriMesh, SweepError> {
     profile.check()?;
     if steps == 0 {
         return Err(SweepError::ZeroSteps);
     }
     let p = profile.points.len();
+    check_vertex_count((steps as f64 + 1.0) * p as f64)?;
     let size = extent(profile.points.iter().map(|q| q.extend(0.0)));
     let welded = options.layout == MeshLayout::Welded;
     let on_axis: Vec<bool> = profile.points.iter().map(|q| welded && q.x.abs() <= 1e-12 * size).collect();
@@ -283,10 +297,13 @@ pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result
 /// (first point = last) and a closed sweep share their seam vertices.
 ///
 /// # Errors
-/// Fewer than two points in either curve, mismatched arrays, non-finite input.
+/// Fewer than two points in either curve, mismatched arrays, non-finite input, more vertices
+/// than 32-bit indices can address.
 pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepOptions) -> Result<TriMesh, SweepError> {
     profile.check()?;
     path.check()?;
+    // the copies of the profile and two caps
+    check_vertex_count((path.positions.len() as f64 + 2.0) * profile.points.len() as f64)?;
     let welded = options.layout == MeshLayout::Welded;
     let p_all = profile.points.len();
     let s_all = path.positions.len();

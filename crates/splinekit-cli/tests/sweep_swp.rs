@@ -1,0 +1,238 @@
+//! `splinekit sweep FILE.swp` and `splinekit info FILE.swp`, run through the binary on the
+//! bundled course files: one file per surface named after it (`surface_<k>` when anonymous),
+//! one report line per surface, the counts of SPEC §2.3 with `--compat`, the written meshes
+//! read back by a small reader here (independent of the crates), every format, adaptive
+//! tessellation, and the refusals that leave no file behind.
+
+use std::collections::HashMap;
+use std::fs;
+use std::path::PathBuf;
+
+mod common;
+use common::{course_swp, entries, read_obj, report_line, splinekit, sweep, swp_dir};
+
+// ---------------------------------------------------------------------------------------
+// Harness (the rest is shared: tests/common)
+
+/// The output file stems of a plain SWP file's surfaces, read from its tokens (in the
+/// course files the words `srev` and `gcyl` occur only as keywords): the name after the
+/// keyword, or `surface_<k>` for `.`, k counting the surfaces from 0.
+fn surface_stems(text: &str) -> Vec<String> {
+    let tokens: Vec<&str> = text.split_whitespace().collect();
+    let names = tokens.windows(2).filter(|w| w[0] == "srev" || w[0] == "gcyl").map(|w| w[1]);
+    names.enumerate().map(|(k, name)| if name == "." { format!("surface_{k}") } else { name.to_string() }).collect()
+}
+
+/// Directed edges of the triangles, counted.
+fn directed_edges(triangles: &[[u32; 3]]) -> HashMap<(u32, u32), usize> {
+    let mut edges = HashMap::new();
+    for t in triangles {
+        for k in 0..3 {
+            *edges.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    edges
+}
+
+/// Six times the signed volume enclosed by the triangles.
+fn six_volume(positions: &[[f64; 3]], triangles: &[[u32; 3]]) -> f64 {
+    triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| positions[i as usize]);
+            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])
+        })
+        .sum()
+}
+
+/// `(vertices, triangles)` from a report line `PATH: V vertices, T triangles`.
+fn counts_of(line: &str) -> (usize, usize) {
+    let (_, rest) = line.rsplit_once(": ").unwrap();
+    let words: Vec<&str> = rest.split_whitespace().collect();
+    assert_eq!((words.len(), words[1], words[3]), (4, "vertices,", "triangles"), "{line}");
+    (words[0].parse().unwrap(), words[2].parse().unwrap())
+}
+
+// ---------------------------------------------------------------------------------------
+// Tests
+
+#[test]
+fn every_course_file_sweeps_one_file_per_surface_with_spec_counts_in_compat() {
+    // SPEC §2.3
+    let spec: HashMap<&str, (usize, usize)> = [
+        ("srev/norm.swp", (4590, 9000)),
+        ("srev/wineglass.swp", (16650, 33120)),
+        ("gcyl/tor.swp", (1891, 3600)),
+        ("gcyl/gentorus.swp", (3321, 6400)),
+        ("gcyl/florus.swp", (7686, 15000)),
+        ("gcyl/flircle.swp", (25551, 50000)),
+        ("gcyl/weird.swp", (8385, 16384)),
+        ("gcyl/weirder.swp", (5537, 10752)),
+    ]
+    .into();
+    let dir = swp_dir();
+    for file in course_swp() {
+        let file = file.as_str();
+        let input = dir.join(file);
+        let stems = surface_stems(&fs::read_to_string(&input).unwrap());
+        for compat in [true, false] {
+            let out = tempfile::tempdir().unwrap();
+            let run = sweep(&input, out.path(), if compat { &["--compat"] } else { &[] });
+            if stems.is_empty() {
+                // curves only: a clear error, and nothing written
+                assert!(run.fails_with_error().contains("has no surfaces"), "{file}: {}", run.stderr);
+                assert!(entries(out.path()).is_empty(), "{file}");
+                continue;
+            }
+            let lines: Vec<&str> = run.ok().lines().collect();
+            assert_eq!(lines.len(), stems.len(), "{file}: one line per surface\n{}", run.stdout);
+            let mut expected_files: Vec<String> = stems.iter().map(|s| format!("{s}.obj")).collect();
+            expected_files.sort();
+            assert_eq!(entries(out.path()), expected_files, "{file}");
+            for (line, stem) in lines.iter().zip(&stems) {
+                let path = out.path().join(format!("{stem}.obj"));
+                let (v, t) = counts_of(line);
+                assert_eq!(format!("{line}\n"), report_line(&path, v, t), "{file}");
+                let (positions, triangles) = read_obj(&path);
+                assert_eq!((positions.len(), triangles.len()), (v, t), "{file}: the report and the file agree");
+                assert!(triangles.iter().flatten().all(|&i| (i as usize) < v), "{file}: index out of range");
+                if compat && let Some(&counts) = spec.get(file) {
+                    assert_eq!((v, t), counts, "{file}: SPEC §2.3");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn welded_closed_surfaces_are_watertight_and_outward_as_written() {
+    let dir = swp_dir();
+    for file in [
+        "srev/wineglass.swp",
+        "gcyl/tor.swp",
+        "gcyl/gentorus.swp",
+        "gcyl/florus.swp",
+        "gcyl/weird.swp",
+        "gcyl/weirder.swp",
+    ] {
+        let out = tempfile::tempdir().unwrap();
+        let line = sweep(&dir.join(file), out.path(), &[]).ok().to_string();
+        let path = PathBuf::from(line.rsplit_once(": ").unwrap().0);
+        let (positions, triangles) = read_obj(&path);
+        let edges = directed_edges(&triangles);
+        // every directed edge once, and its reverse once: closed, 2-manifold, consistently oriented
+        assert!(edges.iter().all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1)), "{file}");
+        assert!(six_volume(&positions, &triangles) > 0.0, "{file}: faces point inwards");
+    }
+}
+
+#[test]
+fn formats_name_their_files_and_hold_the_reported_counts() {
+    let wineglass = swp_dir().join("srev/wineglass.swp");
+    let out = tempfile::tempdir().unwrap();
+    let line = |format: &str| {
+        let run = sweep(&wineglass, out.path(), &["--compat", "--format", format]);
+        let path = out.path().join(format!("wineglass.{format}"));
+        assert_eq!(run.ok(), report_line(&path, 16650, 33120), "{format}");
+        fs::read(path).unwrap()
+    };
+    let stl = line("stl");
+    assert_eq!(stl.len(), 84 + 50 * 33120);
+    assert_eq!(u32::from_le_bytes(stl[80..84].try_into().unwrap()), 33120);
+    let ply = line("ply");
+    let header =
+        String::from_utf8_lossy(&ply[..ply.windows(10).position(|w| w == b"end_header").unwrap()]).into_owned();
+    assert!(header.starts_with("ply\nformat binary_little_endian 1.0\n"), "{header}");
+    assert!(header.contains("element vertex 16650\n") && header.contains("element face 33120\n"), "{header}");
+    let glb = line("glb");
+    assert_eq!(&glb[..4], b"glTF");
+    assert_eq!(u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize, glb.len());
+    line("obj");
+    assert_eq!(entries(out.path()), ["wineglass.glb", "wineglass.obj", "wineglass.ply", "wineglass.stl"]);
+    // deterministic: the same bytes again
+    let before = fs::read(out.path().join("wineglass.obj")).unwrap();
+    line("obj");
+    assert!(fs::read(out.path().join("wineglass.obj")).unwrap() == before);
+}
+
+#[test]
+fn adaptive_tessellation_and_frames() {
+    let tor = swp_dir().join("gcyl/tor.swp");
+    let out = tempfile::tempdir().unwrap();
+    let triangles = |args: &[&str]| counts_of(sweep(&tor, out.path(), args).ok().trim_end()).1;
+    let (coarse, fine) = (triangles(&["--tolerance", "0.01"]), triangles(&["--tolerance", "0.0001"]));
+    assert!(coarse < fine, "a finer tolerance gives more triangles: {coarse} against {fine}");
+    let (wide, narrow) = (triangles(&["--angle-tolerance", "10"]), triangles(&["--angle-tolerance", "2"]));
+    assert!(wide < narrow, "a finer angle gives more triangles: {wide} against {narrow}");
+    // tor.swp sweeps a circle along a circle: its frames make no difference to the counts
+    assert_eq!(triangles(&["--frames", "rmf"]), triangles(&["--frames", "sequential"]));
+
+    for (args, expected) in [
+        (&["--tolerance", "0"][..], "--tolerance must be a positive number"),
+        (&["--tolerance", "nan"][..], "--tolerance must be a positive number"),
+        (&["--angle-tolerance", "-3"][..], "--angle-tolerance must be a positive number"),
+    ] {
+        let run = sweep(&tor, out.path(), args);
+        assert!(run.fails_with_error().contains(expected), "{args:?}: {}", run.stderr);
+    }
+    // one tessellation at a time: a usage error
+    let run = sweep(&tor, out.path(), &["--tolerance", "0.1", "--angle-tolerance", "5"]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+}
+
+#[test]
+fn a_mesh_over_the_triangle_limit_is_refused_before_it_is_built() {
+    let dir = swp_dir();
+    let out = tempfile::tempdir().unwrap();
+    let wineglass = dir.join("srev/wineglass.swp");
+    // 90 slices of a 185-point profile: 33120 triangles, exactly the limit
+    let ok = sweep(&wineglass, out.path(), &["--compat", "--max-triangles", "33120"]);
+    assert_eq!(ok.ok(), report_line(&out.path().join("wineglass.obj"), 16650, 33120));
+    let empty = tempfile::tempdir().unwrap();
+    let run = sweep(&wineglass, empty.path(), &["--compat", "--max-triangles", "33119"]);
+    let message = run.fails_with_error();
+    assert!(
+        message.contains("wineglass would have about 33120 triangles (90 slices of a 185-point profile)")
+            && message.contains("more than the limit of 33119")
+            && message.contains("--max-triangles"),
+        "{message}"
+    );
+    assert!(entries(empty.path()).is_empty());
+
+    // A typo found by mutating the course files: one profile point at x = 9000000 makes the
+    // glass nine million units wide, and a tolerance of 0.01 would need some 368 million
+    // triangles (gigabytes of memory and of OBJ text); the default limit refuses it at once.
+    let text = fs::read_to_string(&wineglass).unwrap();
+    let typo = text.replacen("[0.000000 -2.458800]", "[9000000 -2.458800]", 1);
+    assert_ne!(typo, text);
+    let input = empty.path().join("typo.swp");
+    fs::write(&input, typo).unwrap();
+    let run = sweep(&input, empty.path(), &["--tolerance", "0.01"]);
+    let message = run.fails_with_error();
+    assert!(
+        message.contains("more than the limit of 50000000") && message.contains("coarser --tolerance"),
+        "{message}"
+    );
+    assert_eq!(entries(empty.path()), ["typo.swp"]);
+}
+
+#[test]
+fn info_lists_curves_and_surfaces_with_both_layouts_counts() {
+    let wineglass = swp_dir().join("srev/wineglass.swp");
+    let text = splinekit(&[std::ffi::OsStr::new("info"), wineglass.as_os_str()]).ok().to_string();
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].ends_with("wineglass.swp: 1 curve, 1 surface"), "{text}");
+    assert_eq!(lines[1], "curves:");
+    let curve: Vec<&str> = lines[2].split_whitespace().collect();
+    assert_eq!(curve[..4], ["0", "profile", "bsp2", "26"], "{text}");
+    assert!(lines[2].contains("23 segments, steps 8, open"), "{text}");
+    assert_eq!(lines[3], "surfaces:");
+    assert!(
+        lines[4].contains("srev: profile profile, 90 steps; compat 16650 vertices, 33120 triangles; welded "),
+        "{text}"
+    );
+    // the welded counts are those `sweep` writes
+    let out = tempfile::tempdir().unwrap();
+    let (v, t) = counts_of(sweep(&wineglass, out.path(), &[]).ok().trim_end());
+    assert!(lines[4].ends_with(&format!("welded {v} vertices, {t} triangles")), "{text}");
+}
