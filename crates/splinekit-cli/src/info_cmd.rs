@@ -111,7 +111,7 @@ fn surface_rows(doc: &SwpDocument) -> Vec<SurfaceRow> {
                     ("gcyl", curves, None)
                 }
             };
-            let counts = sweep_cmd::counts(doc, k).map_err(|e| format!("{e:#}"));
+            let counts = sweep_cmd::counts(doc, k).map_err(|e| crate::output::error_message(&e));
             SurfaceRow { name: s.display_name(k), kind, curves, steps, counts }
         })
         .collect()

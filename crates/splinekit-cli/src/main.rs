@@ -92,7 +92,7 @@ fn main() -> ExitCode {
         Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
         Err(err) => {
             // If stderr is gone too there is nobody left to tell.
-            let _ = writeln!(io::stderr(), "error: {err:#}");
+            let _ = writeln!(io::stderr(), "error: {}", output::error_message(&err));
             ExitCode::FAILURE
         }
     }

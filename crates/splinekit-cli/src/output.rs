@@ -46,6 +46,22 @@ where
     out.write_all(b"]")
 }
 
+/// An error and its causes on one line, `outer: cause: …`, leaving out a cause whose text the
+/// line already holds (many errors of the crates put their source in their own message too).
+pub fn error_message(err: &anyhow::Error) -> String {
+    let mut line = String::new();
+    for cause in err.chain() {
+        let text = cause.to_string();
+        if line.is_empty() {
+            line = text;
+        } else if !line.contains(&text) {
+            line.push_str(": ");
+            line.push_str(&text);
+        }
+    }
+    line
+}
+
 #[cfg(test)]
 mod tests {
     use std::io::Write;
@@ -77,5 +93,31 @@ mod tests {
         let mut out = Vec::new();
         json_array(&mut out, "  ", Vec::<i32>::new(), |o, i| write!(o, "{i}")).unwrap();
         assert_eq!(out, b"[]");
+    }
+
+    #[test]
+    fn error_messages_name_each_cause_once() {
+        /// An error that names its source in its message and also returns it as its source.
+        #[derive(Debug)]
+        struct Outer {
+            source: std::io::Error,
+        }
+        impl fmt::Display for Outer {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "surface s: {}", self.source)
+            }
+        }
+        impl std::error::Error for Outer {
+            fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+                Some(&self.source)
+            }
+        }
+        let inner = || std::io::Error::other("too big");
+        // the cause is in the message already: once
+        let e = anyhow::Error::new(Outer { source: inner() }).context("file.swp");
+        assert_eq!(error_message(&e), "file.swp: surface s: too big");
+        // a context over a plain error: both
+        let e = anyhow::Error::new(inner()).context("cannot write out.obj");
+        assert_eq!(error_message(&e), "cannot write out.obj: too big");
     }
 }

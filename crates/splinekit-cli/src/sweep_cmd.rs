@@ -10,7 +10,7 @@ use splinekit::TriMesh;
 use splinekit::sweep::{MeshLayout, SweepOptions};
 use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildError, RebuildOptions, SplineHeader};
-use splinekit_io::surface::{SurfaceError, SurfaceFrames, SurfaceOptions, SurfaceTessellation};
+use splinekit_io::surface::{DEFAULT_MAX_TRIANGLES, SurfaceError, SurfaceFrames, SurfaceOptions, SurfaceTessellation};
 
 use crate::select;
 
@@ -89,10 +89,6 @@ pub struct SweepArgs {
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_TRIANGLES)]
     pub max_triangles: usize,
 }
-
-/// Default of `--max-triangles` (and the limit of `info`'s counts): a mesh of this size takes
-/// a few gigabytes in memory and as OBJ text.
-pub const DEFAULT_MAX_TRIANGLES: usize = 50_000_000;
 
 /// Mesh file formats.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -177,11 +173,7 @@ pub fn counts(doc: &SwpDocument, k: usize) -> anyhow::Result<[(usize, usize); 2]
     let mut out = [(0, 0); 2];
     for (slot, layout) in out.iter_mut().zip([MeshLayout::Compat, MeshLayout::Welded]) {
         let caps = layout == MeshLayout::Welded;
-        let opts = SurfaceOptions {
-            sweep: SweepOptions { layout, uvs: false, caps },
-            max_triangles: Some(DEFAULT_MAX_TRIANGLES),
-            ..SurfaceOptions::default()
-        };
+        let opts = SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps }, ..SurfaceOptions::default() };
         let mesh = doc.surface_mesh(k, &opts)?;
         *slot = (mesh.num_vertices(), mesh.num_triangles());
     }

@@ -214,6 +214,22 @@ fn a_mesh_over_the_triangle_limit_is_refused_before_it_is_built() {
         "{message}"
     );
     assert_eq!(entries(empty.path()), ["typo.swp"]);
+
+    // absurd steps in the file itself (20000 a segment and 20000 slices: 800 million
+    // triangles): refused by `sweep`, `render` and `info` alike, the reason said once
+    let big = empty.path().join("big.swp");
+    fs::write(&big, "bsp2 p 20000 4 [1 0] [2 1] [1 2] [2 3]\nsrev big 20000 p\n").unwrap();
+    let why = "surface big would have about 800000000 triangles (20000 slices of a 20001-point profile), \
+               more than the limit of 50000000";
+    let message = sweep(&big, empty.path(), &[]).fails_with_error().to_string();
+    assert!(message.contains(why), "{message}");
+    let png = empty.path().join("big.png");
+    let run = splinekit(&[std::ffi::OsStr::new("render"), big.as_os_str(), "-o".as_ref(), png.as_os_str()]);
+    let message = run.fails_with_error();
+    assert_eq!(message.matches(why).count(), 1, "{message}");
+    assert_eq!(entries(empty.path()), ["big.swp", "typo.swp"]);
+    let info = splinekit(&[std::ffi::OsStr::new("info"), big.as_os_str()]).ok().to_string();
+    assert!(info.contains(&format!("cannot sweep: {why}")), "{info}");
 }
 
 #[test]

@@ -68,8 +68,13 @@ pub enum SurfaceFrames {
     RotationMinimizing,
 }
 
-/// Options for [`SwpDocument::surface_mesh`].
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// The default of [`SurfaceOptions::max_triangles`] and [`RebuildOptions`](crate::mesh::RebuildOptions):
+/// a mesh of this size takes a few gigabytes in memory and as OBJ text.
+pub const DEFAULT_MAX_TRIANGLES: usize = 50_000_000;
+
+/// Options for [`SwpDocument::surface_mesh`]; the default is the course program's file steps,
+/// the welded layout, sequential frames and at most [`DEFAULT_MAX_TRIANGLES`] triangles.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceOptions {
     /// Vertex layout and UVs.
     pub sweep: SweepOptions,
@@ -79,9 +84,20 @@ pub struct SurfaceOptions {
     pub frames: SurfaceFrames,
     /// The most triangles a mesh may have (`None`: as many as 32-bit indices allow). Checked
     /// from the sample counts before the mesh is built (each curve's as soon as it is
-    /// tessellated), so a tolerance far too fine for the size of a surface fails at once with
-    /// [`SurfaceError::TooLarge`] instead of exhausting memory.
+    /// tessellated), so a tolerance far too fine for the size of a surface, or absurd steps in
+    /// a file, fail at once with [`SurfaceError::TooLarge`] instead of exhausting memory.
     pub max_triangles: Option<usize>,
+}
+
+impl Default for SurfaceOptions {
+    fn default() -> Self {
+        Self {
+            sweep: SweepOptions::default(),
+            tessellation: SurfaceTessellation::default(),
+            frames: SurfaceFrames::default(),
+            max_triangles: Some(DEFAULT_MAX_TRIANGLES),
+        }
+    }
 }
 
 /// Why a surface could not be swept.

@@ -73,6 +73,7 @@ use splinekit::sweep::{MeshLayout, Profile, SweepError, SweepOptions, SweepPath,
 use splinekit::{BSpline, CatmullRom, ParamCurve, PiecewiseCubic, SplineError, TriMesh};
 
 use super::revolution_obj::{HeaderSpline, RevolutionHeader, SplineHeader, SweepHeader};
+use crate::surface::DEFAULT_MAX_TRIANGLES;
 
 /// Relative tolerance (times the size of the profile) within which a revolution profile
 /// point counts as on the axis when deciding which side the profile is on.
@@ -95,8 +96,9 @@ pub struct RebuildOptions {
 }
 
 impl RebuildOptions {
-    /// [`MeshLayout::Welded`], no UVs, no limit.
-    pub const DEFAULT: Self = Self { layout: MeshLayout::Welded, uvs: false, max_triangles: None };
+    /// [`MeshLayout::Welded`], no UVs, at most [`DEFAULT_MAX_TRIANGLES`] triangles.
+    pub const DEFAULT: Self =
+        Self { layout: MeshLayout::Welded, uvs: false, max_triangles: Some(DEFAULT_MAX_TRIANGLES) };
 
     /// Sets the vertex layout.
     #[must_use]
