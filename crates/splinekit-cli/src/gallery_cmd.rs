@@ -1,8 +1,7 @@
 //! `splinekit gallery`: the bundled examples as meshes, pictures and one web page.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::PathBuf;
-use std::time::Duration;
 
 use splinekit_render::ImageSize;
 use splinekit_render::gallery::{self, GalleryOptions};
@@ -49,15 +48,7 @@ pub struct GalleryArgs {
 pub fn run(args: &GalleryArgs, out: &mut impl Write) -> anyhow::Result<()> {
     let options = GalleryOptions::DEFAULT.with_size(args.size).with_max_level(args.levels);
     let steps = gallery::num_steps(&options);
-    let bar = std::io::stderr().is_terminal().then(|| {
-        let bar = indicatif::ProgressBar::new(steps as u64);
-        let style = indicatif::ProgressStyle::with_template("[{bar:30}] {pos}/{len} {elapsed} {msg}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
-            .progress_chars("=> ");
-        bar.set_style(style);
-        bar.enable_steady_tick(Duration::from_millis(200));
-        bar
-    });
+    let bar = crate::output::progress_bar(steps);
     let mut progress = |done: usize, what: &str| {
         if let Some(bar) = &bar {
             bar.set_position(done as u64);

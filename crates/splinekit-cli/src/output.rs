@@ -1,4 +1,4 @@
-//! Number and string formatting shared by the commands.
+//! Formatting shared by the commands: numbers, strings, error lines and the progress bar.
 //!
 //! Floats are written with the shortest text that reads back to the same `f64`, so output
 //! is exact and the same bytes on every run. In JSON a float always keeps a decimal point
@@ -60,6 +60,21 @@ pub fn error_message(err: &anyhow::Error) -> String {
         }
     }
     line
+}
+
+/// A bar on standard error when it is a terminal: `steps` steps, the elapsed time and what is
+/// being done, redrawn while a long step runs.
+pub fn progress_bar(steps: usize) -> Option<indicatif::ProgressBar> {
+    use std::io::IsTerminal;
+    std::io::stderr().is_terminal().then(|| {
+        let bar = indicatif::ProgressBar::new(steps as u64);
+        let style = indicatif::ProgressStyle::with_template("[{bar:30}] {pos}/{len} {elapsed} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+            .progress_chars("=> ");
+        bar.set_style(style);
+        bar.enable_steady_tick(std::time::Duration::from_millis(200));
+        bar
+    })
 }
 
 #[cfg(test)]

@@ -192,7 +192,7 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
     }
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create output directory {}", args.output.display()))?;
-    let bar = progress_bar(2 * doc.surfaces.len());
+    let bar = crate::output::progress_bar(2 * doc.surfaces.len());
     let result = sweep_surfaces(args, &doc, &opts, bar.as_ref(), out);
     if let Some(bar) = &bar {
         bar.finish_and_clear();
@@ -246,21 +246,6 @@ fn sweep_surfaces(
         }
     }
     Ok(())
-}
-
-/// A bar on standard error when it is a terminal: `steps` steps, the elapsed time and what is
-/// being done, redrawn while a long step runs.
-fn progress_bar(steps: usize) -> Option<indicatif::ProgressBar> {
-    use std::io::IsTerminal;
-    std::io::stderr().is_terminal().then(|| {
-        let bar = indicatif::ProgressBar::new(steps as u64);
-        let style = indicatif::ProgressStyle::with_template("[{bar:30}] {pos}/{len} {elapsed} {msg}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
-            .progress_chars("=> ");
-        bar.set_style(style);
-        bar.enable_steady_tick(std::time::Duration::from_millis(200));
-        bar
-    })
 }
 
 /// Saves `mesh` to `path` in the chosen format and reports it.
