@@ -188,7 +188,8 @@ fn write_svg(out: &mut impl Write, name: &str, pts: &[glam::DVec2]) -> std::io::
         "<polyline fill=\"none\" stroke=\"#1f4e9e\" stroke-width=\"{stroke}\" stroke-linejoin=\"round\" points=\""
     )?;
     for (i, p) in pts.iter().enumerate() {
-        write!(out, "{}{},{}", if i == 0 { "" } else { " " }, p.x, -p.y)?;
+        // `+ 0.0` and `0.0 −` turn a zero of either sign into +0 (no "-0" in the drawing)
+        write!(out, "{}{},{}", if i == 0 { "" } else { " " }, p.x + 0.0, 0.0 - p.y)?;
     }
     writeln!(out, "\"/>")?;
     writeln!(out, "</svg>")

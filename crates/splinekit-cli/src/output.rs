@@ -8,14 +8,15 @@
 use std::fmt;
 
 /// A float as JSON: shortest round-trip text with a `.0` or exponent (Rust's `{:?}`), or
-/// `null` when not finite
+/// `null` when not finite; a negative zero is written `0.0`
 /// (JSON has no NaN or infinity).
 #[derive(Clone, Copy)]
 pub struct JsonNum(pub f64);
 
 impl fmt::Display for JsonNum {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.0.is_finite() { write!(f, "{:?}", self.0) } else { f.write_str("null") }
+        // `+ 0.0` writes a negative zero as 0.0
+        if self.0.is_finite() { write!(f, "{:?}", self.0 + 0.0) } else { f.write_str("null") }
     }
 }
 
@@ -86,6 +87,7 @@ mod tests {
     #[test]
     fn numbers_and_strings() {
         assert_eq!(JsonNum(0.0).to_string(), "0.0");
+        assert_eq!(JsonNum(-0.0).to_string(), "0.0");
         assert_eq!(JsonNum(5.0).to_string(), "5.0");
         assert_eq!(JsonNum(0.1).to_string(), "0.1");
         assert_eq!(JsonNum(-1e-7).to_string(), "-1e-7");

@@ -343,6 +343,245 @@ fn curve_steps_and_json() {
     assert_eq!(json["points"].as_array().unwrap().len(), 31);
 }
 
+/// The SVG's `viewBox` numbers and its polyline's points, y flipped back up.
+fn svg_polyline(svg: &str) -> ([f64; 4], Vec<[f64; 2]>) {
+    let attr = |name: &str| {
+        let start = svg.find(&format!("{name}=\"")).unwrap_or_else(|| panic!("no {name} in:\n{svg}")) + name.len() + 2;
+        &svg[start..start + svg[start..].find('"').unwrap()]
+    };
+    let view: Vec<f64> = attr("viewBox").split(' ').map(|x| x.parse().unwrap()).collect();
+    let points = attr("points")
+        .split(' ')
+        .map(|pair| {
+            let (x, y) = pair.split_once(',').unwrap_or_else(|| panic!("bad point {pair:?}"));
+            [x.parse().unwrap(), -y.parse::<f64>().unwrap()]
+        })
+        .collect();
+    (view.try_into().unwrap(), points)
+}
+
+#[test]
+fn curve_svg_draws_the_polyline() {
+    let dir = Dir::new();
+    let path = dir.file(
+        "shapes.swp",
+        "bez2 wave 10 7 [0 0] [1 2] [3 2] [4 0] [5 -2] [7 -2] [8 0]\n\
+         circ ring 24 2\n\
+         bez3 path 4 4 [0 0 0] [1 1 1] [2 0 1] [3 1 0]\n",
+    );
+    for (curve, flags) in
+        [("wave", &["--tolerance", "0.01"][..]), ("wave", &[][..]), ("ring", &["--tolerance", "0.001"][..])]
+    {
+        let args = |format: &'static str| [&["--curve", curve, "--format", format][..], flags].concat();
+        let run = on("curve", &path, &args("svg"));
+        let svg = run.ok();
+        assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\"") && svg.trim_end().ends_with("</svg>"));
+        assert!(svg.contains(&format!("<title>{curve}</title>")), "{svg}");
+        assert_eq!(on("curve", &path, &args("svg")).stdout, svg, "deterministic");
+        // the same points as the JSON output, in order, to the bit
+        let json = on("curve", &path, &args("json")).json();
+        let expected: Vec<[f64; 2]> =
+            json["points"].as_array().unwrap().iter().map(|p| [num(&p["x"]), num(&p["y"])]).collect();
+        let (view, points) = svg_polyline(svg);
+        assert_eq!(points, expected, "{curve} {flags:?}");
+        // every point inside the view box (y down there), with a margin
+        let [x0, y0, w, h] = view;
+        assert!(w > 0.0 && h > 0.0);
+        for [x, y] in &points {
+            assert!(*x > x0 && *x < x0 + w && -*y > y0 && -*y < y0 + h, "({x}, {y}) outside {view:?}");
+        }
+        let height: f64 = svg.split("height=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+        assert_eq!(height, (800.0 * h / w).round(), "the picture keeps the curve's aspect");
+        // zeros are written unsigned
+        assert!(!svg.split([' ', ',', '"']).any(|token| token == "-0"), "{svg}");
+        if curve == "ring" {
+            // closed form: the circle of radius 2, from (2, 0) round to it again
+            assert_eq!((points[0], *points.last().unwrap()), ([2.0, 0.0], [2.0, 0.0]));
+            for [x, y] in &points {
+                assert_close(x.hypot(*y), 2.0, 1e-12, "ring radius");
+            }
+        } else {
+            assert_eq!((points[0], *points.last().unwrap()), ([0.0, 0.0], [8.0, 0.0]), "the curve's ends");
+        }
+    }
+    // without --tolerance, the file's steps: 2 segments of 10
+    assert_eq!(svg_polyline(on("curve", &path, &["--format", "svg"]).ok()).1.len(), 21);
+    // a 3D curve cannot be drawn
+    let stderr = on("curve", &path, &["--curve", "path", "--format", "svg"]).fails_with_error().to_string();
+    assert!(stderr.contains("--format svg draws 2D curves; curve path is 3D"), "{stderr}");
+}
+
+/// A cubic Bézier and its derivatives, by de Casteljau (independent of the library).
+fn bezier(p: &[[f64; 3]], t: f64) -> [[f64; 3]; 3] {
+    let lerp = |a: [f64; 3], b: [f64; 3]| [0, 1, 2].map(|i| a[i] + t * (b[i] - a[i]));
+    let diff = |a: [f64; 3], b: [f64; 3], k: f64| [0, 1, 2].map(|i| k * (b[i] - a[i]));
+    let (a, b, c) = (lerp(p[0], p[1]), lerp(p[1], p[2]), lerp(p[2], p[3]));
+    let (d, e) = (lerp(a, b), lerp(b, c));
+    let dd = lerp(diff(p[0], p[1], 6.0), diff(p[1], p[2], 6.0));
+    let dd2 = lerp(diff(p[1], p[2], 6.0), diff(p[2], p[3], 6.0));
+    [lerp(d, e), diff(d, e, 3.0), [0, 1, 2].map(|i| dd[i] + t * (dd2[i] - dd[i]))]
+}
+
+/// Position, first and second derivative of a chain of cubics (`3m + 1` points) at `u ∈ [0, m]`.
+fn chain(p: &[[f64; 3]], u: f64) -> [[f64; 3]; 3] {
+    let k = (u.floor() as usize).min((p.len() - 1) / 3 - 1);
+    bezier(&p[3 * k..3 * k + 4], u - k as f64)
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// Distance from `x` to the segment `[a, b]`.
+fn segment_distance(x: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
+    let (e, d) = ([0, 1, 2].map(|i| b[i] - a[i]), [0, 1, 2].map(|i| x[i] - a[i]));
+    let s = if dot(e, e) > 0.0 { (dot(d, e) / dot(e, e)).clamp(0.0, 1.0) } else { 0.0 };
+    dot([0, 1, 2].map(|i| d[i] - s * e[i]), [0, 1, 2].map(|i| d[i] - s * e[i])).sqrt()
+}
+
+/// `(u, position, [t, n, b])` of every point of `curve`'s JSON output.
+fn frame_rows(json: &Value) -> Vec<(f64, [f64; 3], [[f64; 3]; 3])> {
+    let v3 = |v: &Value| [0, 1, 2].map(|i| num(&v[i]));
+    json["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (num(&p["u"]), [num(&p["x"]), num(&p["y"]), num(&p["z"])], [v3(&p["t"]), v3(&p["n"]), v3(&p["b"])]))
+        .collect()
+}
+
+/// The angle-mode split of SPEC §1.3, written out plainly: local end parameters of the pieces
+/// of `p` over `[t0, t1]`, halving while a control-polygon angle exceeds `half`, depth ≤ 10.
+fn angle_split(p: [[f64; 3]; 4], t0: f64, t1: f64, half: f64, depth: u32, out: &mut Vec<f64>) {
+    let edge = |a: [f64; 3], b: [f64; 3]| [0, 1, 2].map(|i| b[i] - a[i]);
+    let angle = |a: [f64; 3], b: [f64; 3]| {
+        let c = cross(a, b);
+        dot(c, c).sqrt().atan2(dot(a, b))
+    };
+    let (d0, d1, d2) = (edge(p[0], p[1]), edge(p[1], p[2]), edge(p[2], p[3]));
+    if depth < 10 && (angle(d0, d1) > half || angle(d1, d2) > half) {
+        let mid = |a: [f64; 3], b: [f64; 3]| [0, 1, 2].map(|i| 0.5 * (a[i] + b[i]));
+        let (a, b, c) = (mid(p[0], p[1]), mid(p[1], p[2]), mid(p[2], p[3]));
+        let (d, e) = (mid(a, b), mid(b, c));
+        let m = mid(d, e);
+        let tm = 0.5 * (t0 + t1);
+        angle_split([p[0], a, d, m], t0, tm, half, depth + 1, out);
+        angle_split([m, e, c, p[3]], tm, t1, half, depth + 1, out);
+    } else {
+        out.push(t1);
+    }
+}
+
+#[test]
+fn curve_tolerance_angle_and_frames() {
+    let wave = [
+        [0.0, 0.0, 0.0],
+        [1.0, 2.0, 0.0],
+        [3.0, 2.0, 0.0],
+        [4.0, 0.0, 0.0],
+        [5.0, -2.0, 0.0],
+        [7.0, -3.0, 0.0],
+        [8.0, 1.0, 0.0],
+    ];
+    let path = [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 0.0, 1.0], [3.0, 1.0, 0.0]];
+    let dir = Dir::new();
+    let file = dir.file(
+        "frames.swp",
+        "bez2 wave 10 7 [0 0] [1 2] [3 2] [4 0] [5 -2] [7 -3] [8 1]\nbez3 path 4 4 [0 0 0] [1 1 1] [2 0 1] [3 1 0]\n",
+    );
+    let json = |args: &[&str]| on("curve", &file, &[args, &["--format", "json"]].concat()).json();
+
+    // --tolerance: vertices on the curve, every piece of the curve within T of its chord, and
+    // every chord within T of its piece of the curve (two-sided), the count growing as T falls
+    let mut previous = 0;
+    for tolerance in ["0.1", "0.01", "0.001"] {
+        let t: f64 = tolerance.parse().unwrap();
+        let out = json(&["--curve", "wave", "--tolerance", tolerance]);
+        assert_eq!(out["steps"], Value::Null);
+        let rows = frame_rows(&out);
+        assert!(rows.len() > previous, "{tolerance}: {} points", rows.len());
+        previous = rows.len();
+        assert_eq!((rows[0].0, rows.last().unwrap().0), (0.0, 2.0));
+        for pair in rows.windows(2) {
+            let ((ua, a, _), (ub, b, _)) = (pair[0], pair[1]);
+            assert!(ub > ua);
+            for (u, x) in [(ua, a), (ub, b)] {
+                let p = chain(&wave, u)[0];
+                assert!((0..3).all(|i| (p[i] - x[i]).abs() < 1e-12), "vertex at u {u}: {x:?} vs {p:?}");
+            }
+            let piece: Vec<[f64; 3]> = (0..=400).map(|i| chain(&wave, ua + (ub - ua) * i as f64 / 400.0)[0]).collect();
+            let far = piece.iter().map(|&x| segment_distance(x, a, b)).fold(0.0, f64::max);
+            assert!(far <= t * (1.0 + 1e-9), "{tolerance}: curve {far} from the chord over [{ua}, {ub}]");
+            // chord → curve, against the sampled piece (its samples are < 1e-3 T apart)
+            let back = (0..=100)
+                .map(|i| {
+                    let s = i as f64 / 100.0;
+                    let x = [0, 1, 2].map(|k| a[k] + s * (b[k] - a[k]));
+                    piece.windows(2).map(|w| segment_distance(x, w[0], w[1])).fold(f64::INFINITY, f64::min)
+                })
+                .fold(0.0, f64::max);
+            assert!(back <= t * (1.0 + 1e-3), "{tolerance}: chord {back} from the curve over [{ua}, {ub}]");
+        }
+    }
+
+    // --angle-tolerance (degrees): the parameters of the split written out above
+    for degrees in [20.0f64, 5.0, 0.5] {
+        let rows = frame_rows(&json(&["--curve", "wave", "--angle-tolerance", &degrees.to_string()]));
+        let mut expected = vec![0.0];
+        for k in 0..2 {
+            let mut local = Vec::new();
+            let segment = [wave[3 * k], wave[3 * k + 1], wave[3 * k + 2], wave[3 * k + 3]];
+            angle_split(segment, 0.0, 1.0, degrees.to_radians() / 2.0, 0, &mut local);
+            expected.extend(local.iter().map(|t| k as f64 + t));
+        }
+        let got: Vec<f64> = rows.iter().map(|r| r.0).collect();
+        assert_eq!(got, expected, "{degrees}°");
+    }
+
+    // frames: orthonormal and right-handed everywhere, T along the derivative; sequential
+    // frames of a 2D curve have B = +z and N left of travel; Frenet's N turns towards C″ with
+    // B along C′ × C″; rotation-minimizing frames do not spin about T
+    for (curve, points) in [("wave", &wave[..]), ("path", &path[..])] {
+        for method in ["sequential", "rmf", "frenet"] {
+            let rows = frame_rows(&json(&["--curve", curve, "--frames", method, "--steps", "200"]));
+            for &(u, _, [t, n, b]) in &rows {
+                let what = format!("{curve} {method} u {u}");
+                for (x, y, expected) in [(t, t, 1.0), (n, n, 1.0), (b, b, 1.0), (t, n, 0.0), (t, b, 0.0), (n, b, 0.0)] {
+                    assert_close(dot(x, y), expected, 1e-9, &what);
+                }
+                assert!((0..3).all(|i| (cross(t, n)[i] - b[i]).abs() < 1e-9), "{what}: T × N ≠ B");
+                let [_, d1, d2] = chain(points, u);
+                assert_close(dot(t, d1), dot(d1, d1).sqrt(), 1e-9 * dot(d1, d1).sqrt(), &format!("{what}: T"));
+                if method == "sequential" && curve == "wave" {
+                    assert!(b[0] == 0.0 && b[1] == 0.0 && (b[2] - 1.0).abs() < 1e-12, "{what}: B = {b:?}");
+                    assert!((n[0] + t[1]).abs() < 1e-12 && (n[1] - t[0]).abs() < 1e-12, "{what}: N = left of T");
+                }
+                if method == "frenet" {
+                    let k = cross(d1, d2);
+                    let kn = dot(k, k).sqrt();
+                    if kn > 1e-6 {
+                        assert!(dot(n, d2) > 0.0, "{what}: N turns away from C″");
+                        assert_close(dot(b, k), kn, 1e-9 * kn, &format!("{what}: B along C′ × C″"));
+                    }
+                }
+            }
+            if method == "rmf" {
+                // the spin about T between neighbours, (N₁·B₀ − B₁·N₀)/2, is O(h³) for a
+                // rotation-minimizing frame; Frenet's spins with the torsion
+                let spin = rows
+                    .windows(2)
+                    .map(|w| (dot(w[1].2[1], w[0].2[2]) - dot(w[1].2[2], w[0].2[1])).abs() / 2.0)
+                    .fold(0.0, f64::max);
+                assert!(spin < 1e-5, "{curve}: rmf spins by {spin} a step");
+            }
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------
 // Errors
 
