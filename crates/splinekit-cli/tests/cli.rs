@@ -343,14 +343,39 @@ fn curve_steps_and_json() {
     assert_eq!(json["points"].as_array().unwrap().len(), 31);
 }
 
+/// A 2D chain of two cubics and a 3D cubic, as control points (z = 0 for the 2D one).
+const WAVE: [[f64; 3]; 7] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 2.0, 0.0],
+    [3.0, 2.0, 0.0],
+    [4.0, 0.0, 0.0],
+    [5.0, -2.0, 0.0],
+    [7.0, -3.0, 0.0],
+    [8.0, 1.0, 0.0],
+];
+const PATH: [[f64; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 0.0, 1.0], [3.0, 1.0, 0.0]];
+
+/// [`WAVE`] as `bez2 wave` (10 steps), a circle `ring` of radius 2 (24 steps) and [`PATH`] as
+/// `bez3 path` (4 steps).
+fn shapes_swp(dir: &Dir) -> PathBuf {
+    let points = |p: &[[f64; 3]], dim: usize| {
+        let point = |q: &[f64; 3]| format!("[{}]", q[..dim].iter().map(f64::to_string).collect::<Vec<_>>().join(" "));
+        p.iter().map(point).collect::<Vec<_>>().join(" ")
+    };
+    let text = format!("bez2 wave 10 7 {}\ncirc ring 24 2\nbez3 path 4 4 {}\n", points(&WAVE, 2), points(&PATH, 3));
+    dir.file("shapes.swp", &text)
+}
+
+/// The value of the first attribute `name` in `svg`.
+fn svg_attr<'a>(svg: &'a str, name: &str) -> &'a str {
+    let start = svg.find(&format!("{name}=\"")).unwrap_or_else(|| panic!("no {name} in:\n{svg}")) + name.len() + 2;
+    &svg[start..start + svg[start..].find('"').unwrap()]
+}
+
 /// The SVG's `viewBox` numbers and its polyline's points, y flipped back up.
 fn svg_polyline(svg: &str) -> ([f64; 4], Vec<[f64; 2]>) {
-    let attr = |name: &str| {
-        let start = svg.find(&format!("{name}=\"")).unwrap_or_else(|| panic!("no {name} in:\n{svg}")) + name.len() + 2;
-        &svg[start..start + svg[start..].find('"').unwrap()]
-    };
-    let view: Vec<f64> = attr("viewBox").split(' ').map(|x| x.parse().unwrap()).collect();
-    let points = attr("points")
+    let view: Vec<f64> = svg_attr(svg, "viewBox").split(' ').map(|x| x.parse().unwrap()).collect();
+    let points = svg_attr(svg, "points")
         .split(' ')
         .map(|pair| {
             let (x, y) = pair.split_once(',').unwrap_or_else(|| panic!("bad point {pair:?}"));
@@ -363,12 +388,7 @@ fn svg_polyline(svg: &str) -> ([f64; 4], Vec<[f64; 2]>) {
 #[test]
 fn curve_svg_draws_the_polyline() {
     let dir = Dir::new();
-    let path = dir.file(
-        "shapes.swp",
-        "bez2 wave 10 7 [0 0] [1 2] [3 2] [4 0] [5 -2] [7 -2] [8 0]\n\
-         circ ring 24 2\n\
-         bez3 path 4 4 [0 0 0] [1 1 1] [2 0 1] [3 1 0]\n",
-    );
+    let path = shapes_swp(&dir);
     for (curve, flags) in
         [("wave", &["--tolerance", "0.01"][..]), ("wave", &[][..]), ("ring", &["--tolerance", "0.001"][..])]
     {
@@ -390,7 +410,7 @@ fn curve_svg_draws_the_polyline() {
         for [x, y] in &points {
             assert!(*x > x0 && *x < x0 + w && -*y > y0 && -*y < y0 + h, "({x}, {y}) outside {view:?}");
         }
-        let height: f64 = svg.split("height=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+        let height: f64 = svg_attr(svg, "height").parse().unwrap();
         assert_eq!(height, (800.0 * h / w).round(), "the picture keeps the curve's aspect");
         // zeros are written unsigned
         assert!(!svg.split([' ', ',', '"']).any(|token| token == "-0"), "{svg}");
@@ -401,7 +421,7 @@ fn curve_svg_draws_the_polyline() {
                 assert_close(x.hypot(*y), 2.0, 1e-12, "ring radius");
             }
         } else {
-            assert_eq!((points[0], *points.last().unwrap()), ([0.0, 0.0], [8.0, 0.0]), "the curve's ends");
+            assert_eq!((points[0], *points.last().unwrap()), ([0.0, 0.0], [8.0, 1.0]), "the curve's ends");
         }
     }
     // without --tolerance, the file's steps: 2 segments of 10
@@ -440,7 +460,8 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 fn segment_distance(x: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
     let (e, d) = ([0, 1, 2].map(|i| b[i] - a[i]), [0, 1, 2].map(|i| x[i] - a[i]));
     let s = if dot(e, e) > 0.0 { (dot(d, e) / dot(e, e)).clamp(0.0, 1.0) } else { 0.0 };
-    dot([0, 1, 2].map(|i| d[i] - s * e[i]), [0, 1, 2].map(|i| d[i] - s * e[i])).sqrt()
+    let r = [0, 1, 2].map(|i| d[i] - s * e[i]);
+    dot(r, r).sqrt()
 }
 
 /// `(u, position, [t, n, b])` of every point of `curve`'s JSON output.
@@ -478,21 +499,9 @@ fn angle_split(p: [[f64; 3]; 4], t0: f64, t1: f64, half: f64, depth: u32, out: &
 
 #[test]
 fn curve_tolerance_angle_and_frames() {
-    let wave = [
-        [0.0, 0.0, 0.0],
-        [1.0, 2.0, 0.0],
-        [3.0, 2.0, 0.0],
-        [4.0, 0.0, 0.0],
-        [5.0, -2.0, 0.0],
-        [7.0, -3.0, 0.0],
-        [8.0, 1.0, 0.0],
-    ];
-    let path = [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 0.0, 1.0], [3.0, 1.0, 0.0]];
+    let (wave, path) = (WAVE, PATH);
     let dir = Dir::new();
-    let file = dir.file(
-        "frames.swp",
-        "bez2 wave 10 7 [0 0] [1 2] [3 2] [4 0] [5 -2] [7 -3] [8 1]\nbez3 path 4 4 [0 0 0] [1 1 1] [2 0 1] [3 1 0]\n",
-    );
+    let file = shapes_swp(&dir);
     let json = |args: &[&str]| on("curve", &file, &[args, &["--format", "json"]].concat()).json();
 
     // --tolerance: vertices on the curve, every piece of the curve within T of its chord, and
