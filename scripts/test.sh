@@ -7,5 +7,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install-test-deps.sh
 # winit warns without a runtime directory
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
+# the editor keeps its recent files in the settings folder: the tests use a fresh one
+export XDG_CONFIG_HOME="$(mktemp -d)"
 cargo bench --workspace --locked --no-run
 cargo test --workspace --locked

@@ -1,15 +1,20 @@
-//! The edited document: an SWP document, the active curve, and undo/redo.
+//! The edited document: an SWP document, the active curve, the file it belongs to, and
+//! undo/redo.
 //!
 //! Every edit goes through a method here, so the user interface stays thin and the edits are
 //! tested without a window. Each method that changes the document records one undo step
-//! (a drag records one step when it starts, however many moves follow).
+//! (a drag records one step when it starts, however many moves follow). Replacing the whole
+//! document (opening a file, New, the preset scene) is one undo step too: undoing it brings
+//! back the document it replaced, with its file and its unsaved changes.
 
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::DVec3;
-use splinekit::{AnyCurve, ParamCurve};
+use splinekit::subdiv::Creases;
+use splinekit::{AnyCurve, ParamCurve, PolyMesh};
 use splinekit_io::{SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry};
 
 /// Most undo steps kept; older ones are dropped.
@@ -36,6 +41,63 @@ pub fn kind_name(kind: SwpCurveKind) -> &'static str {
     }
 }
 
+/// What kind of file a document is, which decides what Save may write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DocKind {
+    /// An SWP file (or a new document, which Save writes as SWP).
+    Swp,
+    /// An OBJ file with a spline header (shown as its rebuilt surface; Save asks for a new
+    /// SWP file instead of writing it back).
+    AnnotatedObj,
+    /// A mesh opened for viewing (OBJ, glb, PLY, STL): never written back by Save.
+    Mesh,
+}
+
+impl DocKind {
+    /// The kind of the file at `path`, from its extension (`None`: not a file the editor
+    /// opens).
+    #[must_use]
+    pub fn of_path(path: &Path) -> Option<Self> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "swp" => Some(Self::Swp),
+            "obj" | "glb" | "ply" | "stl" => Some(Self::Mesh),
+            _ => None,
+        }
+    }
+}
+
+/// A mesh opened for viewing, with the crease tags of its file.
+#[derive(Debug)]
+pub struct ViewedMesh {
+    /// The mesh as read (triangles or polygons).
+    pub base: PolyMesh,
+    /// Its sharp and semi-sharp edges and vertices (an OBJ's crease tags).
+    pub creases: Creases,
+}
+
+/// The file a document belongs to, and its contents as last read or written.
+#[derive(Clone, Debug)]
+struct FileState {
+    path: Option<PathBuf>,
+    kind: DocKind,
+    /// The curves and surfaces as last read or written: the document is modified while it
+    /// differs from them.
+    saved: Arc<SwpDocument>,
+    /// Bumped whenever `saved` is replaced.
+    saved_generation: u64,
+    mesh: Option<Arc<ViewedMesh>>,
+}
+
+/// One undo (or redo) step.
+#[derive(Clone, Debug)]
+enum Step {
+    /// An edit of the curves and surfaces.
+    Edit { swp: SwpDocument, active: usize },
+    /// The whole document was replaced (a file opened, New, the preset scene).
+    Replace { swp: SwpDocument, active: usize, file: FileState },
+}
+
 /// The document being edited.
 #[derive(Debug, Clone)]
 pub struct Document {
@@ -43,12 +105,13 @@ pub struct Document {
     pub swp: SwpDocument,
     /// The index of the curve being edited (always valid when there are curves).
     pub active: usize,
-    /// The file the document was loaded from or last saved to.
-    pub path: Option<PathBuf>,
-    undo: Vec<(SwpDocument, usize)>,
-    redo: Vec<(SwpDocument, usize)>,
+    file: FileState,
+    undo: Vec<Step>,
+    redo: Vec<Step>,
     /// Changes on every change, so views know when to rebuild what they derive from it.
     revision: u64,
+    /// `(revision, saved_generation, modified)` of the last [`is_modified`](Self::is_modified).
+    modified_cache: std::cell::Cell<Option<(u64, u64, bool)>>,
 }
 
 /// A revision number never handed out before (in this process), so a cache keyed by it
@@ -64,19 +127,43 @@ impl Default for Document {
     }
 }
 
+/// The kind of a new document's curve: uniform Catmull-Rom, so that four clicks draw a curve
+/// through the middle two.
+pub const NEW_CURVE_KIND: SwpCurveKind = SwpCurveKind::CatmullRom { alpha: 0.0 };
+
 impl Document {
-    /// An empty document with one empty 2D Bézier curve called `profile`.
+    /// A new, untitled document with one empty 2D Catmull-Rom curve called `profile`.
     #[must_use]
     pub fn new() -> Self {
         let mut swp = SwpDocument::default();
-        swp.curves.push(empty_curve("profile", SwpCurveKind::Bezier, 2));
+        swp.curves.push(empty_curve("profile", NEW_CURVE_KIND, 2));
         Self::from_swp(swp, None)
     }
 
-    /// A document for `swp` (loaded from `path`, if given).
+    /// A document for `swp`, read from the SWP file `path` (if given): not modified.
     #[must_use]
     pub fn from_swp(swp: SwpDocument, path: Option<PathBuf>) -> Self {
-        Self { swp, active: 0, path, undo: Vec::new(), redo: Vec::new(), revision: next_revision() }
+        Self::with_file(swp, path, DocKind::Swp, None)
+    }
+
+    /// A document for viewing `mesh`, read from `path` (an annotated OBJ file if `kind` says
+    /// so): no curves, not modified.
+    #[must_use]
+    pub fn from_mesh(mesh: ViewedMesh, path: PathBuf, kind: DocKind) -> Self {
+        Self::with_file(SwpDocument::default(), Some(path), kind, Some(Arc::new(mesh)))
+    }
+
+    fn with_file(swp: SwpDocument, path: Option<PathBuf>, kind: DocKind, mesh: Option<Arc<ViewedMesh>>) -> Self {
+        let file = FileState { path, kind, saved: Arc::new(swp.clone()), saved_generation: next_revision(), mesh };
+        Self {
+            swp,
+            active: 0,
+            file,
+            undo: Vec::new(),
+            redo: Vec::new(),
+            revision: next_revision(),
+            modified_cache: std::cell::Cell::new(None),
+        }
     }
 
     /// Reads an SWP file.
@@ -87,6 +174,75 @@ impl Document {
     pub fn read(path: &Path) -> Result<Self, String> {
         let swp = SwpDocument::read(path).map_err(|e| e.to_string())?;
         Ok(Self::from_swp(swp, Some(path.to_path_buf())))
+    }
+
+    /// Replaces this document by `other` (a file just opened, a new document, the preset
+    /// scene) as one undo step: undo brings this one back, with its file and unsaved changes.
+    /// `other`'s own history is dropped.
+    pub fn replace_with(&mut self, other: Document) {
+        let Document { swp, active, file, .. } = other;
+        let old_file = std::mem::replace(&mut self.file, file);
+        let old_swp = std::mem::replace(&mut self.swp, swp);
+        let old_active = std::mem::replace(&mut self.active, active);
+        self.push_undo(Step::Replace { swp: old_swp, active: old_active, file: old_file });
+        self.revision = next_revision();
+    }
+
+    /// The file the document was read from or last saved to (`None`: a new document).
+    #[must_use]
+    pub fn path(&self) -> Option<&Path> {
+        self.file.path.as_deref()
+    }
+
+    /// What kind of file the document is.
+    #[must_use]
+    pub fn kind(&self) -> DocKind {
+        self.file.kind
+    }
+
+    /// The path Save writes to without asking: the document's own file when it is a file the
+    /// editor writes (SWP), else `None` (Save then asks for a name, as Save as).
+    #[must_use]
+    pub fn save_path(&self) -> Option<&Path> {
+        if self.file.kind == DocKind::Swp { self.path() } else { None }
+    }
+
+    /// The mesh opened for viewing, if the document is one.
+    #[must_use]
+    pub fn mesh(&self) -> Option<&Arc<ViewedMesh>> {
+        self.file.mesh.as_ref()
+    }
+
+    /// The file name for the window title (`untitled` for a new document).
+    #[must_use]
+    pub fn display_name(&self) -> String {
+        match self.path() {
+            Some(p) => p.file_name().map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into_owned()),
+            None => "untitled".to_owned(),
+        }
+    }
+
+    /// Whether the curves and surfaces differ from those last read or written.
+    #[must_use]
+    pub fn is_modified(&self) -> bool {
+        let key = (self.revision, self.file.saved_generation);
+        if let Some((r, g, m)) = self.modified_cache.get()
+            && (r, g) == key
+        {
+            return m;
+        }
+        let modified = *self.file.saved != self.swp;
+        self.modified_cache.set(Some((key.0, key.1, modified)));
+        modified
+    }
+
+    /// Records that the document was written to the SWP file `path`: it becomes the
+    /// document's file, and the document is no longer modified. Not an edit (no undo step).
+    pub fn mark_saved(&mut self, path: &Path) {
+        self.file.path = Some(path.to_path_buf());
+        self.file.kind = DocKind::Swp;
+        self.file.saved = Arc::new(self.swp.clone());
+        self.file.saved_generation = next_revision();
     }
 
     /// A number that changes whenever the document does, and differs between documents.
@@ -130,29 +286,48 @@ impl Document {
 
     /// Records an undo step for the current state.
     fn checkpoint(&mut self) {
-        self.undo.push((self.swp.clone(), self.active));
+        self.push_undo(Step::Edit { swp: self.swp.clone(), active: self.active });
+        self.revision = next_revision();
+    }
+
+    fn push_undo(&mut self, step: Step) {
+        self.undo.push(step);
         if self.undo.len() > MAX_UNDO {
             self.undo.remove(0);
         }
         self.redo.clear();
+    }
+
+    /// Swaps the current state with `step`'s, returning the step that restores the current
+    /// state.
+    fn swap(&mut self, step: Step) -> Step {
         self.revision = next_revision();
+        match step {
+            Step::Edit { swp, active } => Step::Edit {
+                swp: std::mem::replace(&mut self.swp, swp),
+                active: std::mem::replace(&mut self.active, active),
+            },
+            Step::Replace { swp, active, file } => Step::Replace {
+                swp: std::mem::replace(&mut self.swp, swp),
+                active: std::mem::replace(&mut self.active, active),
+                file: std::mem::replace(&mut self.file, file),
+            },
+        }
     }
 
     /// Undoes the last edit; `false` if there is none.
     pub fn undo(&mut self) -> bool {
-        let Some((swp, active)) = self.undo.pop() else { return false };
-        self.redo.push((std::mem::replace(&mut self.swp, swp), self.active));
-        self.active = active;
-        self.revision = next_revision();
+        let Some(step) = self.undo.pop() else { return false };
+        let back = self.swap(step);
+        self.redo.push(back);
         true
     }
 
     /// Redoes the last undone edit; `false` if there is none.
     pub fn redo(&mut self) -> bool {
-        let Some((swp, active)) = self.redo.pop() else { return false };
-        self.undo.push((std::mem::replace(&mut self.swp, swp), self.active));
-        self.active = active;
-        self.revision = next_revision();
+        let Some(step) = self.redo.pop() else { return false };
+        let back = self.swap(step);
+        self.undo.push(back);
         true
     }
 
@@ -194,11 +369,11 @@ impl Document {
 
     /// Inserts a point before index `at` (`at` = the number of points appends).
     pub fn insert_point(&mut self, at: usize, p: DVec3) {
+        self.checkpoint();
         if self.curve().is_none() {
-            self.swp.curves.push(empty_curve("profile", SwpCurveKind::Bezier, 2));
+            self.swp.curves.push(empty_curve("profile", NEW_CURVE_KIND, 2));
             self.active = self.swp.curves.len() - 1;
         }
-        self.checkpoint();
         let p = if self.is_2d() { DVec3::new(p.x, p.y, 0.0) } else { p };
         let Some(points) = self.points_mut() else { return };
         let at = at.min(points.len());
@@ -210,6 +385,39 @@ impl Document {
             let t = prev.map_or(DVec3::X, |q| p - q);
             tangents.insert(at.min(tangents.len()), t);
         }
+    }
+
+    /// Inserts a point on the control polygon's edge from point `edge` to the next one (the
+    /// closing edge of a closed curve too), at fraction `t` of the edge; returns the index of
+    /// the point to select.
+    ///
+    /// A Bézier spline keeps its shape and stays valid: the segment that owns the edge is
+    /// split by De Casteljau at the parameter of the click (edge `j` of the segment's three at
+    /// fraction `t` is parameter `(j + t)/3`), which puts three new points in place of two and
+    /// the segment's new end point on the curve. Other kinds get `p` between the edge's ends.
+    pub fn insert_on_polygon(&mut self, edge: usize, t: f64, p: DVec3) -> usize {
+        let bezier = self.curve().is_some_and(|c| c.kind == SwpCurveKind::Bezier);
+        let n = self.points().len();
+        let closed = self.curve().is_some_and(|c| c.closed);
+        let valid = SwpCurveKind::Bezier.accepts_point_count(closed, n as u64);
+        let edges = if closed { n } else { n.saturating_sub(1) };
+        if !bezier || !valid || edge >= edges {
+            self.insert_point(edge + 1, p);
+            return (edge + 1).min(self.points().len().saturating_sub(1));
+        }
+        let (k, j) = (edge / 3, edge % 3);
+        let u = ((j as f64 + t.clamp(0.0, 1.0)) / 3.0).clamp(0.0, 1.0);
+        let pts = self.points();
+        let at = |i: usize| pts[(3 * k + i) % n];
+        let segment = splinekit::CubicBezier::new(at(0), at(1), at(2), at(3));
+        let (left, right) = segment.split(u);
+        self.checkpoint();
+        let Some(points) = self.points_mut() else { return 0 };
+        // the segment's two inner points become five: left.p1, left.p2, the split point,
+        // right.p1, right.p2
+        let first = 3 * k + 1;
+        points.splice(first..first + 2, [left.p1, left.p2, left.p3, right.p1, right.p2]);
+        first + 2
     }
 
     /// Starts moving point `i` (records the undo step of the whole drag).
@@ -314,9 +522,9 @@ impl Document {
     /// Adds a new empty 2D curve of the active curve's kind and makes it active.
     pub fn add_curve(&mut self) {
         self.checkpoint();
-        let kind = self.curve().map_or(SwpCurveKind::Bezier, |c| c.kind);
+        let kind = self.curve().map_or(NEW_CURVE_KIND, |c| c.kind);
         let kind = if matches!(kind, SwpCurveKind::Circle | SwpCurveKind::Helix | SwpCurveKind::Trefoil) {
-            SwpCurveKind::Bezier
+            NEW_CURVE_KIND
         } else {
             kind
         };
@@ -336,11 +544,18 @@ impl Document {
         }
     }
 
-    /// Replaces the document by the reference scene of SPEC §1.4 (the `r` key): 8 points
-    /// `Pᵢ = (r cos θ, r sin θ, −0.5 + αᵢ)`, `αᵢ = i/7`, `θ = 2π·αᵢ`, `r = cos 2θ`, an open
-    /// uniform Catmull-Rom spline, 5 steps per segment. Undoable.
+    /// Replaces the document by the preset scene (the `r` key), as one undo step; see
+    /// [`preset_scene`](Self::preset_scene).
     pub fn preset(&mut self) {
-        self.checkpoint();
+        self.replace_with(Self::preset_scene());
+    }
+
+    /// The preset scene of the arc-length lab: 8 points
+    /// `Pᵢ = (r cos θ, r sin θ, −0.5 + αᵢ)`, `αᵢ = i/7`, `θ = 2π·αᵢ`, `r = cos 2θ`, an open
+    /// uniform Catmull-Rom spline, 5 steps per segment; a new, untitled document (not
+    /// modified: the key makes it again).
+    #[must_use]
+    pub fn preset_scene() -> Self {
         let points = (0..8)
             .map(|i| {
                 let alpha = f64::from(i) / 7.0;
@@ -352,8 +567,7 @@ impl Document {
         let mut curve = empty_curve("preset", SwpCurveKind::CatmullRom { alpha: 0.0 }, 3);
         curve.steps = 5;
         curve.geometry = SwpGeometry::Points(points);
-        self.swp = SwpDocument { curves: vec![curve], surfaces: Vec::new() };
-        self.active = 0;
+        Self::from_swp(SwpDocument { curves: vec![curve], surfaces: Vec::new() }, None)
     }
 
     /// The SWP text of the document (see [`SwpDocument::to_swp_string`]).
@@ -414,8 +628,10 @@ fn catmull_rom_tangents(points: &[DVec3], closed: bool) -> Vec<DVec3> {
 mod tests {
     use super::*;
 
+    /// A Bézier curve through `points` (each added as an undoable edit).
     fn doc_with(points: &[(f64, f64)]) -> Document {
         let mut d = Document::new();
+        d.swp.curves[0].kind = SwpCurveKind::Bezier;
         for &(x, y) in points {
             d.add_point(DVec3::new(x, y, 0.0));
         }

@@ -1,29 +1,40 @@
 //! The splinekit editor (`splinekit edit [FILE]`): 2D curve editing and the surfaces swept
-//! from the curves, or a loaded mesh with Loop subdivision.
+//! from the curves, or a mesh opened for viewing with its subdivision.
 //!
-//! Files open from the command line, the path field, or by dropping them on the window.
+//! The window has a file bar (`Open…`, `Save`, `Save as…`, `Export mesh…`, undo, redo, the
+//! preset scene, help), a left panel (curves, kind, closed, plane, what to show), the 2D curve
+//! view in the middle, a right panel with the surface or mesh, its subdivision and the 3D view
+//! ([`View3d`]), and a status line for messages and errors. An error never changes the
+//! document.
 //!
-//! The window has a file bar (path field: load SWP, OBJ, glb, PLY, STL; save SWP; export the
-//! surface as OBJ, glb, PLY or STL), a left panel (curves, kind, closed, plane, what to show),
-//! the 2D curve view in the middle, a right panel with the surface or mesh, its subdivision
-//! and the 3D view ([`View3d`]), and a status line for messages and errors. An error never
-//! changes the document.
+//! **Files.** The document knows its file and its kind ([`DocKind`]): Save (Ctrl+S) writes an
+//! SWP document back to its file, and asks for a name (as Save as, Ctrl+Shift+S) for a new
+//! document or a mesh opened for viewing, which is never written back. Open (Ctrl+O), Save as
+//! and Export mesh use a file dialog in the window ([`files::FileDialog`]). A document is
+//! checked before it is written, with the rules the reader applies: a file the editor cannot
+//! read back is never written. The window title is `NAME — splinekit`, with a leading `*`
+//! while the document has unsaved changes; closing the window, opening a file (also by
+//! dropping it on the window), New (Ctrl+N), the preset scene and Close mesh ask first
+//! (`Save` / `Discard` / `Cancel`). Opening a file is one undo step.
 //!
 //! The 3D view shows the document's surfaces, swept again whenever the document changes (so
-//! they follow a dragged point live), or the loaded mesh at the subdivision level shown. The
+//! they follow a dragged point live), or the mesh at the subdivision level shown. The
 //! control points of an active 3D curve are handles there too, dragged in the plane parallel
 //! to the screen.
 //!
-//! Keyboard (when no text field has focus): `r` preset scene, `s` cycle the spline kind, `c`
-//! clear the curve, `a` arc-length markers, `l` control polygon, `w` wireframe, `n` normals
-//! (curve and surface), `f` fit both views, `h` or `?` help, Delete the selected point,
-//! Ctrl+Z undo, Ctrl+Shift+Z (or Ctrl+Y) redo.
+//! Keyboard (when no text field has focus; every press counts, however slow the frame): `r`
+//! preset scene, `s` cycle the spline kind, `c` clear the curve, `a` arc-length markers, `l`
+//! control polygon, `w` wireframe, `n` normals (curve and surface), `f` fit both views, `h` or
+//! `?` help, Delete the selected point, Ctrl+Z undo, Ctrl+Shift+Z (or Ctrl+Y) redo, Ctrl+S save,
+//! Ctrl+Shift+S save as, Ctrl+O open, Ctrl+N new.
 
 pub mod doc;
+pub mod files;
 pub mod view2d;
 pub mod view3d;
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use eframe::egui::{self, Key, Modifiers};
 use splinekit::subdiv::{
@@ -36,18 +47,33 @@ use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
 use splinekit_io::surface::SurfaceOptions;
 
-pub use doc::Document;
+pub use doc::{DocKind, Document, ViewedMesh};
+use files::{FileDialog, Outcome, Purpose, RecentFiles};
 pub use view2d::{Plane, View2d};
 pub use view3d::{View3d, View3dSettings};
 
-/// The keyboard shortcuts, as the help panel lists them.
-pub const SHORTCUTS: [(&str, &str); 13] = [
-    ("Shift+click", "add a point"),
-    ("click on the polygon", "insert a point there"),
-    ("drag a point", "move it (drag the background to pan, scroll to zoom)"),
-    ("Delete", "delete the selected point (or right-click it)"),
-    ("Ctrl+Z / Ctrl+Shift+Z", "undo / redo"),
-    ("r", "preset scene (SPEC §1.4)"),
+/// The mouse actions, as the help window lists them.
+pub const MOUSE: [(&str, &str); 10] = [
+    ("Shift+click (2D view)", "add a point at the end of the curve"),
+    ("click on the control polygon", "insert a point there (a Bézier spline is split, keeping its shape)"),
+    ("click a point", "select it"),
+    ("drag a point", "move it (in the 3D view too, parallel to the screen)"),
+    ("right-click a point", "menu: delete the point"),
+    ("drag the background (2D)", "pan"),
+    ("scroll (2D)", "zoom about the pointer"),
+    ("drag (3D view)", "orbit; Shift+drag or right-drag: pan; scroll: zoom"),
+    ("double-click (file dialog)", "open a folder or choose a file"),
+    ("drop a file on the window", "open it"),
+];
+
+/// The keyboard shortcuts, as the help window lists them.
+pub const SHORTCUTS: [(&str, &str); 17] = [
+    ("Ctrl+O / Ctrl+S", "open / save"),
+    ("Ctrl+Shift+S", "save as"),
+    ("Ctrl+N", "new document"),
+    ("Ctrl+Z / Ctrl+Shift+Z", "undo / redo (Ctrl+Y redoes too)"),
+    ("Delete", "delete the selected point"),
+    ("r", "preset scene (8 points, Catmull-Rom)"),
     ("s", "cycle the spline kind"),
     ("c", "clear the curve"),
     ("a", "arc-length markers"),
@@ -55,7 +81,42 @@ pub const SHORTCUTS: [(&str, &str); 13] = [
     ("w", "wireframe (3D view)"),
     ("n", "normals (curve and surface)"),
     ("f", "fit both views"),
+    ("h or ?", "this help"),
+    ("Enter / Escape", "confirm / cancel a dialog"),
+    ("Tab", "next field"),
+    ("Escape", "leave a text field"),
 ];
+
+/// An action that replaces or closes the document, so it asks first when the document has
+/// unsaved changes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Pending {
+    /// Close the window.
+    Close,
+    /// Open this file.
+    Open(PathBuf),
+    /// Show the Open dialog.
+    OpenDialog,
+    /// Load the preset scene.
+    Preset,
+    /// Start a new, empty document.
+    New,
+    /// Close the mesh shown (a new, empty document).
+    CloseMesh,
+}
+
+impl Pending {
+    /// What the action does, for the question.
+    fn doing(&self) -> &'static str {
+        match self {
+            Self::Close => "closing the window",
+            Self::Open(_) | Self::OpenDialog => "opening another file",
+            Self::Preset => "loading the preset scene",
+            Self::New => "starting a new document",
+            Self::CloseMesh => "closing the mesh",
+        }
+    }
+}
 
 /// The subdivision schemes the editor offers for a loaded mesh.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -130,21 +191,19 @@ impl Scheme {
     }
 }
 
-/// A loaded mesh and its subdivision levels.
+/// The mesh opened for viewing and its subdivision levels.
 pub struct MeshState {
     /// Where it came from.
     pub name: String,
+    /// The document's mesh: the loaded mesh (triangles or polygons) and its sharp and
+    /// semi-sharp edges and vertices (its OBJ's crease tags), used by Loop and Catmull-Clark.
+    pub source: Arc<ViewedMesh>,
     /// The Loop levels (level 0 is the loaded mesh), or why it cannot be Loop-subdivided.
     pub pyramid: Result<LoopPyramid, String>,
     /// The levels 1, 2, … made so far with `scheme` when it is not Loop without creases.
     pub levels: Vec<PolyMesh>,
-    /// The loaded mesh's sharp and semi-sharp edges and vertices (its OBJ's crease tags), used
-    /// by Loop and Catmull-Clark.
-    pub creases: Creases,
     /// The scheme of the levels shown.
     pub scheme: Scheme,
-    /// The loaded mesh (triangles or polygons).
-    pub base: PolyMesh,
     /// The level shown.
     pub level: usize,
 }
@@ -152,12 +211,12 @@ pub struct MeshState {
 impl MeshState {
     /// Whether the levels are the Loop pyramid's (Loop without creases).
     fn uses_pyramid(&self) -> bool {
-        self.scheme == Scheme::Loop && self.creases.is_empty()
+        self.scheme == Scheme::Loop && self.source.creases.is_empty()
     }
 
     /// The level shown of a scheme other than Loop (the loaded mesh at level 0).
     fn polygon_level(&self) -> &PolyMesh {
-        if self.level == 0 { &self.base } else { &self.levels[self.level - 1] }
+        if self.level == 0 { &self.source.base } else { &self.levels[self.level - 1] }
     }
 
     /// The number of faces of the level shown.
@@ -165,7 +224,7 @@ impl MeshState {
     pub fn faces(&self) -> usize {
         match (self.uses_pyramid(), &self.pyramid) {
             (true, Ok(p)) => p.level(self.level).num_triangles(),
-            (true, Err(_)) => self.base.num_faces(),
+            (true, Err(_)) => self.source.base.num_faces(),
             _ => self.polygon_level().num_faces(),
         }
     }
@@ -175,7 +234,7 @@ impl MeshState {
     pub fn vertices(&self) -> usize {
         match (self.uses_pyramid(), &self.pyramid) {
             (true, Ok(p)) => p.level(self.level).num_vertices(),
-            (true, Err(_)) => self.base.positions.len(),
+            (true, Err(_)) => self.source.base.positions.len(),
             _ => self.polygon_level().num_vertices(),
         }
     }
@@ -185,7 +244,7 @@ impl MeshState {
     pub fn shown(&self) -> TriMesh {
         match (self.uses_pyramid(), &self.pyramid) {
             (true, Ok(p)) => p.level(self.level).clone().into_tri_mesh(),
-            (true, Err(_)) => self.base.to_tri_mesh(),
+            (true, Err(_)) => self.source.base.to_tri_mesh(),
             _ => self.polygon_level().to_tri_mesh(),
         }
     }
@@ -246,7 +305,7 @@ pub struct EditorApp {
     pub doc: Document,
     /// The 2D view.
     pub view: View2d,
-    /// A loaded mesh (shown instead of the document's surfaces).
+    /// The document's mesh with its subdivision levels (shown instead of the surfaces).
     pub mesh: Option<MeshState>,
     /// Colour the subdivision levels.
     pub color_by_level: bool,
@@ -254,18 +313,32 @@ pub struct EditorApp {
     pub view3d: View3d,
     /// The last message (errors start with "Error").
     pub status: String,
-    /// The path field of the file bar.
-    pub path_field: String,
     /// Show the help window.
     pub show_help: bool,
     /// Show the arc-length table window.
     pub show_table: bool,
+    /// The open file dialog.
+    pub dialog: Option<FileDialog>,
+    /// What to do once the Save as dialog has saved (an action that asked first).
+    dialog_then: Option<Pending>,
+    /// The action waiting for an answer to "unsaved changes: Save / Discard / Cancel".
+    pub prompt: Option<Pending>,
+    /// The recent files (the Open dialog lists them).
+    pub recent: RecentFiles,
+    /// Whether the window may close (the user answered, or nothing was unsaved).
+    close_allowed: bool,
+    /// Whether the window was told to close.
+    close_sent: bool,
+    /// The title last given to the window.
+    title_sent: String,
     /// The document's surfaces, swept at `surfaces_revision`.
     surfaces: SweptSurfaces,
     surfaces_revision: Option<u64>,
-    /// Bumped whenever the loaded mesh or its levels change.
+    /// Bumped whenever the mesh or its levels change.
     mesh_generation: u64,
     shown: Option<Shown>,
+    /// The file (path, mesh) of the document the views were last fitted to.
+    fitted_file: Option<(Option<PathBuf>, usize)>,
 }
 
 impl Default for EditorApp {
@@ -277,82 +350,199 @@ impl Default for EditorApp {
             color_by_level: false,
             view3d: View3d::new(),
             status: "Shift+click to add points; press h for help".to_owned(),
-            path_field: String::new(),
             show_help: false,
             show_table: false,
+            dialog: None,
+            dialog_then: None,
+            prompt: None,
+            recent: RecentFiles::default(),
+            close_allowed: false,
+            close_sent: false,
+            title_sent: String::new(),
             surfaces: SweptSurfaces::default(),
             surfaces_revision: None,
             mesh_generation: 0,
             shown: None,
+            fitted_file: None,
         }
     }
 }
 
 impl EditorApp {
-    /// A new editor; opens `file` if given (an error goes to the status line).
+    /// A new editor with the recent files of the settings folder; opens `file` if given (an
+    /// error goes to the status line, and the editor starts with a new document).
     #[must_use]
     pub fn new(file: Option<&Path>) -> Self {
-        let mut app = Self::default();
+        let mut app = Self { recent: RecentFiles::load(), ..Self::default() };
         if let Some(file) = file {
-            app.path_field = file.display().to_string();
-            app.open(file);
+            app.open_file(file);
         }
         app
     }
 
-    /// Opens an SWP file (as the document) or a mesh (OBJ, glb, PLY, STL; an OBJ with a spline
-    /// header is rebuilt from its spline). On error the status line says why and nothing
+    /// The window title: `NAME — splinekit`, with a leading `*` while the document has
+    /// unsaved changes (`untitled` for a new document).
+    #[must_use]
+    pub fn title(&self) -> String {
+        let star = if self.doc.is_modified() { "*" } else { "" };
+        format!("{star}{} — splinekit", self.doc.display_name())
+    }
+
+    /// Whether a dialog or question is open (the rest of the window then waits).
+    #[must_use]
+    pub fn modal_open(&self) -> bool {
+        self.dialog.is_some() || self.prompt.is_some()
+    }
+
+    /// Whether the window may close now (no unsaved changes, or the user answered).
+    #[must_use]
+    pub fn close_allowed(&self) -> bool {
+        self.close_allowed
+    }
+
+    /// Does `action`, first asking `Save` / `Discard` / `Cancel` if the document has unsaved
     /// changes.
-    pub fn open(&mut self, path: &Path) {
-        let is_swp = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("swp"));
-        if is_swp {
-            match Document::read(path) {
-                Ok(doc) => {
-                    self.doc = doc;
-                    self.set_mesh_state(None);
-                    self.view.fit_pending = true;
-                    self.view3d.fit_on_next_mesh();
-                    self.view.selected = None;
-                    self.status = format!("Loaded {}", path.display());
-                }
-                Err(e) => self.status = format!("Error: {e}"),
-            }
-            return;
-        }
-        match load_mesh(path) {
-            Ok((mesh, creases)) => {
-                let pyramid = LoopPyramid::new(&mesh, self.loop_options()).map_err(|e| e.to_string());
-                self.status =
-                    format!("Loaded {}: {} vertices, {} faces", path.display(), mesh.positions.len(), mesh.num_faces());
-                if !creases.is_empty() {
-                    self.status.push_str(&format!(
-                        ", {} creased edges and {} creased vertices (Loop and Catmull-Clark keep them)",
-                        creases.edges.len(),
-                        creases.vertices.len()
-                    ));
-                }
-                if let Err(e) = &pyramid {
-                    self.status.push_str(&format!(" (cannot subdivide: {e})"));
-                }
-                self.set_mesh_state(Some(MeshState {
-                    name: path.display().to_string(),
-                    pyramid,
-                    levels: Vec::new(),
-                    creases,
-                    scheme: Scheme::Loop,
-                    base: mesh,
-                    level: 0,
-                }));
-                self.view3d.fit_on_next_mesh();
-            }
-            Err(e) => self.status = format!("Error: {e}"),
+    pub fn request(&mut self, action: Pending) {
+        if self.doc.is_modified() {
+            self.prompt = Some(action);
+        } else {
+            self.perform(action);
         }
     }
 
-    /// Replaces the loaded mesh (`None`: show the document's surfaces again).
-    fn set_mesh_state(&mut self, mesh: Option<MeshState>) {
-        self.mesh = mesh;
-        self.mesh_generation += 1;
+    /// Does `action` without asking.
+    fn perform(&mut self, action: Pending) {
+        match action {
+            Pending::Close => self.close_allowed = true,
+            Pending::Open(path) => {
+                self.open_file(&path);
+            }
+            Pending::OpenDialog => self.open_dialog(Purpose::Open),
+            Pending::Preset => self.preset_now(),
+            Pending::New => {
+                self.doc.replace_with(Document::new());
+                self.status = "New document".to_owned();
+            }
+            Pending::CloseMesh => {
+                self.doc.replace_with(Document::new());
+                self.status = "Closed the mesh: a new document".to_owned();
+            }
+        }
+    }
+
+    /// Opens an SWP file as the document, or a mesh (OBJ, glb, PLY, STL; an OBJ with a spline
+    /// header is rebuilt from its spline) as a document for viewing, without asking about
+    /// unsaved changes (see [`request`](Self::request)); one undo step. Returns whether it
+    /// opened; on error the status line says why and nothing changes.
+    pub fn open_file(&mut self, path: &Path) -> bool {
+        if let Some(why) = Purpose::Open.refuse_extension(path) {
+            self.status = format!("Error: {why}");
+            return false;
+        }
+        if DocKind::of_path(path) == Some(DocKind::Swp) {
+            match Document::read(path) {
+                Ok(doc) => {
+                    self.doc.replace_with(doc);
+                    self.sync_mesh();
+                    self.status = format!("Loaded {}", path.display());
+                }
+                Err(e) => {
+                    self.status = format!("Error: {e}");
+                    return false;
+                }
+            }
+        } else {
+            match load_mesh(path) {
+                Ok((mesh, creases, kind)) => {
+                    let (vertices, faces) = (mesh.positions.len(), mesh.num_faces());
+                    let (crease_edges, crease_vertices) = (creases.edges.len(), creases.vertices.len());
+                    let viewed = ViewedMesh { base: mesh, creases };
+                    self.doc.replace_with(Document::from_mesh(viewed, path.to_path_buf(), kind));
+                    self.sync_mesh();
+                    self.status = format!("Loaded {}: {vertices} vertices, {faces} faces", path.display());
+                    if crease_edges + crease_vertices > 0 {
+                        self.status.push_str(&format!(
+                            ", {crease_edges} creased edges and {crease_vertices} creased vertices (Loop and Catmull-Clark keep them)"
+                        ));
+                    }
+                    if let Some(Err(e)) = self.mesh.as_ref().map(|m| &m.pyramid) {
+                        self.status.push_str(&format!(" (cannot subdivide: {e})"));
+                    }
+                }
+                Err(e) => {
+                    self.status = format!("Error: {e}");
+                    return false;
+                }
+            }
+        }
+        self.view.selected = None;
+        self.recent.add(path);
+        true
+    }
+
+    /// Saves the document: to its own file when it is an SWP document, else asks for a name
+    /// (Save as). Returns whether it was written.
+    pub fn save(&mut self) -> bool {
+        match self.doc.save_path().map(Path::to_path_buf) {
+            Some(path) => self.save_swp(&path),
+            None => {
+                self.open_dialog(Purpose::SaveAs);
+                false
+            }
+        }
+    }
+
+    /// Shows the file dialog for `purpose` (in the document's folder).
+    pub fn open_dialog(&mut self, purpose: Purpose) {
+        let dir = self
+            .doc
+            .path()
+            .and_then(Path::parent)
+            .filter(|d| !d.as_os_str().is_empty())
+            .map(Path::to_path_buf)
+            .or_else(|| std::env::current_dir().ok())
+            .unwrap_or_else(|| PathBuf::from("."));
+        let stem = self.doc.path().and_then(Path::file_stem).map(|s| s.to_string_lossy().into_owned());
+        let name = match purpose {
+            Purpose::Open => String::new(),
+            Purpose::SaveAs => format!("{}.swp", stem.as_deref().unwrap_or("untitled")),
+            Purpose::Export => format!("{}.obj", stem.as_deref().unwrap_or("surface")),
+        };
+        let mut dialog = FileDialog::new(purpose, dir, name);
+        if purpose == Purpose::Export {
+            dialog.forbidden = self.doc.path().map(Path::to_path_buf);
+        }
+        if purpose == Purpose::Open {
+            dialog.recent = self.recent.list.clone();
+        }
+        self.dialog = Some(dialog);
+    }
+
+    /// Makes [`mesh`](Self::mesh) the document's mesh with its levels (Loop, level 0), if
+    /// the document's mesh changed (a file opened, undo of an open, …), and fits the views
+    /// to a document that is another file.
+    fn sync_mesh(&mut self) {
+        let source = self.doc.mesh().cloned();
+        let key = source.as_ref().map_or(0, |m| Arc::as_ptr(m) as usize);
+        let current = self.mesh.as_ref().map_or(0, |m| Arc::as_ptr(&m.source) as usize);
+        if key != current {
+            self.mesh = source.map(|source| MeshState {
+                name: self.doc.path().map_or_else(String::new, |p| p.display().to_string()),
+                pyramid: LoopPyramid::new(&source.base, self.loop_options()).map_err(|e| e.to_string()),
+                levels: Vec::new(),
+                scheme: Scheme::Loop,
+                level: 0,
+                source,
+            });
+            self.mesh_generation += 1;
+        }
+        let file = (self.doc.path().map(Path::to_path_buf), key);
+        if self.fitted_file.as_ref() != Some(&file) {
+            self.fitted_file = Some(file);
+            self.view.fit_pending = true;
+            self.view.selected = None;
+            self.view3d.fit_on_next_mesh();
+        }
     }
 
     fn loop_options(&self) -> LoopOptions {
@@ -378,8 +568,14 @@ impl EditorApp {
             }
             scheme => {
                 if m.level >= m.levels.len() {
-                    let coarse = m.levels.last().unwrap_or(&m.base);
-                    match scheme.polygon_level(&m.base, coarse, &m.creases, m.levels.len() + 1, color_by_level) {
+                    let coarse = m.levels.last().unwrap_or(&m.source.base);
+                    match scheme.polygon_level(
+                        &m.source.base,
+                        coarse,
+                        &m.source.creases,
+                        m.levels.len() + 1,
+                        color_by_level,
+                    ) {
                         Ok(fine) => m.levels.push(fine),
                         Err(e) => {
                             self.status = format!("Error: {}: {e}", m.name);
@@ -402,7 +598,7 @@ impl EditorApp {
             m.levels.clear();
             self.mesh_generation += 1;
             self.status = format!("{} subdivision", scheme.name());
-            if !m.creases.is_empty() && !scheme.has_creases() {
+            if !m.source.creases.is_empty() && !scheme.has_creases() {
                 self.status.push_str(" (it has no creases: the mesh's crease tags are left out)");
             }
         }
@@ -412,7 +608,7 @@ impl EditorApp {
     fn recolor(&mut self) {
         let options = self.loop_options();
         let Some(m) = &mut self.mesh else { return };
-        m.pyramid = LoopPyramid::new(&m.base, options).map_err(|e| e.to_string());
+        m.pyramid = LoopPyramid::new(&m.source.base, options).map_err(|e| e.to_string());
         let pyramid = m.uses_pyramid();
         if let Ok(p) = &mut m.pyramid
             && pyramid
@@ -426,8 +622,8 @@ impl EditorApp {
         let mut levels: Vec<PolyMesh> = Vec::with_capacity(m.levels.len());
         if !pyramid {
             for depth in 1..=m.levels.len() {
-                let coarse = levels.last().unwrap_or(&m.base);
-                match m.scheme.polygon_level(&m.base, coarse, &m.creases, depth, options.color_by_level) {
+                let coarse = levels.last().unwrap_or(&m.source.base);
+                match m.scheme.polygon_level(&m.source.base, coarse, &m.source.creases, depth, options.color_by_level) {
                     Ok(fine) => levels.push(fine),
                     Err(_) => break,
                 }
@@ -450,25 +646,43 @@ impl EditorApp {
         }
     }
 
-    /// Saves the document as SWP to `path` (through a temporary file).
-    pub fn save_swp(&mut self, path: &Path) {
-        let text = self.doc.to_swp_string();
+    /// Saves the document as SWP to `path` (through a temporary file, so a failed write
+    /// leaves the file as it was), which becomes the document's file. The document is first
+    /// checked with the reader's rules: a curve the reader would refuse blocks the save with
+    /// a message naming it, and nothing is written. Returns whether it was written.
+    pub fn save_swp(&mut self, path: &Path) -> bool {
+        let text = match writable_swp(&self.doc.swp) {
+            Ok(text) => text,
+            Err(why) => {
+                self.status = format!("Error: not saved: {why}");
+                return false;
+            }
+        };
         let result = splinekit_io::atomic::write_file(path, |w| -> std::io::Result<()> {
             use std::io::Write;
             w.write_all(text.as_bytes())
         });
         match result {
             Ok(()) => {
-                self.doc.path = Some(path.to_path_buf());
+                self.doc.mark_saved(path);
+                self.recent.add(path);
                 self.status = format!("Saved {}", path.display());
+                true
             }
-            Err(e) => self.status = format!("Error: cannot write {}: {e}", path.display()),
+            Err(e) => {
+                self.status = format!("Error: cannot write {}: {e}", path.display());
+                false
+            }
         }
     }
 
-    /// Exports the shown surface (the loaded mesh's level, or the document's first surface)
-    /// in the format of `path`'s extension (obj, glb, ply, stl).
+    /// Exports the shown surface (the mesh's level, or the document's surfaces) in the format
+    /// of `path`'s extension (obj, glb, ply, stl). Never writes the document's own file.
     pub fn export(&mut self, path: &Path) {
+        if self.doc.path().is_some_and(|own| files::same_file(own, path)) {
+            self.status = format!("Error: {} is the open document's file; export to another name", path.display());
+            return;
+        }
         let Some(format) = MeshFormat::from_path(path) else {
             self.status = format!("Error: {}: unknown extension (expected .obj, .glb, .ply or .stl)", path.display());
             return;
@@ -541,66 +755,98 @@ impl EditorApp {
         self.surfaces_revision = Some(self.doc.revision());
     }
 
+    /// Applies every key press of the frame, in order (several presses of one key in one
+    /// slow frame act several times). Letter keys act when no text field has focus; nothing
+    /// acts while a dialog or question is open (they read their own keys).
     fn keyboard(&mut self, ctx: &egui::Context) {
-        if ctx.egui_wants_keyboard_input() {
+        if self.modal_open() {
             return;
         }
-        let pressed = |key: Key| ctx.input_mut(|i| i.consume_key(Modifiers::NONE, key));
-        if ctx.input_mut(|i| i.consume_key(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z))
-            || ctx.input_mut(|i| i.consume_key(Modifiers::COMMAND, Key::Y))
-        {
-            self.redo();
-        }
-        if ctx.input_mut(|i| i.consume_key(Modifiers::COMMAND, Key::Z)) {
-            self.undo();
-        }
-        if pressed(Key::R) {
-            self.preset();
-        }
-        if pressed(Key::S) {
-            self.doc.cycle_kind();
-        }
-        if pressed(Key::C) {
-            self.doc.clear();
-            self.view.selected = None;
-        }
-        if pressed(Key::A) {
-            self.view.show.markers ^= true;
-        }
-        if pressed(Key::L) {
-            self.view.show.polygon ^= true;
-        }
-        if pressed(Key::W) {
-            self.view3d.settings.wireframe ^= true;
-        }
-        if pressed(Key::N) {
-            let on = !self.view3d.settings.normals;
-            self.view3d.settings.normals = on;
-            self.view.show.normals = on;
-        }
-        if pressed(Key::F) {
-            self.view.fit_pending = true;
-            self.view3d.fit();
-        }
-        if pressed(Key::H) || ctx.input(|i| i.events.iter().any(|e| matches!(e, egui::Event::Text(t) if t == "?"))) {
-            self.show_help ^= true;
-        }
-        if (pressed(Key::Delete) || pressed(Key::Backspace))
-            && let Some(i) = self.view.selected.take()
-        {
-            self.doc.delete_point(i);
+        let typing = ctx.egui_wants_keyboard_input();
+        let events = ctx.input(|i| i.events.clone());
+        for event in events {
+            match event {
+                egui::Event::Key { key, pressed: true, repeat, modifiers, .. } => {
+                    self.key(key, modifiers, repeat, typing);
+                }
+                egui::Event::Text(t) if !typing && t == "?" => self.show_help ^= true,
+                _ => {}
+            }
+            if self.modal_open() {
+                // the rest of the frame's keys belong to the dialog
+                break;
+            }
         }
     }
 
-    /// Loads the preset scene (SPEC §1.4) and frames it.
+    /// One key press.
+    fn key(&mut self, key: Key, modifiers: Modifiers, repeat: bool, typing: bool) {
+        let command = modifiers.command && !modifiers.alt;
+        if command {
+            match (key, modifiers.shift) {
+                (Key::S, true) => self.open_dialog(Purpose::SaveAs),
+                (Key::S, false) => {
+                    self.save();
+                }
+                (Key::O, false) => self.request(Pending::OpenDialog),
+                (Key::N, false) => self.request(Pending::New),
+                // a text field has its own undo
+                (Key::Z, true) | (Key::Y, false) if !typing => self.redo(),
+                (Key::Z, false) if !typing => self.undo(),
+                _ => {}
+            }
+            return;
+        }
+        if typing || modifiers.any() {
+            return;
+        }
+        if matches!(key, Key::Delete | Key::Backspace) {
+            if let Some(i) = self.view.selected.take() {
+                self.doc.delete_point(i);
+            }
+            return;
+        }
+        if repeat {
+            return;
+        }
+        match key {
+            Key::R => self.request(Pending::Preset),
+            Key::S => self.doc.cycle_kind(),
+            Key::C => {
+                self.doc.clear();
+                self.view.selected = None;
+            }
+            Key::A => self.view.show.markers ^= true,
+            Key::L => self.view.show.polygon ^= true,
+            Key::W => self.view3d.settings.wireframe ^= true,
+            Key::N => {
+                let on = !self.view3d.settings.normals;
+                self.view3d.settings.normals = on;
+                self.view.show.normals = on;
+            }
+            Key::F => {
+                self.view.fit_pending = true;
+                self.view3d.fit();
+            }
+            Key::H => self.show_help ^= true,
+            _ => {}
+        }
+    }
+
+    /// Loads the preset scene, first asking about unsaved changes.
     pub fn preset(&mut self) {
+        self.request(Pending::Preset);
+    }
+
+    /// Loads the preset scene (one undo step): an open uniform Catmull-Rom spline through 8
+    /// points of a 3D curve, the arc-length lab's reference scene.
+    fn preset_now(&mut self) {
         self.doc.preset();
-        self.set_mesh_state(None);
-        self.view3d.fit_on_next_mesh();
+        self.sync_mesh();
         self.view.plane = Plane::Xy;
         self.view.fit_pending = true;
-        self.view.selected = None;
-        self.status = "Preset scene: open uniform Catmull-Rom, 8 points (SPEC §1.4)".to_owned();
+        self.view3d.fit_on_next_mesh();
+        self.status = "Preset scene: open uniform Catmull-Rom spline through 8 points".to_owned();
     }
 
     /// Undoes the last edit.
@@ -608,6 +854,7 @@ impl EditorApp {
         if !self.doc.undo() {
             self.status = "Nothing to undo".to_owned();
         }
+        self.sync_mesh();
         self.view.selected = None;
     }
 
@@ -616,23 +863,31 @@ impl EditorApp {
         if !self.doc.redo() {
             self.status = "Nothing to redo".to_owned();
         }
+        self.sync_mesh();
         self.view.selected = None;
     }
 
     fn file_bar(&mut self, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
-            ui.label("File:");
-            ui.add(egui::TextEdit::singleline(&mut self.path_field).desired_width(320.0).hint_text("path/to/file.swp"));
-            let path = PathBuf::from(self.path_field.trim());
-            let empty = self.path_field.trim().is_empty();
-            if ui.add_enabled(!empty, egui::Button::new("Open")).clicked() {
-                self.open(&path);
+            if self.modal_open() {
+                // the dialog's own buttons (Save, Cancel, …) are the only ones with their labels
+                ui.label(self.title());
+                return;
             }
-            if ui.add_enabled(!empty, egui::Button::new("Save SWP")).clicked() {
-                self.save_swp(&path);
+            if ui.button("New").on_hover_text("Ctrl+N").clicked() {
+                self.request(Pending::New);
             }
-            if ui.add_enabled(!empty, egui::Button::new("Export mesh")).clicked() {
-                self.export(&path);
+            if ui.button("Open…").on_hover_text("Ctrl+O").clicked() {
+                self.request(Pending::OpenDialog);
+            }
+            if ui.button("Save").on_hover_text("Ctrl+S").clicked() {
+                self.save();
+            }
+            if ui.button("Save as…").on_hover_text("Ctrl+Shift+S").clicked() {
+                self.open_dialog(Purpose::SaveAs);
+            }
+            if ui.button("Export mesh…").clicked() {
+                self.open_dialog(Purpose::Export);
             }
             ui.separator();
             if ui.add_enabled(self.doc.can_undo(), egui::Button::new("Undo")).clicked() {
@@ -642,7 +897,7 @@ impl EditorApp {
                 self.redo();
             }
             if ui.button("Preset").clicked() {
-                self.preset();
+                self.request(Pending::Preset);
             }
             if ui.button("Help").clicked() {
                 self.show_help ^= true;
@@ -741,8 +996,7 @@ impl EditorApp {
                 self.recolor();
             }
             if ui.button("Close mesh").clicked() {
-                self.set_mesh_state(None);
-                self.view3d.fit_on_next_mesh();
+                self.request(Pending::CloseMesh);
             }
         } else {
             self.update_surfaces();
@@ -778,15 +1032,30 @@ impl EditorApp {
 
     fn windows(&mut self, ctx: &egui::Context) {
         let mut open = self.show_help;
-        egui::Window::new("Help").open(&mut open).show(ctx, |ui| {
-            egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
-                for (key, what) in SHORTCUTS {
-                    ui.monospace(key);
-                    ui.label(what);
-                    ui.end_row();
-                }
+        // at the window's right, over the 3D view: the curve panel and the 2D view stay readable
+        egui::Window::new("Help")
+            .open(&mut open)
+            .vscroll(true)
+            .anchor(egui::Align2::RIGHT_TOP, [-12.0, 40.0])
+            .default_height((ctx.content_rect().height() - 90.0).max(200.0))
+            .show(ctx, |ui| {
+                ui.strong("Mouse");
+                egui::Grid::new("mouse").striped(true).show(ui, |ui| {
+                    for (what, does) in MOUSE {
+                        ui.monospace(what);
+                        ui.label(does);
+                        ui.end_row();
+                    }
+                });
+                ui.strong("Keys");
+                egui::Grid::new("shortcuts").striped(true).show(ui, |ui| {
+                    for (key, what) in SHORTCUTS {
+                        ui.monospace(key);
+                        ui.label(what);
+                        ui.end_row();
+                    }
+                });
             });
-        });
         self.show_help = open;
         let mut open = self.show_table;
         egui::Window::new("Arc-length table").open(&mut open).show(ctx, |ui| match self.doc.spline() {
@@ -822,17 +1091,107 @@ impl EditorApp {
         self.show_table = open;
     }
 
+    /// A window close request (the window manager's close button): allowed at once without
+    /// unsaved changes, else cancelled and the question asked.
+    fn on_close_request(&mut self, ctx: &egui::Context) {
+        if !ctx.input(|i| i.viewport().close_requested()) || self.close_allowed {
+            return;
+        }
+        if self.doc.is_modified() {
+            ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.dialog = None;
+            self.prompt = Some(Pending::Close);
+        } else {
+            self.close_allowed = true;
+        }
+    }
+
+    /// The question "unsaved changes: Save / Discard / Cancel" before `self.prompt`.
+    fn unsaved_prompt(&mut self, ctx: &egui::Context) {
+        let Some(pending) = self.prompt.clone() else { return };
+        let mut choice = None;
+        let name = self.doc.display_name();
+        egui::Modal::new(egui::Id::unique("unsaved changes")).show(ctx, |ui| {
+            ui.heading("Unsaved changes");
+            ui.label(format!("{name} has changes that are not saved. Save them before {}?", pending.doing()));
+            ui.horizontal(|ui| {
+                if ui.button("Save").clicked() {
+                    choice = Some("save");
+                }
+                if ui.button("Discard").clicked() {
+                    choice = Some("discard");
+                }
+                if ui.button("Cancel").clicked() {
+                    choice = Some("cancel");
+                }
+            });
+        });
+        if choice.is_none() && ctx.input_mut(|i| i.consume_key(Modifiers::NONE, Key::Escape)) {
+            choice = Some("cancel");
+        }
+        let Some(choice) = choice else { return };
+        self.prompt = None;
+        match choice {
+            "save" => match self.doc.save_path().map(Path::to_path_buf) {
+                Some(path) => {
+                    if self.save_swp(&path) {
+                        self.perform(pending);
+                    }
+                }
+                None => {
+                    self.open_dialog(Purpose::SaveAs);
+                    self.dialog_then = Some(pending);
+                }
+            },
+            "discard" => self.perform(pending),
+            _ => self.status = "Cancelled".to_owned(),
+        }
+    }
+
+    /// The file dialog, and what its choice does.
+    fn file_dialog(&mut self, ctx: &egui::Context) {
+        let Some(dialog) = &mut self.dialog else { return };
+        let purpose = dialog.purpose;
+        match dialog.show(ctx) {
+            Outcome::Open => {}
+            Outcome::Cancelled => {
+                self.dialog = None;
+                self.dialog_then = None;
+            }
+            Outcome::Chosen(path) => {
+                self.dialog = None;
+                let then = self.dialog_then.take();
+                match purpose {
+                    Purpose::Open => {
+                        self.open_file(&path);
+                    }
+                    Purpose::SaveAs => {
+                        if self.save_swp(&path)
+                            && let Some(then) = then
+                        {
+                            self.perform(then);
+                        }
+                    }
+                    Purpose::Export => self.export(&path),
+                }
+            }
+        }
+    }
+
     /// The whole user interface (one frame); the 3D view renders with `frame`'s wgpu
     /// renderer.
     pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame) {
         let ctx = ui.ctx().clone();
+        self.on_close_request(&ctx);
         self.keyboard(&ctx);
-        // a file dropped on the window opens like one typed in the path field
+        // a file dropped on the window opens (asking first about unsaved changes)
         let dropped = ctx.input(|i| i.raw.dropped_files.first().map(|f| f.path().to_path_buf()));
-        if let Some(path) = dropped {
-            self.path_field = path.display().to_string();
-            self.open(&path);
+        if let Some(path) = dropped
+            && !self.modal_open()
+        {
+            self.request(Pending::Open(path));
         }
+        self.sync_mesh();
         egui::Panel::top("file bar").show(ui, |ui| self.file_bar(ui));
         // one line, so the views keep their size whatever it says
         egui::Panel::bottom("status").show(ui, |ui| {
@@ -859,7 +1218,40 @@ impl EditorApp {
             self.view.ui(ui, &mut self.doc);
         });
         self.windows(&ctx);
+        self.unsaved_prompt(&ctx);
+        self.file_dialog(&ctx);
+        if self.close_allowed && !self.close_sent && ctx.input(|i| !i.viewport().close_requested()) {
+            // the user answered the question: close now
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            self.close_sent = true;
+        }
+        let title = self.title();
+        if title != self.title_sent {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title_sent = title;
+        }
     }
+}
+
+/// The SWP text of `swp`, if the reader reads it back to the same document; else why not
+/// (the first curve or surface that breaks a rule, in words).
+fn writable_swp(swp: &SwpDocument) -> Result<String, String> {
+    swp.validate().map_err(|e| e.to_string())?;
+    let text = swp.to_swp_string();
+    let back = SwpDocument::parse(&text, "the saved text").map_err(|e| e.to_string())?;
+    if without_positions(&back) != without_positions(swp) {
+        return Err("the document would not read back the same".to_owned());
+    }
+    Ok(text)
+}
+
+/// `swp` with every source position set to line 1, column 1 (for comparing documents).
+fn without_positions(swp: &SwpDocument) -> SwpDocument {
+    let mut d = swp.clone();
+    let p = splinekit_io::SourcePos::new(1, 1);
+    d.curves.iter_mut().for_each(|c| c.pos = p);
+    d.surfaces.iter_mut().for_each(|s| s.pos = p);
+    d
 }
 
 impl eframe::App for EditorApp {
@@ -909,15 +1301,15 @@ fn append(a: &mut TriMesh, b: &TriMesh) {
     a.triangles.extend(b.triangles.iter().map(|t| t.map(|i| i + offset)));
 }
 
-/// Reads a mesh file and its creases (an OBJ's crease tags); an OBJ with a spline header is
-/// rebuilt from its spline.
-fn load_mesh(path: &Path) -> Result<(PolyMesh, Creases), String> {
+/// Reads a mesh file and its creases (an OBJ's crease tags), and whether it is a plain mesh
+/// or an annotated OBJ (an OBJ with a spline header, rebuilt from its spline).
+fn load_mesh(path: &Path) -> Result<(PolyMesh, Creases, DocKind), String> {
     let is_obj = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"));
     if is_obj && let Ok(Some(header)) = SplineHeader::read(path) {
         let mesh = header.rebuild(&RebuildOptions::DEFAULT).map_err(|e| format!("{}: {e}", path.display()))?;
-        return Ok((PolyMesh::from(&mesh), Creases::default()));
+        return Ok((PolyMesh::from(&mesh), Creases::default(), DocKind::AnnotatedObj));
     }
-    splinekit_io::load_mesh(path).map(|m| (m.mesh, m.creases)).map_err(|e| e.to_string())
+    splinekit_io::load_mesh(path).map(|m| (m.mesh, m.creases, DocKind::Mesh)).map_err(|e| e.to_string())
 }
 
 /// Opens the editor window (blocks until it is closed).
@@ -932,4 +1324,140 @@ pub fn run(file: Option<PathBuf>) -> anyhow::Result<()> {
     };
     eframe::run_native("splinekit", options, Box::new(move |_cc| Ok(Box::new(EditorApp::new(file.as_deref())))))
         .map_err(|e| anyhow::anyhow!("cannot open the editor window: {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// One edit a person can make in the editor.
+    #[derive(Clone, Debug)]
+    enum Edit {
+        Add(f64, f64),
+        Insert { edge: usize, t: f64 },
+        Move { index: usize, x: f64, y: f64 },
+        Delete(usize),
+        Kind(usize),
+        Closed(bool),
+        AddCurve,
+        Select(usize),
+        Clear,
+        Undo,
+        Redo,
+    }
+
+    fn edit() -> impl Strategy<Value = Edit> {
+        let coord = -10.0..10.0f64;
+        prop_oneof![
+            6 => (coord.clone(), coord.clone()).prop_map(|(x, y)| Edit::Add(x, y)),
+            2 => (0..12usize, 0.0..1.0f64).prop_map(|(edge, t)| Edit::Insert { edge, t }),
+            2 => (0..12usize, coord.clone(), coord).prop_map(|(index, x, y)| Edit::Move { index, x, y }),
+            1 => (0..12usize).prop_map(Edit::Delete),
+            2 => (0..doc::KINDS.len()).prop_map(Edit::Kind),
+            1 => any::<bool>().prop_map(Edit::Closed),
+            1 => Just(Edit::AddCurve),
+            1 => (0..4usize).prop_map(Edit::Select),
+            1 => Just(Edit::Clear),
+            1 => Just(Edit::Undo),
+            1 => Just(Edit::Redo),
+        ]
+    }
+
+    fn apply(doc: &mut Document, e: &Edit) {
+        match *e {
+            Edit::Add(x, y) => doc.add_point(DVec3::new(x, y, 0.0)),
+            Edit::Insert { edge, t } => {
+                let n = doc.points().len();
+                if n >= 2 {
+                    let (a, b) = (doc.points()[edge % n], doc.points()[(edge % n + 1) % n]);
+                    doc.insert_on_polygon(edge % n, t, a.lerp(b, t));
+                }
+            }
+            Edit::Move { index, x, y } => doc.move_point(index, DVec3::new(x, y, 0.0)),
+            Edit::Delete(i) => doc.delete_point(i),
+            Edit::Kind(k) => doc.set_kind(doc::KINDS[k].0),
+            Edit::Closed(c) => doc.set_closed(c),
+            Edit::AddCurve => doc.add_curve(),
+            Edit::Select(i) => doc.select_curve(i),
+            Edit::Clear => doc.clear(),
+            Edit::Undo => {
+                doc.undo();
+            }
+            Edit::Redo => {
+                doc.redo();
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+        /// Any sequence of edits, saved: either the save is refused and nothing is written,
+        /// or the file re-opens to the same document (#36).
+        #[test]
+        fn a_saved_file_reopens_to_the_same_document(edits in proptest::collection::vec(edit(), 0..30)) {
+            let dir = std::env::temp_dir().join(format!("splinekit-editor-prop-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            let path = dir.join("doc.swp");
+            let _ = std::fs::remove_file(&path);
+            let mut app = EditorApp::default();
+            for e in &edits {
+                apply(&mut app.doc, e);
+            }
+            let valid = app.doc.swp.validate().is_ok();
+            let saved = app.save_swp(&path);
+            prop_assert_eq!(saved, valid, "{}", app.status);
+            if saved {
+                let back = Document::read(&path).unwrap();
+                prop_assert_eq!(without_positions(&back.swp), without_positions(&app.doc.swp));
+                prop_assert!(!app.doc.is_modified());
+            } else {
+                prop_assert!(!path.exists());
+                prop_assert!(app.status.starts_with("Error: not saved: curve"), "{}", app.status);
+            }
+        }
+    }
+
+    /// Inserting on a Bézier spline's polygon splits the segment: the curve keeps its shape.
+    #[test]
+    fn inserting_on_a_bezier_polygon_keeps_the_shape() {
+        use splinekit::ParamCurve as _;
+        for closed in [false, true] {
+            let mut doc = Document::new();
+            doc.set_kind(splinekit_io::SwpCurveKind::Bezier);
+            let n: u32 = if closed { 6 } else { 7 };
+            for k in 0..n {
+                let a = f64::from(k) * 0.9;
+                doc.add_point(DVec3::new(a.cos() * (1.0 + a), a.sin(), 0.0));
+            }
+            doc.set_closed(closed);
+            let before = doc.spline().unwrap();
+            // the middle edge of the second segment, a third of the way along
+            let at = doc.insert_on_polygon(4, 1.0 / 3.0, DVec3::ZERO);
+            assert_eq!(doc.points().len(), n as usize + 3);
+            let after = doc.spline().unwrap();
+            assert_eq!(after.num_segments(), before.num_segments() + 1);
+            // the new on-curve point is the old curve at u = 1 + (1 + 1/3)/3
+            let u = 1.0 + (1.0 + 1.0 / 3.0) / 3.0;
+            assert!((doc.points()[at] - before.eval(u)).length() < 1e-12, "closed {closed}");
+            // the split segment's halves are the old segment over [0, u] and [u, 1]; the
+            // other segments are as before
+            let split = (1.0 + 1.0 / 3.0) / 3.0;
+            let old_param = |v: f64| match v {
+                v if v <= 1.0 => v,
+                v if v <= 2.0 => 1.0 + (v - 1.0) * split,
+                v if v <= 3.0 => 1.0 + split + (v - 2.0) * (1.0 - split),
+                v => v - 1.0,
+            };
+            let m = after.num_segments();
+            for j in 0..=50 * m {
+                let v = j as f64 / 50.0;
+                let d = (after.eval(v) - before.eval(old_param(v))).length();
+                assert!(d < 1e-12, "closed {closed}: v = {v}: {d}");
+            }
+        }
+    }
 }

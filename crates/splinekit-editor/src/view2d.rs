@@ -108,6 +108,9 @@ struct Drag {
     index: usize,
     start_model: DVec2,
     start_pointer: Pos2,
+    /// Whether the point has moved (the undo step is recorded at the first move, so a click
+    /// records none).
+    moved: bool,
 }
 
 /// The state of the 2D view.
@@ -126,7 +129,9 @@ pub struct View2d {
     /// Fit the view to the curve at the next frame.
     pub fit_pending: bool,
     drag: Option<Drag>,
-    /// The screen rectangle of the last frame.
+    /// Whether a point drag ended in this frame (the background then neither pans nor
+    /// takes the release as a click).
+    dragged_this_frame: bool,
     /// Where the view was last drawn (screen points).
     pub rect: Rect,
 }
@@ -141,6 +146,7 @@ impl Default for View2d {
             selected: None,
             fit_pending: true,
             drag: None,
+            dragged_this_frame: false,
             rect: Rect::from_min_size(Pos2::ZERO, Vec2::splat(1.0)),
         }
     }
@@ -213,34 +219,14 @@ impl View2d {
             painter.add(Shape::dashed_line(&line, Stroke::new(1.0, Color32::from_gray(140)), 6.0, 4.0));
         }
 
-        // control points: widgets on top of the background, so they win the pointer
+        // control points: widgets on top of the background (labelled P0, P1, … for
+        // accessibility), clicked to select, right-clicked for their menu
         let id = ui.scope_id().with("control points").with(doc.active);
         let mut delete = None;
         for (i, &pos) in points.iter().enumerate() {
             let r = Rect::from_center_size(pos, Vec2::splat(2.0 * PICK_RADIUS));
-            let response = ui.interact(r, id.with(i), Sense::click_and_drag());
+            let response = ui.interact(r, id.with(i), Sense::click());
             response.widget_info(|| WidgetInfo::labeled(egui::Role::Button, true, format!("P{i}")));
-            if response.drag_started()
-                && let Some(pointer) = response.interact_pointer_pos()
-            {
-                doc.begin_move();
-                // from where the button went down, not where the drag was recognised
-                let origin = ui.input(|inp| inp.pointer.press_origin()).unwrap_or(pointer);
-                self.drag = Some(Drag { index: i, start_model: plane.project(doc.points()[i]), start_pointer: origin });
-                self.selected = Some(i);
-            }
-            if response.dragged()
-                && let (Some(drag), Some(pointer)) = (self.drag, response.interact_pointer_pos())
-                && drag.index == i
-            {
-                let d = pointer - drag.start_pointer;
-                let q = drag.start_model + DVec2::new(f64::from(d.x), -f64::from(d.y)) / self.scale;
-                let p = plane.replace(doc.points()[i], q);
-                doc.set_point(i, p);
-            }
-            if response.drag_stopped() {
-                self.drag = None;
-            }
             if response.clicked() {
                 self.selected = Some(i);
             }
@@ -250,25 +236,29 @@ impl View2d {
                     ui.close();
                 }
             });
+        }
+        // drags of control points, from the frame's pointer events in order: a point is picked
+        // where the button went down, so a drag that leaves the point within one frame still
+        // moves it, and a press, moves and release in one slow frame all count
+        let dragging_before = self.drag.is_some();
+        self.drag_points(ui, doc, plane, &points, rect);
+        let points: Vec<Pos2> = doc.points().iter().map(|&p| self.to_screen(plane.project(p))).collect();
+        for (i, &pos) in points.iter().enumerate() {
             let selected = self.selected == Some(i);
             let fill = if selected { Color32::from_rgb(255, 200, 0) } else { Color32::WHITE };
             painter.circle(pos, 5.0, fill, Stroke::new(1.5, Color32::BLACK));
-            painter.text(
-                pos + Vec2::new(7.0, -7.0),
-                egui::Align2::LEFT_BOTTOM,
-                format!("P{i}"),
-                egui::FontId::proportional(11.0),
-                Color32::from_gray(60),
-            );
         }
+        self.draw_labels(&painter, &points);
         if let Some(i) = delete {
             doc.delete_point(i);
             self.selected = None;
         }
+        let point_drag = dragging_before || self.drag.is_some() || self.dragged_this_frame;
 
         // the background: shift-click adds, a click on a polygon edge inserts, drag pans,
         // scroll zooms about the pointer
         if background.clicked()
+            && !point_drag
             && let Some(pointer) = background.interact_pointer_pos()
         {
             let shift = ui.input(|i| i.modifiers.shift);
@@ -282,13 +272,12 @@ impl View2d {
                 // the third coordinate: interpolated along the edge
                 let t = closest_param(points[edge], points[(edge + 1) % points.len()], pointer);
                 let p = plane.replace(a.lerp(b, t), self.to_model(pointer));
-                doc.insert_point(edge + 1, p);
-                self.selected = Some(edge + 1);
+                self.selected = Some(doc.insert_on_polygon(edge, t, p));
             } else {
                 self.selected = None;
             }
         }
-        if background.dragged() {
+        if background.dragged() && !point_drag {
             let d = background.drag_delta();
             self.center -= DVec2::new(f64::from(d.x), -f64::from(d.y)) / self.scale;
         }
@@ -304,6 +293,118 @@ impl View2d {
             }
         }
         background
+    }
+
+    /// Whether a control point is being dragged.
+    #[must_use]
+    pub fn is_dragging(&self) -> bool {
+        self.drag.is_some()
+    }
+
+    /// Moves control points by the frame's pointer events: a primary press within
+    /// [`PICK_RADIUS`] of a point (the nearest; none under a dialog or another window) picks
+    /// it, every pointer move puts it under the pointer by the offset since the press, and
+    /// the release ends the drag. One undo step per drag that moved.
+    fn drag_points(&mut self, ui: &egui::Ui, doc: &mut Document, plane: Plane, points: &[Pos2], rect: Rect) {
+        self.dragged_this_frame = false;
+        let layer = ui.layer_id();
+        let events = ui.input(|i| i.events.clone());
+        for event in events {
+            match event {
+                egui::Event::PointerButton { pos, button: egui::PointerButton::Primary, pressed: true, modifiers }
+                    if self.drag.is_none() && rect.contains(pos) && !modifiers.shift =>
+                {
+                    // only where this view is on top (not under a window or a dialog)
+                    if ui.ctx().layer_id_at(pos).is_some_and(|l| l != layer) {
+                        continue;
+                    }
+                    let nearest = points
+                        .iter()
+                        .enumerate()
+                        .map(|(i, p)| (i, p.distance(pos)))
+                        .filter(|&(_, d)| d <= PICK_RADIUS)
+                        .min_by(|a, b| a.1.total_cmp(&b.1));
+                    if let Some((i, _)) = nearest {
+                        let start_model = plane.project(doc.points()[i]);
+                        self.drag = Some(Drag { index: i, start_model, start_pointer: pos, moved: false });
+                        self.selected = Some(i);
+                    }
+                }
+                egui::Event::PointerMoved(pos) => self.drag_to(doc, plane, pos),
+                egui::Event::PointerButton { pos, button: egui::PointerButton::Primary, pressed: false, .. }
+                    if self.drag.is_some() =>
+                {
+                    self.drag_to(doc, plane, pos);
+                    self.drag = None;
+                    self.dragged_this_frame = true;
+                }
+                egui::Event::PointerGone => self.drag = None,
+                _ => {}
+            }
+        }
+        if self.drag.is_some() {
+            self.dragged_this_frame = true;
+        }
+    }
+
+    /// Puts the dragged point under `pointer` (by the offset since the press).
+    fn drag_to(&mut self, doc: &mut Document, plane: Plane, pointer: Pos2) {
+        let Some(drag) = &mut self.drag else { return };
+        let Some(&current) = doc.points().get(drag.index) else {
+            self.drag = None;
+            return;
+        };
+        if pointer == drag.start_pointer && !drag.moved {
+            return;
+        }
+        if !drag.moved {
+            doc.begin_move();
+            drag.moved = true;
+        }
+        let d = pointer - drag.start_pointer;
+        let q = drag.start_model + DVec2::new(f64::from(d.x), -f64::from(d.y)) / self.scale;
+        doc.set_point(drag.index, plane.replace(current, q));
+    }
+
+    /// The labels `P0`, `P1`, … beside the points; points drawn on top of each other share
+    /// one label (`P0,P7`), and labels that would still overlap are moved down until free.
+    fn draw_labels(&self, painter: &egui::Painter, points: &[Pos2]) {
+        let font = egui::FontId::proportional(11.0);
+        // groups of points within 2 screen points of each other
+        let mut groups: Vec<(Pos2, Vec<usize>)> = Vec::new();
+        for (i, &p) in points.iter().enumerate() {
+            match groups.iter_mut().find(|(q, _)| q.distance(p) < 2.0) {
+                Some((_, members)) => members.push(i),
+                None => groups.push((p, vec![i])),
+            }
+        }
+        // the dots are obstacles too; each label tries the four corners beside its point,
+        // then moves down until it is free
+        let mut placed: Vec<Rect> =
+            points.iter().take(2000).map(|&p| Rect::from_center_size(p, Vec2::splat(10.0))).collect();
+        for (p, members) in groups.iter().take(2000) {
+            let text = members.iter().map(|i| format!("P{i}")).collect::<Vec<_>>().join(",");
+            let galley = painter.layout_no_wrap(text, font.clone(), Color32::from_gray(60));
+            let size = galley.size();
+            let corners = [
+                *p + Vec2::new(7.0, -7.0 - size.y),
+                *p + Vec2::new(7.0, 7.0),
+                *p + Vec2::new(-7.0 - size.x, -7.0 - size.y),
+                *p + Vec2::new(-7.0 - size.x, 7.0),
+            ];
+            let free = |r: Rect| !placed.iter().any(|q| q.intersects(r));
+            let mut min = corners.into_iter().find(|&c| free(Rect::from_min_size(c, size))).unwrap_or(corners[0]);
+            let mut rect = Rect::from_min_size(min, size);
+            for _ in 0..12 {
+                if free(rect) {
+                    break;
+                }
+                min.y += size.y;
+                rect = Rect::from_min_size(min, size);
+            }
+            placed.push(rect);
+            painter.galley(min, galley, Color32::from_gray(60));
+        }
     }
 
     /// The polygon edge (index of its first point) within [`PICK_RADIUS`] of `pointer`, the

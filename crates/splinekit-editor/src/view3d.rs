@@ -290,6 +290,10 @@ pub struct HandleDrag {
 struct ActiveDrag {
     index: usize,
     start: DVec3,
+    /// Where the button went down.
+    origin: egui::Pos2,
+    /// Whether the handle has moved (the first move starts the undo step).
+    moved: bool,
 }
 
 /// Radius of a handle's dot, and of the area that grabs it, in points.
@@ -326,6 +330,8 @@ pub struct View3d {
     gpu: Option<Gpu>,
     last_render: Option<RenderKey>,
     drag: Option<ActiveDrag>,
+    /// Whether a handle drag ended this frame (the camera then stays).
+    dragged_this_frame: bool,
     /// Centre and radius of the last handles and polyline, if any.
     overlay_bounds: Option<(DVec3, f64)>,
 }
@@ -362,6 +368,7 @@ impl View3d {
             gpu: None,
             last_render: None,
             drag: None,
+            dragged_this_frame: false,
             overlay_bounds: None,
         }
     }
@@ -601,9 +608,12 @@ impl View3d {
         (response, moved)
     }
 
-    /// The handle widgets over `rect` (on top of the view's own response, so they get the
-    /// pointer first): the drag under way, and each visible handle's dot and whether it is
-    /// the one dragged.
+    /// The handle widgets over `rect` (labelled for accessibility), and the handle drags
+    /// from the frame's pointer events in order: a primary press within the grab radius of
+    /// a handle picks it (where the button went down, so a drag that leaves the handle within
+    /// one frame still moves it), each move puts it under the pointer, the release ends the
+    /// drag. Returns the drag's position this frame, and each visible handle's dot and
+    /// whether it is the one dragged.
     fn handles(
         &mut self,
         ui: &egui::Ui,
@@ -611,50 +621,91 @@ impl View3d {
         handles: &[DVec3],
     ) -> (Option<HandleDrag>, Vec<(egui::Pos2, bool)>) {
         let mut moved = None;
-        let mut dots = Vec::with_capacity(handles.len());
         if self.drag.is_some_and(|d| d.index >= handles.len()) {
             self.drag = None;
         }
+        let mut centres = Vec::with_capacity(handles.len());
         for (index, &p) in handles.iter().enumerate() {
             let Some(centre) = self.camera.project(p, rect).filter(|c| rect.contains(*c)) else { continue };
             let id = ui.scope_id().with(("view3d handle", index));
             let grab = Rect::from_center_size(centre, Vec2::splat(2.0 * HANDLE_RADIUS + 4.0));
-            let r = ui.interact(grab, id, Sense::drag());
+            let r = ui.interact(grab, id, Sense::hover());
             r.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Button, true, format!("3D P{index}")));
-            if r.drag_started_by(PointerButton::Primary) {
-                self.drag = Some(ActiveDrag { index, start: p });
-                moved = Some(HandleDrag { index, position: p, started: true });
-            }
-            if let Some(d) = self.drag.filter(|d| d.index == index)
-                && r.dragged_by(PointerButton::Primary)
-            {
-                let pointer = ui.input(|i| i.pointer.interact_pos());
-                let origin = ui.input(|i| i.pointer.press_origin());
-                if let (Some(pointer), Some(origin)) = (pointer, origin) {
-                    let position = self.camera.drag_in_view_plane(d.start, pointer - origin, rect.height());
-                    let started = moved.is_some_and(|m| m.started);
-                    moved = Some(HandleDrag { index, position, started });
+            centres.push((index, centre));
+        }
+        let layer = ui.layer_id();
+        let grab_radius = HANDLE_RADIUS + 2.0;
+        for event in ui.input(|i| i.events.clone()) {
+            match event {
+                egui::Event::PointerButton { pos, button: PointerButton::Primary, pressed: true, .. }
+                    if self.drag.is_none()
+                        && rect.contains(pos)
+                        && ui.ctx().layer_id_at(pos).is_none_or(|l| l == layer) =>
+                {
+                    let nearest = centres
+                        .iter()
+                        .map(|&(i, c)| (i, c.distance(pos)))
+                        .filter(|&(_, d)| d <= grab_radius)
+                        .min_by(|a, b| a.1.total_cmp(&b.1));
+                    if let Some((index, _)) = nearest {
+                        self.drag = Some(ActiveDrag { index, start: handles[index], origin: pos, moved: false });
+                    }
                 }
+                egui::Event::PointerMoved(pos) => {
+                    if let Some(m) = self.drag_handle_to(pos, rect) {
+                        moved = Some(HandleDrag {
+                            started: m.started || moved.is_some_and(|x: HandleDrag| x.started),
+                            ..m
+                        });
+                    }
+                }
+                egui::Event::PointerButton { pos, button: PointerButton::Primary, pressed: false, .. }
+                    if self.drag.is_some() =>
+                {
+                    if let Some(m) = self.drag_handle_to(pos, rect) {
+                        moved = Some(HandleDrag {
+                            started: m.started || moved.is_some_and(|x: HandleDrag| x.started),
+                            ..m
+                        });
+                    }
+                    self.drag = None;
+                    self.dragged_this_frame = true;
+                }
+                egui::Event::PointerGone => self.drag = None,
+                _ => {}
             }
-            if r.drag_stopped() {
-                self.drag = None;
-            }
-            let active = self.drag.is_some_and(|d| d.index == index);
-            dots.push((
-                moved
+        }
+        let dots = centres
+            .iter()
+            .map(|&(index, centre)| {
+                let dot = moved
                     .filter(|m| m.index == index)
                     .and_then(|m| self.camera.project(m.position, rect))
-                    .unwrap_or(centre),
-                active,
-            ));
-        }
+                    .unwrap_or(centre);
+                (dot, self.drag.is_some_and(|d| d.index == index))
+            })
+            .collect();
         (moved, dots)
+    }
+
+    /// Moves the dragged handle under `pointer`: its position, if it moved.
+    fn drag_handle_to(&mut self, pointer: egui::Pos2, rect: Rect) -> Option<HandleDrag> {
+        let d = self.drag.as_mut()?;
+        if pointer == d.origin && !d.moved {
+            return None;
+        }
+        let started = !d.moved;
+        d.moved = true;
+        let position = self.camera.drag_in_view_plane(d.start, pointer - d.origin, rect.height());
+        Some(HandleDrag { index: d.index, position, started })
     }
 
     fn handle_input(&mut self, ui: &egui::Ui, response: &egui::Response, rect: Rect) {
         let (_, radius) = self.data.centre_radius();
         let (min, max) = (1e-4 * radius, 1e4 * radius);
-        if response.dragged() {
+        // a drag that picked a handle moves the handle, not the camera
+        let handle_drag = self.drag.is_some() || std::mem::take(&mut self.dragged_this_frame);
+        if response.dragged() && !handle_drag {
             let delta = response.drag_delta();
             let shift = ui.input(|i| i.modifiers.shift);
             if response.dragged_by(PointerButton::Primary) && !shift {

@@ -12,10 +12,28 @@ use glam::{DVec2, DVec3};
 use splinekit_editor::EditorApp;
 use splinekit_io::{SwpCurveKind, SwpDocument};
 
+#[path = "editor_ui/files.rs"]
+mod files;
+#[path = "editor_ui/input.rs"]
+mod input;
+
 /// A test data file, relative to the package (the tests' working directory), so that the
 /// snapshots showing the path do not depend on where the repository is.
 fn data(rel: &str) -> PathBuf {
     Path::new("../splinekit-io/tests/data").join(rel)
+}
+
+/// A file dropped on the window (what winit gives eframe).
+#[derive(Debug)]
+struct Dropped(PathBuf);
+
+impl egui::DroppedFile for Dropped {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
 }
 
 fn harness(app: EditorApp) -> Harness<'static, EditorApp> {
@@ -111,7 +129,7 @@ fn shift_click_adds_and_a_click_on_the_polygon_inserts() {
         let m = app.view.to_model(p);
         assert!((app.doc.points()[i].truncate() - m).length() < 1e-9, "P{i}");
     }
-    assert!(app.doc.spline().is_ok(), "four points make a Bézier segment");
+    assert!(app.doc.spline().is_ok(), "four points make a Catmull-Rom segment");
     for (i, &click) in clicks.iter().enumerate() {
         assert!((center(&h, &format!("P{i}")) - click).length() < 0.5);
     }
@@ -183,9 +201,12 @@ fn delete_by_key_and_by_context_menu_then_undo_and_redo() {
 #[test]
 fn kinds_switch_by_key_and_by_the_kind_menu() {
     let mut h = four_points();
+    // a new document's curve is uniform Catmull-Rom: four clicks make a curve
+    assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::CatmullRom { alpha: 0.0 });
+    assert!(h.state().doc.spline().is_ok());
     h.key_press(egui::Key::S);
     h.run();
-    assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::BSpline);
+    assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::CatmullRom { alpha: 0.5 });
     h.get_by_label("Kind").click();
     h.run();
     h.get_by_label("Hermite").click();
@@ -236,9 +257,7 @@ fn every_bundled_swp_file_loads_and_shows_its_triangle_count() {
     ];
     for file in files {
         let path = data(&format!("swp/{file}"));
-        h.state_mut().path_field = path.display().to_string();
-        h.run();
-        h.get_by_label("Open").click();
+        assert!(h.state_mut().open_file(&path), "{file}");
         h.run();
         assert!(h.state().status.starts_with("Loaded"), "{file}: {}", h.state().status);
         let doc = SwpDocument::read(&path).unwrap();
@@ -260,35 +279,11 @@ fn a_bad_file_leaves_the_document_unchanged_and_says_why() {
     std::fs::create_dir_all(&dir).unwrap();
     let bad = dir.join("bad.swp");
     std::fs::write(&bad, "bez2 p 4 [0 0] [1 1] [2 2]\n").unwrap();
-    h.state_mut().path_field = bad.display().to_string();
-    h.run();
-    h.get_by_label("Open").click();
+    h.state_mut().open_file(&bad);
     h.run();
     let status = h.state().status.clone();
     assert!(status.starts_with("Error") && status.contains("bad.swp:1:"), "{status}");
     assert_eq!(h.state().doc.points().len(), 4);
-    std::fs::remove_dir_all(&dir).ok();
-}
-
-#[test]
-fn save_then_open_round_trips() {
-    let mut h = four_points();
-    let dir = std::env::temp_dir().join(format!("splinekit-editor-save-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("saved.swp");
-    h.state_mut().path_field = path.display().to_string();
-    h.run();
-    h.get_by_label("Save SWP").click();
-    h.run();
-    let saved = std::fs::read_to_string(&path).unwrap();
-    assert_eq!(SwpDocument::parse(&saved, "saved.swp").unwrap().to_swp_string(), saved);
-    let before = h.state().doc.swp.curves[0].geometry.clone();
-    h.key_press(egui::Key::C);
-    h.run();
-    assert!(h.state().doc.points().is_empty());
-    h.get_by_label("Open").click();
-    h.run();
-    assert_eq!(h.state().doc.swp.curves[0].geometry, before);
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -378,23 +373,13 @@ fn dragging_a_3d_point_in_the_3d_view_follows_the_pointer() {
 fn a_dropped_file_opens() {
     let mut h = harness(EditorApp::new(None));
     let path = data("obj/icosahedron.obj");
-    /// A file dropped on the window (what winit gives eframe).
-    #[derive(Debug)]
-    struct Dropped(PathBuf);
-    impl egui::DroppedFile for Dropped {
-        fn path(&self) -> &Path {
-            &self.0
-        }
-        fn bytes(&self) -> Result<Vec<u8>, String> {
-            std::fs::read(&self.0).map_err(|e| e.to_string())
-        }
-    }
     h.input_mut().dropped_files.push(std::sync::Arc::new(Dropped(path.clone())));
     h.run();
     assert!(h.state().status.starts_with("Loaded"), "{}", h.state().status);
     h.get_by_label("Faces: 20");
     assert_eq!(h.state().view3d.num_triangles(), 20);
-    assert_eq!(h.state().path_field, path.display().to_string());
+    assert_eq!(h.state().doc.path(), Some(path.as_path()));
+    assert_eq!(h.state().title(), "icosahedron.obj — splinekit");
 }
 
 #[test]

@@ -62,6 +62,6 @@ pub mod swp;
 pub use mesh::atomic;
 pub use mesh::{LoadedMesh, MeshFormat, MeshIoError, MeshIoErrorKind, ReadWarning, load_mesh};
 pub use swp::{
-    MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpError, SwpErrorKind, SwpGeometry, SwpSurface,
-    SwpSurfaceKind,
+    MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpCurveRole, SwpDocument, SwpError, SwpErrorKind, SwpGeometry,
+    SwpInvalid, SwpInvalidKind, SwpNumber, SwpObject, SwpSurface, SwpSurfaceKind,
 };

@@ -6,4 +6,5 @@ mod swp {
     mod extensions;
     mod files;
     mod properties;
+    mod validate;
 }

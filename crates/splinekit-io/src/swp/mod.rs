@@ -3,7 +3,8 @@
 //! SWP is the plain-text format of the MIT 6.837 / Aalto ME-C3100 "curves and surfaces"
 //! assignments: a stream of whitespace-separated tokens that describes spline curves and the
 //! surfaces swept from them. [`SwpDocument::parse`] reads it into an [`SwpDocument`], and
-//! [`SwpDocument::to_swp_string`] writes one back.
+//! [`SwpDocument::to_swp_string`] writes one back. [`SwpDocument::validate`] checks a document
+//! built in memory against the reader's rules before it is written.
 //!
 //! # Grammar
 //!
@@ -145,6 +146,7 @@
 mod error;
 mod lexer;
 mod parser;
+mod validate;
 mod writer;
 
 use std::path::Path;
@@ -152,6 +154,7 @@ use std::path::Path;
 use glam::DVec3;
 
 pub use error::{SwpError, SwpErrorKind};
+pub use validate::{SwpCurveRole, SwpInvalid, SwpInvalidKind, SwpNumber, SwpObject};
 
 /// The largest STEPS value accepted for curves and surfaces of revolution.
 ///
@@ -283,6 +286,34 @@ pub enum SwpCurveKind {
     Helix,
     /// Trefoil knot (`trefoil`, an extension).
     Trefoil,
+}
+
+impl SwpCurveKind {
+    /// Whether a curve of this kind may have `count` control points (point-tangent pairs for
+    /// [`Hermite`](Self::Hermite)), closed or open: the point-count rule of the
+    /// [module docs](self), which the reader and [`SwpDocument::validate`] both apply.
+    ///
+    /// Circles, helices and trefoils have no control points: they accept only 0.
+    ///
+    /// ```
+    /// use splinekit_io::SwpCurveKind;
+    ///
+    /// let open: Vec<u64> = (0..12).filter(|&n| SwpCurveKind::Bezier.accepts_point_count(false, n)).collect();
+    /// assert_eq!(open, [4, 7, 10]);
+    /// assert!(SwpCurveKind::BSpline.accepts_point_count(true, 3));
+    /// assert!(!SwpCurveKind::BSpline.accepts_point_count(false, 3));
+    /// ```
+    #[must_use]
+    pub fn accepts_point_count(self, closed: bool, count: u64) -> bool {
+        match (self, closed) {
+            (Self::Bezier, false) => count >= 4 && (count - 1).is_multiple_of(3),
+            (Self::Bezier, true) => count >= 3 && count.is_multiple_of(3),
+            (Self::BSpline | Self::CatmullRom { .. }, false) => count >= 4,
+            (Self::BSpline | Self::CatmullRom { .. }, true) => count >= 3,
+            (Self::Hermite, _) => count >= 2,
+            (Self::Circle | Self::Helix | Self::Trefoil, _) => count == 0,
+        }
+    }
 }
 
 /// The geometric data of an SWP curve.
@@ -453,6 +484,10 @@ impl SwpDocument {
     /// output then fails to parse. The z coordinates of 2D curves are not written; a Hermite
     /// curve writes as many pairs as its shorter list has entries. Scale and twist clauses are
     /// written after the sweep, `scale` first.
+    ///
+    /// Call [`validate`](Self::validate) first to refuse such a document before writing: when
+    /// it returns `Ok`, the text written here parses back to a document equal to this one
+    /// except for [`SourcePos`] fields (no name is replaced either).
     #[must_use]
     pub fn to_swp_string(&self) -> String {
         writer::write(self)

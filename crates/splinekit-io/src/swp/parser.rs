@@ -60,14 +60,15 @@ fn keyword(word: &str) -> Option<Keyword> {
     }
 }
 
-/// Whether `count` points (pairs for Hermite) are allowed. See the table in the module docs.
-fn count_ok(family: Family, closed: bool, count: u64) -> bool {
-    match (family, closed) {
-        (Family::Bezier, false) => count >= 4 && (count - 1).is_multiple_of(3),
-        (Family::Bezier, true) => count >= 3 && count.is_multiple_of(3),
-        (Family::BSpline | Family::CatmullRom, false) => count >= 4,
-        (Family::BSpline | Family::CatmullRom, true) => count >= 3,
-        (Family::Hermite, _) => count >= 2,
+impl Family {
+    /// The curve kind of this family; `alpha` is the Catmull-Rom parametrization.
+    fn kind(self, alpha: f64) -> SwpCurveKind {
+        match self {
+            Self::Bezier => SwpCurveKind::Bezier,
+            Self::BSpline => SwpCurveKind::BSpline,
+            Self::CatmullRom => SwpCurveKind::CatmullRom { alpha },
+            Self::Hermite => SwpCurveKind::Hermite,
+        }
     }
 }
 
@@ -256,7 +257,8 @@ impl<'a> Parser<'a> {
         };
 
         let options = self.options(family, &label)?;
-        if !count_ok(family, options.closed, count) {
+        let kind = family.kind(options.alpha);
+        if !kind.accepts_point_count(options.closed, count) {
             return Err(self.error(
                 count_token.pos,
                 SwpErrorKind::PointCount { curve: label, keyword, closed: options.closed, found: count },
@@ -292,12 +294,7 @@ impl<'a> Parser<'a> {
             }
         }
 
-        let (kind, geometry) = match family {
-            Family::Bezier => (SwpCurveKind::Bezier, SwpGeometry::Points(points)),
-            Family::BSpline => (SwpCurveKind::BSpline, SwpGeometry::Points(points)),
-            Family::CatmullRom => (SwpCurveKind::CatmullRom { alpha: options.alpha }, SwpGeometry::Points(points)),
-            Family::Hermite => (SwpCurveKind::Hermite, SwpGeometry::Hermite { points, tangents }),
-        };
+        let geometry = if pairs { SwpGeometry::Hermite { points, tangents } } else { SwpGeometry::Points(points) };
         self.register(name, name_pos, Named::Curve(index));
         self.doc.curves.push(SwpCurve {
             name: name.map(str::to_owned),
@@ -633,17 +630,21 @@ mod tests {
 
     #[test]
     fn count_rules() {
-        let open_bez: Vec<u64> = (0..12).filter(|&n| count_ok(Family::Bezier, false, n)).collect();
-        assert_eq!(open_bez, [4, 7, 10]);
-        let closed_bez: Vec<u64> = (0..12).filter(|&n| count_ok(Family::Bezier, true, n)).collect();
-        assert_eq!(closed_bez, [3, 6, 9]);
+        let accepted = |family: Family, closed: bool| -> Vec<u64> {
+            (0..12).filter(|&n| family.kind(0.5).accepts_point_count(closed, n)).collect()
+        };
+        assert_eq!(accepted(Family::Bezier, false), [4, 7, 10]);
+        assert_eq!(accepted(Family::Bezier, true), [3, 6, 9]);
         for family in [Family::BSpline, Family::CatmullRom] {
-            assert!(!count_ok(family, false, 3) && count_ok(family, false, 4));
-            assert!(!count_ok(family, true, 2) && count_ok(family, true, 3));
+            assert_eq!(accepted(family, false), (4..12).collect::<Vec<_>>());
+            assert_eq!(accepted(family, true), (3..12).collect::<Vec<_>>());
         }
-        assert!(!count_ok(Family::Hermite, false, 1) && count_ok(Family::Hermite, false, 2));
-        assert!(!count_ok(Family::Hermite, true, 1) && count_ok(Family::Hermite, true, 2));
-        assert!(count_ok(Family::BSpline, false, u64::MAX));
+        assert_eq!(accepted(Family::Hermite, false), (2..12).collect::<Vec<_>>());
+        assert_eq!(accepted(Family::Hermite, true), (2..12).collect::<Vec<_>>());
+        assert!(SwpCurveKind::BSpline.accepts_point_count(false, u64::MAX));
+        for kind in [SwpCurveKind::Circle, SwpCurveKind::Helix, SwpCurveKind::Trefoil] {
+            assert!(kind.accepts_point_count(true, 0) && !kind.accepts_point_count(true, 4));
+        }
     }
 
     #[test]

@@ -5,12 +5,13 @@ use std::fmt::Write as _;
 
 use glam::DVec3;
 
-use super::lexer::is_space;
+use super::validate::name_problem;
 use super::{SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurfaceKind};
 
-/// Whether `name` can be written as a NAME token that reads back as itself.
+/// Whether `name` can be written as a NAME token that reads back as itself (the rule that
+/// [`SwpDocument::validate`] applies too).
 fn is_writable_name(name: &str) -> bool {
-    !name.is_empty() && name != "." && !name.chars().any(|c| is_space(c) || c == '[' || c == ']' || c == '#')
+    name_problem(name).is_none()
 }
 
 /// Picks the name written for every curve and surface (`None` writes `.`).

@@ -252,6 +252,7 @@ proptest! {
 
     #[test]
     fn valid_documents_round_trip(doc in document()) {
+        prop_assert_eq!(doc.validate(), Ok(()));
         check_round_trip(&doc)?;
     }
 

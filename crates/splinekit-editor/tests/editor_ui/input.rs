@@ -1,0 +1,151 @@
+//! Hands and keys (#36): a drag that starts on a point moves it however fast the pointer
+//! moves, and every key press and typed character of a slow frame counts, in order.
+
+use egui::{Event, Key, PointerButton};
+use splinekit_editor::doc::KINDS;
+
+use super::*;
+
+fn press(pos: Pos2, pressed: bool) -> Event {
+    Event::PointerButton { pos, button: PointerButton::Primary, pressed, modifiers: Modifiers::NONE }
+}
+
+fn key(key: Key, modifiers: Modifiers) -> [Event; 2] {
+    [true, false].map(|pressed| Event::Key { key, physical_key: None, pressed, repeat: false, modifiers })
+}
+
+/// #36, item 5: press on P2, move 100 points and release, all in one frame: P2 moves by
+/// exactly that, the view does not pan, and the drag is one undo step.
+#[test]
+fn a_fast_drag_from_a_point_moves_the_point() {
+    let mut h = four_points();
+    let before = h.state().doc.points()[2];
+    let center_before = h.state().view.center;
+    let from = center(&h, "P2");
+    let delta = Vec2::new(100.0, -40.0);
+    h.event(Event::PointerMoved(from));
+    h.event(press(from, true));
+    h.event(Event::PointerMoved(from + delta));
+    h.event(press(from + delta, false));
+    h.run();
+    let scale = h.state().view.scale;
+    let after = h.state().doc.points()[2];
+    let expected = before + DVec3::new(100.0 / scale, 40.0 / scale, 0.0);
+    assert!((after - expected).length() < 1e-9, "{after} vs {expected}");
+    assert_eq!(h.state().view.center, center_before, "the view did not pan");
+    assert!(!h.state().view.is_dragging());
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run();
+    assert_eq!(h.state().doc.points()[2], before);
+
+    // press and a long move in one frame, more moves in later frames, then the release
+    let from = center(&h, "P1");
+    let before = h.state().doc.points()[1];
+    h.event(Event::PointerMoved(from));
+    h.event(press(from, true));
+    h.event(Event::PointerMoved(from + Vec2::new(60.0, 0.0)));
+    h.run();
+    for k in 1..=3 {
+        h.event(Event::PointerMoved(from + Vec2::new(60.0, 10.0 * k as f32)));
+        h.run();
+    }
+    h.event(press(from + Vec2::new(60.0, 30.0), false));
+    h.run();
+    let scale = h.state().view.scale;
+    let expected = before + DVec3::new(60.0 / scale, -30.0 / scale, 0.0);
+    assert!((h.state().doc.points()[1] - expected).length() < 1e-9);
+    assert_eq!(h.state().view.center, center_before);
+    // a click on a point selects it and records no undo step
+    let p0 = center(&h, "P0");
+    h.event(Event::PointerMoved(p0));
+    h.event(press(p0, true));
+    h.event(press(p0, false));
+    h.run();
+    assert_eq!(h.state().view.selected, Some(0));
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run();
+    assert_eq!(h.state().doc.points()[1], before, "the undo undid the drag, not a click");
+}
+
+/// The same for a 3D curve's handle in the 3D view: the camera stays, the handle follows.
+#[test]
+fn a_fast_drag_of_a_3d_handle_moves_it() {
+    let dir = tempfile_dir("fast3d");
+    let path = dir.join("path.swp");
+    std::fs::write(&path, "bsp3 path 10 5\n[0 0 0]\n[1 0 1]\n[2 1 0]\n[3 0 1]\n[4 1 1]\n").unwrap();
+    let mut h = harness(EditorApp::new(Some(&path)));
+    let before = h.state().doc.points()[2];
+    let camera = *h.state().view3d.camera();
+    let view = h.get_by_label("3D view").rect();
+    let from = center(&h, "3D P2");
+    let delta = Vec2::new(70.0, 30.0);
+    h.event(Event::PointerMoved(from));
+    h.event(press(from, true));
+    h.event(Event::PointerMoved(from + delta));
+    h.event(press(from + delta, false));
+    h.run();
+    assert_eq!(*h.state().view3d.camera(), camera, "the camera did not orbit");
+    let after = h.state().doc.points()[2];
+    let (p0, p1) = (camera.project(before, view).unwrap(), camera.project(after, view).unwrap());
+    assert!(((p1 - p0) - delta).length() < 1e-3, "moved on screen by {:?}, dragged {delta:?}", p1 - p0);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run();
+    assert_eq!(h.state().doc.points()[2], before, "one undo step");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// #36, item 6: several presses of one key in one slow frame act several times, in order.
+#[test]
+fn every_key_press_of_a_slow_frame_counts() {
+    let mut h = four_points();
+    let start = KINDS.iter().position(|(k, _)| *k == h.state().doc.curve().unwrap().kind).unwrap();
+    for _ in 0..3 {
+        for e in key(Key::S, Modifiers::NONE) {
+            h.event(e);
+        }
+    }
+    h.run();
+    assert_eq!(h.state().doc.curve().unwrap().kind, KINDS[(start + 3) % KINDS.len()].0);
+    // `a` twice in one frame: on, then off again; `l` once: off
+    for k in [Key::A, Key::A, Key::L] {
+        for e in key(k, Modifiers::NONE) {
+            h.event(e);
+        }
+    }
+    h.run();
+    assert!(!h.state().view.show.markers && !h.state().view.show.polygon);
+    // two undos in one frame undo two kind changes
+    for _ in 0..2 {
+        for e in key(Key::Z, Modifiers::COMMAND) {
+            h.event(e);
+        }
+    }
+    h.run();
+    assert_eq!(h.state().doc.curve().unwrap().kind, KINDS[(start + 1) % KINDS.len()].0);
+}
+
+/// #36, item 6: characters typed into the Save as dialog's name field just before a click on
+/// Save, in the same frame, are all kept (the file was once saved as `typed_trial2.sw`).
+#[test]
+fn characters_typed_just_before_a_click_are_kept() {
+    let dir = tempfile_dir("typed");
+    let mut h = four_points();
+    h.get_by_label("Save as…").click();
+    h.run();
+    let d = h.state_mut().dialog.as_mut().unwrap();
+    d.go_to(dir.clone());
+    d.name.clear();
+    h.run();
+    let save = center(&h, "Save");
+    for c in "typed_trial2.swp".chars() {
+        h.event(Event::Text(c.to_string()));
+    }
+    h.event(Event::PointerMoved(save));
+    h.event(press(save, true));
+    h.event(press(save, false));
+    h.run();
+    assert!(h.state().dialog.is_none(), "{:?}", h.state().dialog.as_ref().map(|d| &d.name));
+    assert!(dir.join("typed_trial2.swp").is_file(), "{}", h.state().status);
+    assert!(!dir.join("typed_trial2.sw").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
