@@ -87,6 +87,9 @@ struct FileState {
     /// Bumped whenever `saved` is replaced.
     saved_generation: u64,
     mesh: Option<Arc<ViewedMesh>>,
+    /// Different for every document made (opened, new, the preset scene): swapped by undo
+    /// and redo of a replacement, kept by edits and saves.
+    id: u64,
 }
 
 /// One undo (or redo) step.
@@ -154,7 +157,14 @@ impl Document {
     }
 
     fn with_file(swp: SwpDocument, path: Option<PathBuf>, kind: DocKind, mesh: Option<Arc<ViewedMesh>>) -> Self {
-        let file = FileState { path, kind, saved: Arc::new(swp.clone()), saved_generation: next_revision(), mesh };
+        let file = FileState {
+            path,
+            kind,
+            saved: Arc::new(swp.clone()),
+            saved_generation: next_revision(),
+            mesh,
+            id: next_revision(),
+        };
         Self {
             swp,
             active: 0,
@@ -205,6 +215,13 @@ impl Document {
     #[must_use]
     pub fn save_path(&self) -> Option<&Path> {
         if self.file.kind == DocKind::Swp { self.path() } else { None }
+    }
+
+    /// A number that differs between documents (each file opened, new document or preset
+    /// scene) and stays through edits and saves: views fit themselves again when it changes.
+    #[must_use]
+    pub fn file_id(&self) -> u64 {
+        self.file.id
     }
 
     /// The mesh opened for viewing, if the document is one.
@@ -266,6 +283,23 @@ impl Document {
     pub fn spline(&self) -> Result<AnyCurve<DVec3>, String> {
         let curve = self.curve().ok_or("no curve")?;
         curve.to_curve().map_err(|e| e.to_string())
+    }
+
+    /// What keeps the active curve from being a curve, in words for the status line (the
+    /// reader's rule for its kind, e.g. `a Bézier spline needs 4, 7, 10, … points; this one
+    /// has 5`), or `None` when it is one or has no points yet.
+    #[must_use]
+    pub fn curve_problem(&self) -> Option<String> {
+        let curve = self.curve()?;
+        if self.points().is_empty() {
+            return None;
+        }
+        let one = SwpDocument { curves: vec![curve.clone()], surfaces: Vec::new() };
+        if let Err(e) = one.validate() {
+            let text = e.kind().to_string();
+            return Some(format!("{}: {text}", curve.display_name(self.active)));
+        }
+        curve.to_curve().err().map(|e| format!("{}: {e}", curve.display_name(self.active)))
     }
 
     /// The editable points of the active curve (control points, or a Hermite curve's points);

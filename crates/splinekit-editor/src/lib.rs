@@ -87,6 +87,24 @@ pub const SHORTCUTS: [(&str, &str); 17] = [
     ("Escape", "leave a text field"),
 ];
 
+/// Which panels are shown (the View menu): hide the 2D view to give the 3D view the room, or
+/// the curve panel on a small screen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Layout {
+    /// The curve panel on the left.
+    pub curves_panel: bool,
+    /// The 2D curve view.
+    pub view2d: bool,
+    /// The surface panel with the 3D view.
+    pub view3d: bool,
+}
+
+impl Default for Layout {
+    fn default() -> Self {
+        Self { curves_panel: true, view2d: true, view3d: true }
+    }
+}
+
 /// An action that replaces or closes the document, so it asks first when the document has
 /// unsaved changes.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -315,6 +333,8 @@ pub struct EditorApp {
     pub status: String,
     /// Show the help window.
     pub show_help: bool,
+    /// Which panels are shown.
+    pub layout: Layout,
     /// Show the arc-length table window.
     pub show_table: bool,
     /// The open file dialog.
@@ -337,8 +357,8 @@ pub struct EditorApp {
     /// Bumped whenever the mesh or its levels change.
     mesh_generation: u64,
     shown: Option<Shown>,
-    /// The file (path, mesh) of the document the views were last fitted to.
-    fitted_file: Option<(Option<PathBuf>, usize)>,
+    /// The [`Document::file_id`] of the document the views were last fitted to.
+    fitted_file: Option<u64>,
 }
 
 impl Default for EditorApp {
@@ -351,6 +371,7 @@ impl Default for EditorApp {
             view3d: View3d::new(),
             status: "Shift+click to add points; press h for help".to_owned(),
             show_help: false,
+            layout: Layout::default(),
             show_table: false,
             dialog: None,
             dialog_then: None,
@@ -536,8 +557,8 @@ impl EditorApp {
             });
             self.mesh_generation += 1;
         }
-        let file = (self.doc.path().map(Path::to_path_buf), key);
-        if self.fitted_file.as_ref() != Some(&file) {
+        let file = self.doc.file_id();
+        if self.fitted_file != Some(file) {
             self.fitted_file = Some(file);
             self.view.fit_pending = true;
             self.view.selected = None;
@@ -811,7 +832,10 @@ impl EditorApp {
         }
         match key {
             Key::R => self.request(Pending::Preset),
-            Key::S => self.doc.cycle_kind(),
+            Key::S => {
+                self.doc.cycle_kind();
+                self.status_kind();
+            }
             Key::C => {
                 self.doc.clear();
                 self.view.selected = None;
@@ -830,6 +854,13 @@ impl EditorApp {
             }
             Key::H => self.show_help ^= true,
             _ => {}
+        }
+    }
+
+    /// Says the active curve's kind on the status line (after the kind changed).
+    fn status_kind(&mut self) {
+        if let Some(c) = self.doc.curve() {
+            self.status = format!("Kind: {}", doc::kind_name(c.kind));
         }
     }
 
@@ -899,6 +930,20 @@ impl EditorApp {
             if ui.button("Preset").clicked() {
                 self.request(Pending::Preset);
             }
+            ui.menu_button("View", |ui| {
+                let before = self.layout;
+                ui.checkbox(&mut self.layout.curves_panel, "Show curve panel");
+                ui.checkbox(&mut self.layout.view2d, "Show 2D view");
+                ui.checkbox(&mut self.layout.view3d, "Show 3D view");
+                if !self.layout.view2d && !self.layout.view3d {
+                    // one view stays: the one not just switched off
+                    if before.view2d {
+                        self.layout.view3d = true;
+                    } else {
+                        self.layout.view2d = true;
+                    }
+                }
+            });
             if ui.button("Help").clicked() {
                 self.show_help ^= true;
             }
@@ -932,6 +977,7 @@ impl EditorApp {
                 for (k, name) in doc::KINDS {
                     if ui.selectable_label(k == kind, name).clicked() {
                         self.doc.set_kind(k);
+                        self.status_kind();
                     }
                 }
             });
@@ -1199,24 +1245,38 @@ impl EditorApp {
                 let error = self.status.starts_with("Error");
                 let text = egui::RichText::new(&self.status);
                 ui.label(if error { text.color(egui::Color32::from_rgb(200, 30, 30)) } else { text });
-                if let Err(e) = self.doc.spline()
-                    && !self.doc.points().is_empty()
-                {
+                if let Some(problem) = self.doc.curve_problem() {
                     ui.separator();
-                    ui.label(format!("Curve: {e}"));
+                    ui.label(problem);
                 }
             });
         });
-        egui::Panel::left("curves").show(ui, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| self.left_panel(ui));
-        });
-        let half = 0.45 * ui.available_width();
-        egui::Panel::right("surface").default_size(half).min_size(220.0).resizable(true).show(ui, |ui| {
-            self.right_panel(ui, frame);
-        });
-        egui::CentralPanel::default().show(ui, |ui| {
-            self.view.ui(ui, &mut self.doc);
-        });
+        // wide grab areas for the panel dividers
+        ctx.global_style_mut(|style| style.interaction.resize_grab_radius_side = 8.0);
+        if self.layout.curves_panel {
+            egui::Panel::left("curves").resizable(true).show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| self.left_panel(ui));
+            });
+        }
+        match (self.layout.view2d, self.layout.view3d) {
+            (true, true) => {
+                let half = 0.45 * ui.available_width();
+                egui::Panel::right("surface").default_size(half).min_size(220.0).resizable(true).show(ui, |ui| {
+                    self.right_panel(ui, frame);
+                });
+                egui::CentralPanel::default().show(ui, |ui| {
+                    self.view.ui(ui, &mut self.doc);
+                });
+            }
+            (false, _) => {
+                egui::CentralPanel::default().show(ui, |ui| self.right_panel(ui, frame));
+            }
+            (true, false) => {
+                egui::CentralPanel::default().show(ui, |ui| {
+                    self.view.ui(ui, &mut self.doc);
+                });
+            }
+        }
         self.windows(&ctx);
         self.unsaved_prompt(&ctx);
         self.file_dialog(&ctx);

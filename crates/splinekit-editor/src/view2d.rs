@@ -196,6 +196,10 @@ impl View2d {
     /// Draws the view into the remaining space of `ui` and applies the user's edits to `doc`.
     pub fn ui(&mut self, ui: &mut egui::Ui, doc: &mut Document) -> egui::Response {
         let (rect, background) = ui.allocate_exact_size(ui.available_size(), Sense::click_and_drag());
+        // a resized view (window, divider, a panel shown or hidden) frames the curve again
+        if rect.size() != self.rect.size() && self.rect.width() > 1.0 {
+            self.fit_pending = true;
+        }
         self.rect = rect;
         if self.fit_pending && rect.width() > 1.0 && rect.height() > 1.0 {
             self.fit(doc);

@@ -327,6 +327,8 @@ pub struct View3d {
     aspect: Option<f64>,
     /// [`Self::fit`] ran before the viewport's aspect was known: fit again once it is.
     refit_on_aspect: bool,
+    /// The viewport's size in pixels at the last frame.
+    last_size: Option<[f32; 2]>,
     gpu: Option<Gpu>,
     last_render: Option<RenderKey>,
     drag: Option<ActiveDrag>,
@@ -365,6 +367,7 @@ impl View3d {
             fit_pending: true,
             aspect: None,
             refit_on_aspect: false,
+            last_size: None,
             gpu: None,
             last_render: None,
             drag: None,
@@ -562,8 +565,12 @@ impl View3d {
         if !(width >= 1.0 && height >= 1.0 && ui.is_rect_visible(rect)) {
             return (response, moved);
         }
-        self.aspect = Some(f64::from(width) / f64::from(height));
-        if self.refit_on_aspect {
+        let aspect = f64::from(width) / f64::from(height);
+        // a resized view (window, divider, a panel shown or hidden) frames the scene again
+        let resized = self.aspect.is_some_and(|a| a != aspect) || self.last_size.is_some_and(|s| s != [width, height]);
+        self.aspect = Some(aspect);
+        self.last_size = Some([width, height]);
+        if self.refit_on_aspect || resized {
             self.fit();
         }
 

@@ -539,3 +539,89 @@ fn sqrt3_of_a_quad_mesh_is_an_error_on_the_status_line() {
     assert!(h.state().status.contains("triangle"), "{}", h.state().status);
     h.get_by_label("Level 0: 8 vertices");
 }
+
+/// #36: messages in words that follow the kind, and nothing the user sees points at a
+/// document they do not have.
+#[test]
+fn curve_messages_are_in_words_and_follow_the_kind() {
+    let mut app = EditorApp::new(None);
+    app.doc.set_kind(SwpCurveKind::Bezier);
+    for k in 0..5 {
+        app.doc.add_point(DVec3::new(f64::from(k), f64::from(k % 2), 0.0));
+    }
+    let mut h = harness(app);
+    h.get_by_label("profile: a Bézier spline needs 4, 7, 10, … points; this one has 5");
+    h.key_press(egui::Key::S);
+    h.run();
+    assert_eq!(h.state().status, "Kind: B-spline");
+    assert!(h.query_by_label_contains("needs").is_none(), "5 points make a B-spline");
+    h.get_by_label("Closed").click();
+    h.run();
+    h.key_press(egui::Key::S);
+    h.key_press(egui::Key::S);
+    h.key_press(egui::Key::S);
+    h.run();
+    assert_eq!(h.state().status, "Kind: Hermite");
+    // the user-visible strings of the editor: no "SPEC §" (users do not have that document)
+    for (file, text) in [
+        ("lib.rs", include_str!("../src/lib.rs")),
+        ("doc.rs", include_str!("../src/doc.rs")),
+        ("files.rs", include_str!("../src/files.rs")),
+        ("view2d.rs", include_str!("../src/view2d.rs")),
+        ("view3d.rs", include_str!("../src/view3d.rs")),
+    ] {
+        for (n, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            assert!(!code.contains("SPEC"), "{file}:{}: {line}", n + 1);
+        }
+    }
+}
+
+/// #36: usable at 800×600 (the file bar and panels inside the window), panels hidden from the
+/// View menu give the 3D view the room, and both views frame the scene again after a resize,
+/// a load, Close mesh and Undo of Preset.
+#[test]
+fn usable_at_800_by_600_with_panels_to_hide_and_views_that_refit() {
+    let app = EditorApp::new(Some(&data("swp/srev/wineglass.swp")));
+    let mut h = Harness::builder().with_size(Vec2::new(800.0, 600.0)).wgpu().build_eframe(move |_cc| app);
+    h.run();
+    h.snapshot("small_window");
+    let window = egui::Rect::from_min_size(Pos2::ZERO, Vec2::new(800.0, 600.0));
+    for label in ["New", "Open…", "Save", "Save as…", "Export mesh…", "Undo", "Preset", "View", "Help", "3D view"]
+    {
+        let r = h.get_by_label(label).rect();
+        assert!(window.contains_rect(r), "{label} at {r:?}");
+    }
+    let narrow = h.get_by_label("3D view").rect().width();
+    click(&mut h, "View");
+    click(&mut h, "Show 2D view");
+    h.key_press(egui::Key::Escape);
+    h.run();
+    assert!(!h.state().layout.view2d);
+    let wide = h.get_by_label("3D view").rect().width();
+    assert!(wide > narrow + 200.0, "{narrow} → {wide}");
+    // switching the 3D view off too leaves the 2D view on
+    click(&mut h, "View");
+    click(&mut h, "Show 3D view");
+    h.key_press(egui::Key::Escape);
+    h.run();
+    assert!(h.state().layout.view2d && !h.state().layout.view3d);
+    h.state_mut().layout = splinekit_editor::Layout::default();
+    h.run();
+
+    // a resize frames the 2D view again
+    h.state_mut().view.scale *= 7.0;
+    h.set_size(Vec2::new(900.0, 650.0));
+    h.run();
+    let fitted = h.state().view.scale;
+    h.state_mut().view.fit_pending = true;
+    h.run();
+    assert!((h.state().view.scale - fitted).abs() < 1e-9 * fitted, "the resize fitted the view");
+    // Undo of the preset scene frames the wineglass again
+    h.key_press(egui::Key::R);
+    h.run();
+    h.state_mut().view.scale *= 7.0;
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    assert!((h.state().view.scale - fitted).abs() < 1e-9 * fitted, "{} vs {fitted}", h.state().view.scale);
+}
