@@ -32,6 +32,7 @@ pub mod doc;
 pub mod files;
 pub mod view2d;
 pub mod view3d;
+pub mod work;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -45,7 +46,7 @@ use splinekit::subdiv::{
 use splinekit::{PolyMesh, TriMesh};
 use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
-use splinekit_io::surface::SurfaceOptions;
+use splinekit_io::surface::{SurfaceError, SurfaceOptions};
 
 pub use doc::{DocKind, Document, ViewedMesh};
 use files::{FileDialog, Outcome, Purpose, RecentFiles};
@@ -288,14 +289,77 @@ pub struct SweptSurfaces {
 }
 
 impl SweptSurfaces {
-    /// Sweeps every surface of `swp` with the default options (the path the editor takes on
-    /// every change of the document, e.g. every frame of a drag).
+    /// Sweeps every surface of `swp` with the default options.
     #[must_use]
     pub fn sweep(swp: &SwpDocument) -> Self {
+        Self::sweep_with(swp, &SurfaceOptions::default())
+    }
+
+    /// Sweeps every surface of `swp` if they have at most `limit` triangles in all (the
+    /// editor's path on every change of the document, e.g. every frame of a drag); else
+    /// returns how many they would have (from the sample counts, before building them).
+    ///
+    /// # Errors
+    ///
+    /// The triangle count, when it is over `limit`.
+    pub fn sweep_within(swp: &SwpDocument, limit: usize) -> Result<Self, u64> {
+        let options = SurfaceOptions { max_triangles: Some(limit), ..SurfaceOptions::default() };
+        let mut total = 0u64;
+        let mut over = false;
+        for i in 0..swp.surfaces.len() {
+            match swp.surface_mesh(i, &options) {
+                Ok(m) => total += m.num_triangles() as u64,
+                Err(SurfaceError::TooLarge { triangles, .. })
+                    if triangles <= splinekit_io::surface::DEFAULT_MAX_TRIANGLES as u64 =>
+                {
+                    total += triangles;
+                    over = true;
+                }
+                // an error of the full sweep too: reported by it
+                Err(_) => {}
+            }
+        }
+        if over || total > limit as u64 { Err(total) } else { Ok(Self::sweep(swp)) }
+    }
+
+    /// A preview of `swp`'s surfaces with about `limit` triangles, for surfaces of about
+    /// `estimate` triangles: every curve's and revolution's steps divided by the same factor.
+    /// Each line says it is a preview.
+    #[must_use]
+    pub fn preview(swp: &SwpDocument, limit: usize, estimate: u64) -> Self {
+        let mut factor = (estimate as f64 / limit as f64).sqrt() * 1.05;
+        for _ in 0..6 {
+            let mut coarse = swp.clone();
+            let scaled = |steps: u32, min: u32| ((f64::from(steps) / factor).ceil() as u32).clamp(min, steps.max(min));
+            for c in &mut coarse.curves {
+                c.steps = scaled(c.steps, 1);
+            }
+            for s in &mut coarse.surfaces {
+                if let splinekit_io::SwpSurfaceKind::Revolution { steps, .. } = &mut s.kind {
+                    *steps = scaled(*steps, 3);
+                }
+            }
+            if let Ok(mut out) = Self::sweep_within(&coarse, limit) {
+                let shown = out.mesh.num_triangles();
+                for line in &mut out.lines {
+                    line.push_str(" (preview while dragging)");
+                }
+                out.lines.push(format!(
+                    "Preview: {shown} of about {estimate} triangles; the whole surface follows on release"
+                ));
+                return out;
+            }
+            // curves with many segments do not scale with their steps alone
+            factor *= 2.0;
+        }
+        Self { lines: vec![format!("No preview: about {estimate} triangles")], ..Self::default() }
+    }
+
+    fn sweep_with(swp: &SwpDocument, options: &SurfaceOptions) -> Self {
         let mut out = Self::default();
         for (i, s) in swp.surfaces.iter().enumerate() {
             let name = s.display_name(i);
-            match swp.surface_mesh(i, &SurfaceOptions::default()) {
+            match swp.surface_mesh(i, options) {
                 Ok(m) => {
                     out.lines.push(format!("{name}: {} vertices, {} triangles", m.num_vertices(), m.num_triangles()));
                     append(&mut out.mesh, &m);
@@ -310,12 +374,20 @@ impl SweptSurfaces {
     }
 }
 
-/// What the 3D view was last given: the document's revision, or the loaded mesh's.
+/// Surfaces with more triangles than this are swept off the UI thread, and shown at reduced
+/// resolution while a point is dragged (the whole surface follows on release).
+pub const LIVE_TRIANGLES: usize = 200_000;
+
+/// What the 3D view was last given: the document's surfaces (at a revision, in full or as a
+/// preview), or the loaded mesh's level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Shown {
-    Document(u64),
+    Document { revision: u64, full: bool },
     Mesh { generation: u64, level: usize },
 }
+
+/// The document's surfaces swept in the background, with their vertex data for the 3D view.
+type SweepResult = (SweptSurfaces, view3d::PreparedMesh);
 
 /// The editor application.
 pub struct EditorApp {
@@ -351,9 +423,15 @@ pub struct EditorApp {
     close_sent: bool,
     /// The title last given to the window.
     title_sent: String,
-    /// The document's surfaces, swept at `surfaces_revision`.
+    /// The document's surfaces, swept at `surfaces_for`'s revision (in full, or a preview).
     surfaces: SweptSurfaces,
-    surfaces_revision: Option<u64>,
+    surfaces_for: Option<(u64, bool)>,
+    /// Their vertex data when they were swept in the background, for the 3D view.
+    prepared: Option<view3d::PreparedMesh>,
+    /// The sweep running in the background, and the revision it sweeps.
+    sweep_task: Option<(u64, work::Task<SweepResult>)>,
+    /// The revision whose sweep the user cancelled (not started again until an edit).
+    sweep_cancelled: Option<u64>,
     /// Bumped whenever the mesh or its levels change.
     mesh_generation: u64,
     shown: Option<Shown>,
@@ -381,7 +459,10 @@ impl Default for EditorApp {
             close_sent: false,
             title_sent: String::new(),
             surfaces: SweptSurfaces::default(),
-            surfaces_revision: None,
+            surfaces_for: None,
+            prepared: None,
+            sweep_task: None,
+            sweep_cancelled: None,
             mesh_generation: 0,
             shown: None,
             fitted_file: None,
@@ -721,7 +802,8 @@ impl EditorApp {
         }
     }
 
-    /// The mesh of the 3D view: the loaded mesh's level, or the document's surfaces merged.
+    /// The mesh of the 3D view: the loaded mesh's level, or the document's surfaces merged
+    /// (in full, also while a preview or the background sweep is shown).
     ///
     /// # Errors
     ///
@@ -733,20 +815,30 @@ impl EditorApp {
         if self.doc.swp.surfaces.is_empty() {
             return Err("the document has no surface (add srev or gcyl to the SWP file)".to_owned());
         }
-        // the sweep the surface panel and the 3D view already show
-        self.update_surfaces();
-        match self.surfaces.errors.first() {
+        // the sweep the surface panel and the 3D view already show, if it is the whole one
+        let full;
+        let swept = if self.surfaces_for == Some((self.doc.revision(), true)) {
+            &self.surfaces
+        } else {
+            full = SweptSurfaces::sweep(&self.doc.swp);
+            &full
+        };
+        match swept.errors.first() {
             Some(e) => Err(e.clone()),
-            None => Ok(self.surfaces.mesh.clone()),
+            None => Ok(swept.mesh.clone()),
         }
     }
 
     /// Gives the 3D view the loaded mesh's level, or the document's surfaces, if they changed
     /// since it was last given them.
-    fn update_view3d(&mut self) {
-        let shown = match &self.mesh {
-            Some(m) => Shown::Mesh { generation: self.mesh_generation, level: m.level },
-            None => Shown::Document(self.doc.revision()),
+    fn update_view3d(&mut self, ctx: Option<&egui::Context>) {
+        if self.mesh.is_none() {
+            self.update_surfaces(ctx);
+        }
+        let shown = match (&self.mesh, self.surfaces_for) {
+            (Some(m), _) => Shown::Mesh { generation: self.mesh_generation, level: m.level },
+            (None, Some((revision, full))) => Shown::Document { revision, full },
+            (None, None) => return,
         };
         if self.shown == Some(shown) {
             return;
@@ -754,26 +846,89 @@ impl EditorApp {
         self.shown = Some(shown);
         match &self.mesh {
             Some(m) => self.view3d.set_mesh(&m.shown()),
-            None => {
-                self.update_surfaces();
-                self.view3d.set_mesh(&self.surfaces.mesh);
+            None => match self.prepared.take() {
+                Some(prepared) => self.view3d.set_prepared(prepared),
+                None => self.view3d.set_mesh(&self.surfaces.mesh),
+            },
+        }
+    }
+
+    /// The triangle count of the document's surfaces shown (0 if there are none or they
+    /// fail; a preview's while one is shown).
+    #[must_use]
+    pub fn surface_triangles(&mut self) -> usize {
+        self.update_surfaces(None);
+        self.surfaces.mesh.num_triangles()
+    }
+
+    /// Whether the surfaces are being swept in the background.
+    #[must_use]
+    pub fn is_sweeping(&self) -> bool {
+        self.sweep_task.is_some()
+    }
+
+    /// Brings the document's surfaces up to date: at once when they have at most
+    /// [`LIVE_TRIANGLES`]; else at reduced resolution while a point is dragged, and in full
+    /// on a worker thread otherwise (the last surfaces stay shown until it is done). `ctx` is
+    /// asked to redraw when the worker finishes.
+    fn update_surfaces(&mut self, ctx: Option<&egui::Context>) {
+        let revision = self.doc.revision();
+        if let Some((r, task)) = &mut self.sweep_task
+            && let Some(result) = task.poll()
+        {
+            let r = *r;
+            self.sweep_task = None;
+            match result {
+                Ok((swept, prepared)) if r == revision => {
+                    self.surfaces = swept;
+                    self.prepared = Some(prepared);
+                    self.surfaces_for = Some((r, true));
+                }
+                Ok(_) => {}
+                Err(e) => self.status = format!("Error: {e}"),
+            }
+        }
+        let dragging = self.view.is_dragging() || self.view3d.is_dragging();
+        match self.surfaces_for {
+            Some((r, true)) if r == revision => return,
+            Some((r, false)) if r == revision && dragging => return,
+            _ => {}
+        }
+        if self.sweep_task.as_ref().is_some_and(|(r, _)| *r == revision) || self.sweep_cancelled == Some(revision) {
+            return;
+        }
+        match SweptSurfaces::sweep_within(&self.doc.swp, LIVE_TRIANGLES) {
+            Ok(swept) => {
+                self.cancel_sweep();
+                self.surfaces = swept;
+                self.prepared = None;
+                self.surfaces_for = Some((revision, true));
+            }
+            Err(estimate) if dragging => {
+                self.cancel_sweep();
+                self.surfaces = SweptSurfaces::preview(&self.doc.swp, LIVE_TRIANGLES, estimate);
+                self.prepared = None;
+                self.surfaces_for = Some((revision, false));
+            }
+            Err(estimate) => {
+                self.cancel_sweep();
+                let swp = self.doc.swp.clone();
+                let label = format!("Sweeping {:.1} M triangles", estimate as f64 / 1e6);
+                let task = work::Task::spawn(label, 0, ctx.cloned(), move |_| {
+                    let swept = SweptSurfaces::sweep(&swp);
+                    let prepared = view3d::PreparedMesh::new(&swept.mesh);
+                    (swept, prepared)
+                });
+                self.sweep_task = Some((revision, task));
             }
         }
     }
 
-    /// The triangle count of the document's surfaces (0 if there are none or they fail).
-    #[must_use]
-    pub fn surface_triangles(&mut self) -> usize {
-        self.update_surfaces();
-        self.surfaces.mesh.num_triangles()
-    }
-
-    fn update_surfaces(&mut self) {
-        if self.surfaces_revision == Some(self.doc.revision()) {
-            return;
+    /// Stops waiting for the background sweep (its result is dropped).
+    fn cancel_sweep(&mut self) {
+        if let Some((_, task)) = self.sweep_task.take() {
+            task.cancel();
         }
-        self.surfaces = SweptSurfaces::sweep(&self.doc.swp);
-        self.surfaces_revision = Some(self.doc.revision());
     }
 
     /// Applies every key press of the frame, in order (several presses of one key in one
@@ -1045,7 +1200,15 @@ impl EditorApp {
                 self.request(Pending::CloseMesh);
             }
         } else {
-            self.update_surfaces();
+            self.update_surfaces(Some(ui.ctx()));
+            if let Some((_, task)) = &self.sweep_task
+                && task.ui(ui)
+            {
+                self.cancel_sweep();
+                self.sweep_cancelled = Some(self.doc.revision());
+                self.status =
+                    "Cancelled the sweep: the surface shown is not the curves' (edit to sweep again)".to_owned();
+            }
             if self.surfaces.lines.is_empty() {
                 ui.label("No surface in the document");
             }
@@ -1058,7 +1221,7 @@ impl EditorApp {
             ui.horizontal_wrapped(|ui| self.view3d.settings.ui(ui));
         });
         ui.separator();
-        self.update_view3d();
+        self.update_view3d(Some(ui.ctx()));
         // the control points of a 3D curve, dragged in the 3D view
         let (handles, curve) = if self.mesh.is_none() && !self.doc.is_2d() {
             let curve = self.doc.spline().map_or_else(|_| Vec::new(), |c| sample_curve(&c));

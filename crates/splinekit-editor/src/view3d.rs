@@ -376,6 +376,12 @@ impl View3d {
         }
     }
 
+    /// Whether a handle is being dragged.
+    #[must_use]
+    pub fn is_dragging(&self) -> bool {
+        self.drag.is_some()
+    }
+
     /// The camera.
     #[must_use]
     pub fn camera(&self) -> &Camera {
@@ -401,69 +407,8 @@ impl View3d {
     /// come from the mesh when it has one per vertex, otherwise they are area-weighted;
     /// colours likewise, read as sRGB in `[0, 1]`.
     pub fn set_mesh(&mut self, mesh: &TriMesh) {
-        let n = mesh.positions.len();
-        let (origin, radius) = bounds(mesh);
-        let valid = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < n && mesh.positions[v as usize].is_finite());
-
-        // Unit vertex normals.
-        let normals = &mut self.scratch.normals;
-        normals.clear();
-        if mesh.normals.len() == n {
-            normals.extend(mesh.normals.iter().map(|v| v.normalize_or_zero().as_vec3()));
-        } else {
-            let sums = &mut self.scratch.normal_sums;
-            sums.clear();
-            sums.resize(n, DVec3::ZERO);
-            for t in mesh.triangles.iter().filter(|t| valid(t)) {
-                let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-                let face = (b - a).cross(c - a);
-                for &v in t {
-                    sums[v as usize] += face;
-                }
-            }
-            normals.extend(sums.iter().map(|v| v.normalize_or_zero().as_vec3()));
-        }
-        let colours = mesh.colors.len() == n;
-        let srgb8 = |c: DVec3| c.clamp(DVec3::ZERO, DVec3::ONE).to_array().map(|x| (x * 255.0).round() as u8);
-
-        // One record per vertex, then three copied per triangle.
-        let records = &mut self.scratch.records;
-        records.clear();
-        records.extend(mesh.positions.iter().zip(normals.iter()).enumerate().map(|(v, (p, nv))| {
-            let mut r = [0u8; SURFACE_STRIDE as usize];
-            let p = (*p - origin).as_vec3();
-            for (k, x) in [p.x, p.y, p.z, nv.x, nv.y, nv.z].into_iter().enumerate() {
-                r[4 * k..4 * k + 4].copy_from_slice(&x.to_le_bytes());
-            }
-            let [red, green, blue] = if colours { srgb8(mesh.colors[v]) } else { [255; 3] };
-            r[24..].copy_from_slice(&[red, green, blue, 255]);
-            r
-        }));
-        let surface = &mut self.scratch.surface;
-        surface.clear();
-        surface.reserve(mesh.triangles.len() * 3 * SURFACE_STRIDE as usize);
-        let mut edge_sum = 0.0;
-        let mut edges = 0usize;
-        for t in mesh.triangles.iter().filter(|t| valid(t)) {
-            let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-            edge_sum += a.distance(b) + b.distance(c) + c.distance(a);
-            edges += 3;
-            for &v in t {
-                surface.extend_from_slice(&records[v as usize]);
-            }
-        }
-
-        // Normal lines: half the mean edge length, at most a tenth of the radius.
-        let length = if edges > 0 { 0.5 * edge_sum / edges as f64 } else { 0.05 * radius }.min(0.1 * radius);
-        let lines = &mut self.scratch.lines;
-        lines.clear();
-        for (p, nv) in mesh.positions.iter().zip(normals.iter()) {
-            if p.is_finite() && *nv != Vec3::ZERO {
-                push_vec3(lines, (*p - origin).as_vec3());
-                push_vec3(lines, (*p - origin + length * nv.as_dvec3()).as_vec3());
-            }
-        }
-
+        let (origin, radius, colours) = prepare(mesh, &mut self.scratch);
+        let (surface, lines) = (&mut self.scratch.surface, &mut self.scratch.lines);
         let changed = *surface != self.data.surface
             || *lines != self.data.lines
             || origin != self.data.origin
@@ -477,6 +422,21 @@ impl View3d {
             self.data.has_colours = colours;
             self.data.generation += 1;
         }
+        if self.fit_pending && !self.data.surface.is_empty() {
+            self.fit();
+        }
+    }
+
+    /// Shows a mesh prepared off the UI thread ([`PreparedMesh::new`]), as
+    /// [`set_mesh`](Self::set_mesh) would show it.
+    pub fn set_prepared(&mut self, mesh: PreparedMesh) {
+        let PreparedMesh { surface, lines, origin, radius, colours } = mesh;
+        self.data.surface = surface;
+        self.data.lines = lines;
+        self.data.radius = radius;
+        self.data.origin = origin;
+        self.data.has_colours = colours;
+        self.data.generation += 1;
         if self.fit_pending && !self.data.surface.is_empty() {
             self.fit();
         }
@@ -751,6 +711,105 @@ impl Drop for View3d {
 }
 
 /// The centre of the bounding box of `mesh`'s finite positions (the origin if there are
+/// A mesh's vertex data for the 3D view, made where it takes no time from the UI thread (a
+/// few hundred milliseconds for millions of triangles); [`View3d::set_prepared`] shows it.
+pub struct PreparedMesh {
+    surface: Vec<u8>,
+    lines: Vec<u8>,
+    origin: DVec3,
+    radius: f64,
+    colours: bool,
+}
+
+impl PreparedMesh {
+    /// The vertex data of `mesh` (as [`View3d::set_mesh`] makes it).
+    #[must_use]
+    pub fn new(mesh: &TriMesh) -> Self {
+        let mut scratch = Scratch::default();
+        let (origin, radius, colours) = prepare(mesh, &mut scratch);
+        Self { surface: scratch.surface, lines: scratch.lines, origin, radius, colours }
+    }
+
+    /// The number of triangles it draws.
+    #[must_use]
+    pub fn num_triangles(&self) -> usize {
+        self.surface.len() / (3 * SURFACE_STRIDE as usize)
+    }
+}
+
+/// Fills `scratch.surface` and `scratch.lines` with the vertex data of `mesh`; returns its
+/// origin, radius and whether it has colours.
+///
+/// Triangles with an index out of range or a non-finite corner are left out. Normals
+/// come from the mesh when it has one per vertex, otherwise they are area-weighted;
+/// colours likewise, read as sRGB in `[0, 1]`.
+fn prepare(mesh: &TriMesh, scratch: &mut Scratch) -> (DVec3, f64, bool) {
+    let n = mesh.positions.len();
+    let (origin, radius) = bounds(mesh);
+    let valid = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < n && mesh.positions[v as usize].is_finite());
+
+    // Unit vertex normals.
+    let normals = &mut scratch.normals;
+    normals.clear();
+    if mesh.normals.len() == n {
+        normals.extend(mesh.normals.iter().map(|v| v.normalize_or_zero().as_vec3()));
+    } else {
+        let sums = &mut scratch.normal_sums;
+        sums.clear();
+        sums.resize(n, DVec3::ZERO);
+        for t in mesh.triangles.iter().filter(|t| valid(t)) {
+            let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+            let face = (b - a).cross(c - a);
+            for &v in t {
+                sums[v as usize] += face;
+            }
+        }
+        normals.extend(sums.iter().map(|v| v.normalize_or_zero().as_vec3()));
+    }
+    let colours = mesh.colors.len() == n;
+    let srgb8 = |c: DVec3| c.clamp(DVec3::ZERO, DVec3::ONE).to_array().map(|x| (x * 255.0).round() as u8);
+
+    // One record per vertex, then three copied per triangle.
+    let records = &mut scratch.records;
+    records.clear();
+    records.extend(mesh.positions.iter().zip(normals.iter()).enumerate().map(|(v, (p, nv))| {
+        let mut r = [0u8; SURFACE_STRIDE as usize];
+        let p = (*p - origin).as_vec3();
+        for (k, x) in [p.x, p.y, p.z, nv.x, nv.y, nv.z].into_iter().enumerate() {
+            r[4 * k..4 * k + 4].copy_from_slice(&x.to_le_bytes());
+        }
+        let [red, green, blue] = if colours { srgb8(mesh.colors[v]) } else { [255; 3] };
+        r[24..].copy_from_slice(&[red, green, blue, 255]);
+        r
+    }));
+    let surface = &mut scratch.surface;
+    surface.clear();
+    surface.reserve(mesh.triangles.len() * 3 * SURFACE_STRIDE as usize);
+    let mut edge_sum = 0.0;
+    let mut edges = 0usize;
+    for t in mesh.triangles.iter().filter(|t| valid(t)) {
+        let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+        edge_sum += a.distance(b) + b.distance(c) + c.distance(a);
+        edges += 3;
+        for &v in t {
+            surface.extend_from_slice(&records[v as usize]);
+        }
+    }
+
+    // Normal lines: half the mean edge length, at most a tenth of the radius.
+    let length = if edges > 0 { 0.5 * edge_sum / edges as f64 } else { 0.05 * radius }.min(0.1 * radius);
+    let lines = &mut scratch.lines;
+    lines.clear();
+    for (p, nv) in mesh.positions.iter().zip(normals.iter()) {
+        if p.is_finite() && *nv != Vec3::ZERO {
+            push_vec3(lines, (*p - origin).as_vec3());
+            push_vec3(lines, (*p - origin + length * nv.as_dvec3()).as_vec3());
+        }
+    }
+
+    (origin, radius, colours)
+}
+
 /// none), and the largest distance of one from it: the bounding sphere the view frames.
 #[must_use]
 pub fn bounds(mesh: &TriMesh) -> (DVec3, f64) {

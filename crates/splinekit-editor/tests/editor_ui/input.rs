@@ -149,3 +149,79 @@ fn characters_typed_just_before_a_click_are_kept() {
     assert!(!dir.join("typed_trial2.sw").exists());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// The wineglass with `steps` steps a profile segment and `slices` slices, as a file in `dir`.
+fn big_glass(dir: &Path, steps: u32, slices: u32) -> PathBuf {
+    let text = std::fs::read_to_string(data("swp/srev/wineglass.swp")).unwrap();
+    let text = text.replacen("bsp2 profile 8 26", &format!("bsp2 profile {steps} 26"), 1).replacen(
+        "srev wineglass 90",
+        &format!("srev wineglass {slices}"),
+        1,
+    );
+    let path = dir.join("big.swp");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Runs frames until `done` (at most 60 s), sleeping a little between frames as a window
+/// waiting for its worker would.
+fn run_until(h: &mut Harness<'static, EditorApp>, what: &str, done: impl Fn(&EditorApp) -> bool) {
+    let start = std::time::Instant::now();
+    while !done(h.state()) {
+        assert!(start.elapsed().as_secs() < 60, "{what}: still waiting after 60 s");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+    }
+    h.run();
+}
+
+/// #36: a surface over 200 000 triangles is swept off the UI thread with a progress line and
+/// a Cancel; while a point is dragged it is shown at reduced resolution, and in full again
+/// after the release.
+#[test]
+fn big_surfaces_are_swept_in_the_background_and_previewed_while_dragging() {
+    let dir = tempfile_dir("big-sweep");
+    let path = big_glass(&dir, 16, 700);
+    let full = splinekit_editor::SweptSurfaces::sweep(&SwpDocument::read(&path).unwrap()).mesh.num_triangles();
+    assert!(full > 500_000, "{full}");
+    let app = EditorApp::new(Some(&path));
+    let mut h = Harness::builder().with_size(Vec2::new(1200.0, 760.0)).wgpu().build_eframe(move |_cc| app);
+    // the first frames show the progress line while the worker sweeps (a spinner: frames keep coming)
+    h.run_steps(3);
+    assert!(h.state().is_sweeping());
+    h.get_by_label("Cancel");
+    assert!(h.query_by_label_contains("Sweeping 0.5 M triangles").is_some());
+    run_until(&mut h, "the full sweep", |app| !app.is_sweeping());
+    assert_eq!(h.state().view3d.num_triangles(), full);
+    h.get_by_label(&format!("Triangles: {full}"));
+
+    // a drag: a preview of at most about 200 000 triangles on every frame of it
+    let from = center(&h, "P5");
+    h.event(Event::PointerMoved(from));
+    h.event(press(from, true));
+    h.run();
+    for k in 1..=3 {
+        h.event(Event::PointerMoved(from + Vec2::new(0.0, 6.0 * k as f32)));
+        h.run();
+        let shown = h.state().view3d.num_triangles();
+        assert!(shown <= 200_000 && shown > 50_000, "frame {k}: {shown} triangles");
+        assert!(h.query_by_label_contains("Preview:").is_some());
+    }
+    h.event(press(from + Vec2::new(0.0, 18.0), false));
+    h.step();
+    h.step();
+    run_until(&mut h, "the sweep after the release", |app| !app.is_sweeping() && app.view3d.num_triangles() == full);
+    assert_eq!(h.state().view3d.num_triangles(), full);
+    let now = splinekit_editor::SweptSurfaces::sweep(&h.state().doc.swp);
+    assert_eq!(h.state().view3d.bounds(), splinekit_editor::view3d::bounds(&now.mesh), "the moved point's surface");
+
+    // Cancel stops the sweep of an edit; the status says the surface shown is not the curves'
+    h.key_press(Key::S);
+    h.run_steps(3);
+    assert!(h.state().is_sweeping());
+    h.get_by_label("Cancel").click();
+    h.run_steps(3);
+    assert!(!h.state().is_sweeping());
+    assert!(h.state().status.starts_with("Cancelled the sweep"), "{}", h.state().status);
+    let _ = std::fs::remove_dir_all(dir);
+}
