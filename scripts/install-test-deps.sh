@@ -3,9 +3,12 @@
 # sudo).
 # - Required: egui_kittest renders with wgpu on Mesa's software Vulkan driver (lavapipe):
 #   libvulkan1 mesa-vulkan-drivers.
-# - Optional: the smoke test that opens the real editor window under a virtual X server and
-#   takes a screenshot: xvfb xauth x11-apps (xwd) netpbm (xwdtopnm, pnmtopng). If they cannot
-#   be installed, that one test says so and is skipped.
+# - Optional: the smoke tests that open the real editor window under a virtual X server and
+#   take screenshots: xvfb xauth x11-apps (xwd) netpbm (xwdtopnm, pnmtopng); the one that
+#   presses keys and closes the window as a window manager would also needs xdotool (focus,
+#   keys, clicks, window title) and python3-xlib (the WM_DELETE_WINDOW client message, sent
+#   with the system's /usr/bin/python3). If they cannot be installed, those tests say so and
+#   are skipped.
 set -euo pipefail
 missing() {
     for p in "$@"; do
@@ -26,8 +29,8 @@ if [ ${#need[@]} -gt 0 ]; then
     echo "installing ${need[*]} (headless rendering for the editor's tests)"
     install "${need[@]}"
 fi
-mapfile -t want < <(missing xvfb xauth x11-apps netpbm)
+mapfile -t want < <(missing xvfb xauth x11-apps netpbm xdotool python3-xlib)
 if [ ${#want[@]} -gt 0 ]; then
-    echo "installing ${want[*]} (the editor's real-window smoke test)"
-    install "${want[@]}" || echo "warning: could not install ${want[*]}; the Xvfb smoke test will be skipped"
+    echo "installing ${want[*]} (the editor's real-window smoke tests)"
+    install "${want[@]}" || echo "warning: could not install ${want[*]}; the Xvfb smoke tests will be skipped"
 fi

@@ -303,23 +303,27 @@ impl SweptSurfaces {
     ///
     /// The triangle count, when it is over `limit`.
     pub fn sweep_within(swp: &SwpDocument, limit: usize) -> Result<Self, u64> {
-        let options = SurfaceOptions { max_triangles: Some(limit), ..SurfaceOptions::default() };
-        let mut total = 0u64;
-        let mut over = false;
-        for i in 0..swp.surfaces.len() {
-            match swp.surface_mesh(i, &options) {
-                Ok(m) => total += m.num_triangles() as u64,
+        let mut out = Self::default();
+        // the triangles of the surfaces that did not fit (counted, not built)
+        let mut skipped = 0u64;
+        for (i, s) in swp.surfaces.iter().enumerate() {
+            let total = out.mesh.num_triangles() as u64 + skipped;
+            let left = usize::try_from((limit as u64).saturating_sub(total)).unwrap_or(usize::MAX);
+            let options = SurfaceOptions { max_triangles: Some(left), ..SurfaceOptions::default() };
+            let result = match swp.surface_mesh(i, &options) {
                 Err(SurfaceError::TooLarge { triangles, .. })
                     if triangles <= splinekit_io::surface::DEFAULT_MAX_TRIANGLES as u64 =>
                 {
-                    total += triangles;
-                    over = true;
+                    skipped += triangles;
+                    continue;
                 }
-                // an error of the full sweep too: reported by it
-                Err(_) => {}
-            }
+                // too large for any sweep: the full sweep's own message
+                Err(SurfaceError::TooLarge { .. }) => swp.surface_mesh(i, &SurfaceOptions::default()),
+                result => result,
+            };
+            out.push(&s.display_name(i), result);
         }
-        if over || total > limit as u64 { Err(total) } else { Ok(Self::sweep(swp)) }
+        if skipped > 0 { Err(out.mesh.num_triangles() as u64 + skipped) } else { Ok(out) }
     }
 
     /// A preview of `swp`'s surfaces with about `limit` triangles, for surfaces of about
@@ -358,25 +362,33 @@ impl SweptSurfaces {
     fn sweep_with(swp: &SwpDocument, options: &SurfaceOptions) -> Self {
         let mut out = Self::default();
         for (i, s) in swp.surfaces.iter().enumerate() {
-            let name = s.display_name(i);
-            match swp.surface_mesh(i, options) {
-                Ok(m) => {
-                    out.lines.push(format!("{name}: {} vertices, {} triangles", m.num_vertices(), m.num_triangles()));
-                    append(&mut out.mesh, &m);
-                }
-                Err(e) => {
-                    out.lines.push(format!("{name}: {e}"));
-                    out.errors.push(format!("{name}: {e}"));
-                }
-            }
+            out.push(&s.display_name(i), swp.surface_mesh(i, options));
         }
         out
+    }
+
+    /// Adds surface `name`'s mesh, or why it cannot be swept.
+    fn push(&mut self, name: &str, result: Result<TriMesh, SurfaceError>) {
+        match result {
+            Ok(m) => {
+                self.lines.push(format!("{name}: {} vertices, {} triangles", m.num_vertices(), m.num_triangles()));
+                append(&mut self.mesh, &m);
+            }
+            Err(e) => {
+                self.lines.push(format!("{name}: {e}"));
+                self.errors.push(format!("{name}: {e}"));
+            }
+        }
     }
 }
 
 /// Surfaces with more triangles than this are swept off the UI thread, and shown at reduced
 /// resolution while a point is dragged (the whole surface follows on release).
 pub const LIVE_TRIANGLES: usize = 200_000;
+
+/// The size of the preview shown while a point of a larger surface is dragged: about 40 ms a
+/// frame on this project's 2-core machine with a software renderer (sweep, vertex data, draw).
+pub const PREVIEW_TRIANGLES: usize = 100_000;
 
 /// What the 3D view was last given: the document's surfaces (at a revision, in full or as a
 /// preview), or the loaded mesh's level.
@@ -388,6 +400,37 @@ enum Shown {
 
 /// The document's surfaces swept in the background, with their vertex data for the 3D view.
 type SweepResult = (SweptSurfaces, view3d::PreparedMesh);
+
+/// Mesh files larger than this (bytes) are read on a worker thread.
+pub const BACKGROUND_BYTES: u64 = 4_000_000;
+
+/// Subdivision levels of more faces than this are made on a worker thread.
+pub const BACKGROUND_FACES: usize = 200_000;
+
+/// A mesh file read on a worker thread, with its Loop level 0 and 3D view data.
+struct Loaded {
+    mesh: PolyMesh,
+    creases: Creases,
+    kind: DocKind,
+    pyramid: Result<LoopPyramid, String>,
+    prepared: view3d::PreparedMesh,
+}
+
+/// A subdivision level made on a worker thread, with its 3D view data.
+enum Refined {
+    /// The Loop pyramid, one level finer.
+    Pyramid(LoopPyramid, view3d::PreparedMesh),
+    /// The next level of another scheme.
+    Level(PolyMesh, view3d::PreparedMesh),
+}
+
+/// Which level of which mesh with which scheme is shown: the mesh (its address), the scheme
+/// and the level.
+type MeshKey = (usize, Scheme, usize);
+
+fn mesh_key(m: &MeshState) -> MeshKey {
+    (Arc::as_ptr(&m.source) as usize, m.scheme, m.level)
+}
 
 /// The editor application.
 pub struct EditorApp {
@@ -432,6 +475,12 @@ pub struct EditorApp {
     sweep_task: Option<(u64, work::Task<SweepResult>)>,
     /// The revision whose sweep the user cancelled (not started again until an edit).
     sweep_cancelled: Option<u64>,
+    /// A mesh file being read on a worker thread.
+    load_task: Option<(PathBuf, work::Task<Result<Loaded, String>>)>,
+    /// A subdivision level being made on a worker thread, for the mesh level it refines.
+    refine_task: Option<(MeshKey, work::Task<Result<Refined, String>>)>,
+    /// The 3D view data of a mesh level made on a worker thread.
+    prepared_mesh: Option<(MeshKey, view3d::PreparedMesh)>,
     /// Bumped whenever the mesh or its levels change.
     mesh_generation: u64,
     shown: Option<Shown>,
@@ -463,6 +512,9 @@ impl Default for EditorApp {
             prepared: None,
             sweep_task: None,
             sweep_cancelled: None,
+            load_task: None,
+            refine_task: None,
+            prepared_mesh: None,
             mesh_generation: 0,
             shown: None,
             fitted_file: None,
@@ -541,45 +593,105 @@ impl EditorApp {
             self.status = format!("Error: {why}");
             return false;
         }
-        if DocKind::of_path(path) == Some(DocKind::Swp) {
-            match Document::read(path) {
-                Ok(doc) => {
-                    self.doc.replace_with(doc);
-                    self.sync_mesh();
-                    self.status = format!("Loaded {}", path.display());
-                }
-                Err(e) => {
-                    self.status = format!("Error: {e}");
-                    return false;
-                }
-            }
+        let big = std::fs::metadata(path).is_ok_and(|m| m.len() > BACKGROUND_BYTES);
+        if big && DocKind::of_path(path) == Some(DocKind::Mesh) {
+            // read, and make the Loop level 0 and the 3D view's data, on a worker thread
+            self.cancel_load();
+            let (file, options) = (path.to_path_buf(), self.loop_options());
+            let size = std::fs::metadata(path).map_or(0, |m| m.len());
+            let label = format!("Opening {} ({:.0} MB)", file.display(), size as f64 / 1e6);
+            let task = work::Task::spawn(label, 0, None, move |_| {
+                let (mesh, creases, kind) = load_mesh(&file)?;
+                let pyramid = LoopPyramid::new(&mesh, options).map_err(|e| e.to_string());
+                let prepared = view3d::PreparedMesh::new(&mesh.to_tri_mesh());
+                Ok(Loaded { mesh, creases, kind, pyramid, prepared })
+            });
+            self.load_task = Some((path.to_path_buf(), task));
+            self.status = format!("Opening {}…", path.display());
+            return true;
+        }
+        let loaded = if DocKind::of_path(path) == Some(DocKind::Swp) {
+            Document::read(path).map(|doc| {
+                self.doc.replace_with(doc);
+                self.sync_mesh();
+                self.status = format!("Loaded {}", path.display());
+            })
         } else {
-            match load_mesh(path) {
-                Ok((mesh, creases, kind)) => {
-                    let (vertices, faces) = (mesh.positions.len(), mesh.num_faces());
-                    let (crease_edges, crease_vertices) = (creases.edges.len(), creases.vertices.len());
-                    let viewed = ViewedMesh { base: mesh, creases };
-                    self.doc.replace_with(Document::from_mesh(viewed, path.to_path_buf(), kind));
-                    self.sync_mesh();
-                    self.status = format!("Loaded {}: {vertices} vertices, {faces} faces", path.display());
-                    if crease_edges + crease_vertices > 0 {
-                        self.status.push_str(&format!(
-                            ", {crease_edges} creased edges and {crease_vertices} creased vertices (Loop and Catmull-Clark keep them)"
-                        ));
-                    }
-                    if let Some(Err(e)) = self.mesh.as_ref().map(|m| &m.pyramid) {
-                        self.status.push_str(&format!(" (cannot subdivide: {e})"));
-                    }
-                }
-                Err(e) => {
-                    self.status = format!("Error: {e}");
-                    return false;
-                }
+            load_mesh(path).map(|(mesh, creases, kind)| {
+                let pyramid = LoopPyramid::new(&mesh, self.loop_options()).map_err(|e| e.to_string());
+                self.install_mesh(path, mesh, creases, kind, pyramid, None);
+            })
+        };
+        match loaded {
+            Ok(()) => {
+                self.view.selected = None;
+                self.recent.add(path);
+                true
+            }
+            Err(e) => {
+                self.status = format!("Error: {e}");
+                false
             }
         }
-        self.view.selected = None;
-        self.recent.add(path);
-        true
+    }
+
+    /// Makes the mesh read from `path` the document (one undo step), with its Loop level 0
+    /// and, if made already, its 3D view data.
+    fn install_mesh(
+        &mut self,
+        path: &Path,
+        mesh: PolyMesh,
+        creases: Creases,
+        kind: DocKind,
+        pyramid: Result<LoopPyramid, String>,
+        prepared: Option<view3d::PreparedMesh>,
+    ) {
+        let (vertices, faces) = (mesh.positions.len(), mesh.num_faces());
+        let (crease_edges, crease_vertices) = (creases.edges.len(), creases.vertices.len());
+        let viewed = ViewedMesh { base: mesh, creases };
+        self.doc.replace_with(Document::from_mesh(viewed, path.to_path_buf(), kind));
+        self.sync_mesh_with(Some(pyramid));
+        if let (Some(prepared), Some(m)) = (prepared, &self.mesh) {
+            self.prepared_mesh = Some((mesh_key(m), prepared));
+        }
+        self.status = format!("Loaded {}: {vertices} vertices, {faces} faces", path.display());
+        if crease_edges + crease_vertices > 0 {
+            self.status.push_str(&format!(
+                ", {crease_edges} creased edges and {crease_vertices} creased vertices (Loop and Catmull-Clark keep them)"
+            ));
+        }
+        if let Some(Err(e)) = self.mesh.as_ref().map(|m| &m.pyramid) {
+            self.status.push_str(&format!(" (cannot subdivide: {e})"));
+        }
+    }
+
+    /// Takes the result of a file being opened on a worker thread, if it is done.
+    fn poll_load(&mut self) {
+        let Some((path, task)) = &mut self.load_task else { return };
+        let Some(result) = task.poll() else { return };
+        let path = path.clone();
+        self.load_task = None;
+        match result.and_then(|r| r) {
+            Ok(Loaded { mesh, creases, kind, pyramid, prepared }) => {
+                self.install_mesh(&path, mesh, creases, kind, pyramid, Some(prepared));
+                self.view.selected = None;
+                self.recent.add(&path);
+            }
+            Err(e) => self.status = format!("Error: {e}"),
+        }
+    }
+
+    /// Stops waiting for a file being opened.
+    fn cancel_load(&mut self) {
+        if let Some((_, task)) = self.load_task.take() {
+            task.cancel();
+        }
+    }
+
+    /// Whether a file is being opened on a worker thread.
+    #[must_use]
+    pub fn is_loading(&self) -> bool {
+        self.load_task.is_some()
     }
 
     /// Saves the document: to its own file when it is an SWP document, else asks for a name
@@ -624,13 +736,21 @@ impl EditorApp {
     /// the document's mesh changed (a file opened, undo of an open, …), and fits the views
     /// to a document that is another file.
     fn sync_mesh(&mut self) {
+        self.sync_mesh_with(None);
+    }
+
+    /// [`sync_mesh`](Self::sync_mesh), with the Loop level 0 of a new mesh if it was made
+    /// already.
+    fn sync_mesh_with(&mut self, pyramid: Option<Result<LoopPyramid, String>>) {
         let source = self.doc.mesh().cloned();
         let key = source.as_ref().map_or(0, |m| Arc::as_ptr(m) as usize);
         let current = self.mesh.as_ref().map_or(0, |m| Arc::as_ptr(&m.source) as usize);
         if key != current {
+            self.cancel_refine();
+            let options = self.loop_options();
             self.mesh = source.map(|source| MeshState {
                 name: self.doc.path().map_or_else(String::new, |p| p.display().to_string()),
-                pyramid: LoopPyramid::new(&source.base, self.loop_options()).map_err(|e| e.to_string()),
+                pyramid: pyramid.unwrap_or_else(|| LoopPyramid::new(&source.base, options).map_err(|e| e.to_string())),
                 levels: Vec::new(),
                 scheme: Scheme::Loop,
                 level: 0,
@@ -655,29 +775,52 @@ impl EditorApp {
     /// coarsening). An error (e.g. a non-manifold mesh for Catmull-Clark) goes to the status
     /// line.
     pub fn refine(&mut self) {
+        if self.refine_task.is_some() {
+            return;
+        }
         let color_by_level = self.color_by_level;
         let Some(m) = &mut self.mesh else { return };
+        let key = mesh_key(m);
         match m.scheme {
             Scheme::Loop if m.uses_pyramid() => {
                 let Ok(p) = &mut m.pyramid else { return };
-                if m.level + 1 > p.finest().depth()
-                    && let Err(e) = p.refine()
-                {
-                    self.status = format!("Error: {}: {e}", m.name);
-                    return;
+                if m.level + 1 > p.finest().depth() {
+                    if 4 * p.finest().num_triangles() > BACKGROUND_FACES {
+                        let mut p = p.clone();
+                        let label = format!("Refining to {} triangles", 4 * p.finest().num_triangles());
+                        let task = work::Task::spawn(label, 0, None, move |_| {
+                            p.refine().map_err(|e| e.to_string())?;
+                            let prepared = view3d::PreparedMesh::new(&p.finest().clone().into_tri_mesh());
+                            Ok(Refined::Pyramid(p, prepared))
+                        });
+                        self.refine_task = Some((key, task));
+                        return;
+                    }
+                    if let Err(e) = p.refine() {
+                        self.status = format!("Error: {}: {e}", m.name);
+                        return;
+                    }
                 }
                 m.level = (m.level + 1).min(p.finest().depth());
             }
             scheme => {
                 if m.level >= m.levels.len() {
+                    let depth = m.levels.len() + 1;
                     let coarse = m.levels.last().unwrap_or(&m.source.base);
-                    match scheme.polygon_level(
-                        &m.source.base,
-                        coarse,
-                        &m.source.creases,
-                        m.levels.len() + 1,
-                        color_by_level,
-                    ) {
+                    if 4 * coarse.num_faces() > BACKGROUND_FACES {
+                        let (source, coarse) = (Arc::clone(&m.source), m.levels.last().cloned());
+                        let label = format!("Refining to level {depth} ({})", scheme.name());
+                        let task = work::Task::spawn(label, 0, None, move |_| {
+                            let coarse = coarse.as_ref().unwrap_or(&source.base);
+                            let fine =
+                                scheme.polygon_level(&source.base, coarse, &source.creases, depth, color_by_level)?;
+                            let prepared = view3d::PreparedMesh::new(&fine.to_tri_mesh());
+                            Ok(Refined::Level(fine, prepared))
+                        });
+                        self.refine_task = Some((key, task));
+                        return;
+                    }
+                    match scheme.polygon_level(&m.source.base, coarse, &m.source.creases, depth, color_by_level) {
                         Ok(fine) => m.levels.push(fine),
                         Err(e) => {
                             self.status = format!("Error: {}: {e}", m.name);
@@ -691,8 +834,52 @@ impl EditorApp {
         self.status = format!("Level {}: {} faces", m.level, m.faces());
     }
 
+    /// Takes a level refined on a worker thread, if it is done and still wanted (the same
+    /// mesh, scheme and level as when it started).
+    fn poll_refine(&mut self) {
+        let Some((key, task)) = &mut self.refine_task else { return };
+        let Some(result) = task.poll() else { return };
+        let key = *key;
+        self.refine_task = None;
+        let Some(m) = &mut self.mesh else { return };
+        if mesh_key(m) != key {
+            return;
+        }
+        match result.and_then(|r| r) {
+            Ok(Refined::Pyramid(p, prepared)) => {
+                m.level = p.finest().depth();
+                m.pyramid = Ok(p);
+                self.prepared_mesh = Some((mesh_key(m), prepared));
+            }
+            Ok(Refined::Level(fine, prepared)) => {
+                m.levels.push(fine);
+                m.level = m.levels.len();
+                self.prepared_mesh = Some((mesh_key(m), prepared));
+            }
+            Err(e) => {
+                self.status = format!("Error: {}: {e}", m.name);
+                return;
+            }
+        }
+        self.status = format!("Level {}: {} faces", m.level, m.faces());
+    }
+
+    /// Stops waiting for a level being refined.
+    fn cancel_refine(&mut self) {
+        if let Some((_, task)) = self.refine_task.take() {
+            task.cancel();
+        }
+    }
+
+    /// Whether a subdivision level is being made on a worker thread.
+    #[must_use]
+    pub fn is_refining(&self) -> bool {
+        self.refine_task.is_some()
+    }
+
     /// Subdivides the loaded mesh with `scheme` from now on (showing the loaded mesh again).
     pub fn set_scheme(&mut self, scheme: Scheme) {
+        self.cancel_refine();
         let Some(m) = &mut self.mesh else { return };
         if m.scheme != scheme {
             m.scheme = scheme;
@@ -708,6 +895,7 @@ impl EditorApp {
 
     /// Rebuilds the loaded mesh's levels with the current colour setting, keeping the level shown.
     fn recolor(&mut self) {
+        self.cancel_refine();
         let options = self.loop_options();
         let Some(m) = &mut self.mesh else { return };
         m.pyramid = LoopPyramid::new(&m.source.base, options).map_err(|e| e.to_string());
@@ -740,6 +928,7 @@ impl EditorApp {
 
     /// Shows the next coarser level of the loaded mesh.
     pub fn coarsen(&mut self) {
+        self.cancel_refine();
         if let Some(m) = &mut self.mesh
             && m.level > 0
         {
@@ -845,7 +1034,10 @@ impl EditorApp {
         }
         self.shown = Some(shown);
         match &self.mesh {
-            Some(m) => self.view3d.set_mesh(&m.shown()),
+            Some(m) => match self.prepared_mesh.take() {
+                Some((key, prepared)) if key == mesh_key(m) => self.view3d.set_prepared(prepared),
+                _ => self.view3d.set_mesh(&m.shown()),
+            },
             None => match self.prepared.take() {
                 Some(prepared) => self.view3d.set_prepared(prepared),
                 None => self.view3d.set_mesh(&self.surfaces.mesh),
@@ -906,7 +1098,7 @@ impl EditorApp {
             }
             Err(estimate) if dragging => {
                 self.cancel_sweep();
-                self.surfaces = SweptSurfaces::preview(&self.doc.swp, LIVE_TRIANGLES, estimate);
+                self.surfaces = SweptSurfaces::preview(&self.doc.swp, PREVIEW_TRIANGLES, estimate);
                 self.prepared = None;
                 self.surfaces_for = Some((revision, false));
             }
@@ -1185,14 +1377,21 @@ impl EditorApp {
                     }
                 }
             });
+            let refining = self.refine_task.is_some();
             ui.horizontal(|ui| {
-                if ui.add_enabled(can_refine, egui::Button::new("Refine subdivision")).clicked() {
+                if ui.add_enabled(can_refine && !refining, egui::Button::new("Refine subdivision")).clicked() {
                     self.refine();
                 }
                 if ui.button("Coarsen subdivision").clicked() {
                     self.coarsen();
                 }
             });
+            if let Some((_, task)) = &self.refine_task
+                && task.ui(ui)
+            {
+                self.cancel_refine();
+                self.status = "Cancelled the refinement".to_owned();
+            }
             if ui.checkbox(&mut self.color_by_level, "Colour by level").changed() {
                 self.recolor();
             }
@@ -1400,10 +1599,18 @@ impl EditorApp {
         {
             self.request(Pending::Open(path));
         }
+        self.poll_load();
+        self.poll_refine();
         self.sync_mesh();
         egui::Panel::top("file bar").show(ui, |ui| self.file_bar(ui));
         // one line, so the views keep their size whatever it says
         egui::Panel::bottom("status").show(ui, |ui| {
+            if let Some((_, task)) = &self.load_task
+                && task.ui(ui)
+            {
+                self.cancel_load();
+                self.status = "Cancelled opening the file".to_owned();
+            }
             ui.horizontal(|ui| {
                 let error = self.status.starts_with("Error");
                 let text = egui::RichText::new(&self.status);
