@@ -177,6 +177,8 @@ impl FileDialog {
 
     /// Shows folder `dir`.
     pub fn go_to(&mut self, dir: PathBuf) {
+        // typing goes on in the name field, and Enter confirms it
+        self.focus_name = true;
         self.dir = dir;
         self.error = None;
         self.confirm_replace = None;
@@ -272,6 +274,7 @@ impl FileDialog {
                         pick = Some(self.dir.join(&e.name));
                     } else if r.clicked() {
                         self.name = e.name.clone();
+                        self.focus_name = true;
                     }
                 }
             });
@@ -324,10 +327,15 @@ impl FileDialog {
             if let Some(dir) = enter {
                 self.go_to(dir);
             }
+            let chose = pick.is_some() || confirm;
             if let Some(path) = pick {
                 outcome = self.choose(path);
             } else if confirm {
                 outcome = self.confirm();
+            }
+            if self.error.is_some() && chose {
+                // the name can be typed again at once
+                self.focus_name = true;
             }
         });
         if outcome == Outcome::Open && ctx.input_mut(|i| i.consume_key(egui::Modifiers::NONE, Key::Escape)) {

@@ -311,14 +311,15 @@ impl SweptSurfaces {
             let left = usize::try_from((limit as u64).saturating_sub(total)).unwrap_or(usize::MAX);
             let options = SurfaceOptions { max_triangles: Some(left), ..SurfaceOptions::default() };
             let result = match swp.surface_mesh(i, &options) {
-                Err(SurfaceError::TooLarge { triangles, .. })
-                    if triangles <= splinekit_io::surface::DEFAULT_MAX_TRIANGLES as u64 =>
-                {
+                Err(SurfaceError::TooLarge { triangles, .. }) if triangles <= EDITOR_MAX_TRIANGLES as u64 => {
                     skipped += triangles;
                     continue;
                 }
-                // too large for any sweep: the full sweep's own message
-                Err(SurfaceError::TooLarge { .. }) => swp.surface_mesh(i, &SurfaceOptions::default()),
+                // too large for the editor: the message of its own limit
+                Err(SurfaceError::TooLarge { .. }) => swp.surface_mesh(
+                    i,
+                    &SurfaceOptions { max_triangles: Some(EDITOR_MAX_TRIANGLES), ..SurfaceOptions::default() },
+                ),
                 result => result,
             };
             out.push(&s.display_name(i), result);
@@ -385,6 +386,10 @@ impl SweptSurfaces {
 /// Surfaces with more triangles than this are swept off the UI thread, and shown at reduced
 /// resolution while a point is dragged (the whole surface follows on release).
 pub const LIVE_TRIANGLES: usize = 200_000;
+
+/// The most triangles the editor sweeps and shows (a larger surface gets a message instead):
+/// 20 million triangles take about 1.7 GB of vertex data for the 3D view.
+pub const EDITOR_MAX_TRIANGLES: usize = 20_000_000;
 
 /// The size of the preview shown while a point of a larger surface is dragged: about 40 ms a
 /// frame on this project's 2-core machine with a software renderer (sweep, vertex data, draw).
@@ -475,6 +480,8 @@ pub struct EditorApp {
     sweep_task: Option<(u64, work::Task<SweepResult>)>,
     /// The revision whose sweep the user cancelled (not started again until an edit).
     sweep_cancelled: Option<u64>,
+    /// The window's context (once it has drawn), woken by workers when they finish.
+    egui_ctx: Option<egui::Context>,
     /// A mesh file being read on a worker thread.
     load_task: Option<(PathBuf, work::Task<Result<Loaded, String>>)>,
     /// A subdivision level being made on a worker thread, for the mesh level it refines.
@@ -512,6 +519,7 @@ impl Default for EditorApp {
             prepared: None,
             sweep_task: None,
             sweep_cancelled: None,
+            egui_ctx: None,
             load_task: None,
             refine_task: None,
             prepared_mesh: None,
@@ -600,7 +608,7 @@ impl EditorApp {
             let (file, options) = (path.to_path_buf(), self.loop_options());
             let size = std::fs::metadata(path).map_or(0, |m| m.len());
             let label = format!("Opening {} ({:.0} MB)", file.display(), size as f64 / 1e6);
-            let task = work::Task::spawn(label, 0, None, move |_| {
+            let task = work::Task::spawn(label, 0, self.egui_ctx.clone(), move |_| {
                 let (mesh, creases, kind) = load_mesh(&file)?;
                 let pyramid = LoopPyramid::new(&mesh, options).map_err(|e| e.to_string());
                 let prepared = view3d::PreparedMesh::new(&mesh.to_tri_mesh());
@@ -788,7 +796,7 @@ impl EditorApp {
                     if 4 * p.finest().num_triangles() > BACKGROUND_FACES {
                         let mut p = p.clone();
                         let label = format!("Refining to {} triangles", 4 * p.finest().num_triangles());
-                        let task = work::Task::spawn(label, 0, None, move |_| {
+                        let task = work::Task::spawn(label, 0, self.egui_ctx.clone(), move |_| {
                             p.refine().map_err(|e| e.to_string())?;
                             let prepared = view3d::PreparedMesh::new(&p.finest().clone().into_tri_mesh());
                             Ok(Refined::Pyramid(p, prepared))
@@ -810,7 +818,7 @@ impl EditorApp {
                     if 4 * coarse.num_faces() > BACKGROUND_FACES {
                         let (source, coarse) = (Arc::clone(&m.source), m.levels.last().cloned());
                         let label = format!("Refining to level {depth} ({})", scheme.name());
-                        let task = work::Task::spawn(label, 0, None, move |_| {
+                        let task = work::Task::spawn(label, 0, self.egui_ctx.clone(), move |_| {
                             let coarse = coarse.as_ref().unwrap_or(&source.base);
                             let fine =
                                 scheme.polygon_level(&source.base, coarse, &source.creases, depth, color_by_level)?;
@@ -1107,7 +1115,9 @@ impl EditorApp {
                 let swp = self.doc.swp.clone();
                 let label = format!("Sweeping {:.1} M triangles", estimate as f64 / 1e6);
                 let task = work::Task::spawn(label, 0, ctx.cloned(), move |_| {
-                    let swept = SweptSurfaces::sweep(&swp);
+                    let options =
+                        SurfaceOptions { max_triangles: Some(EDITOR_MAX_TRIANGLES), ..SurfaceOptions::default() };
+                    let swept = SweptSurfaces::sweep_with(&swp, &options);
                     let prepared = view3d::PreparedMesh::new(&swept.mesh);
                     (swept, prepared)
                 });
@@ -1590,6 +1600,7 @@ impl EditorApp {
     /// renderer.
     pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame) {
         let ctx = ui.ctx().clone();
+        self.egui_ctx.get_or_insert_with(|| ctx.clone());
         self.on_close_request(&ctx);
         self.keyboard(&ctx);
         // a file dropped on the window opens (asking first about unsaved changes)

@@ -108,7 +108,7 @@ impl<T> Task<T> {
                     ui.add(egui::ProgressBar::new(f).desired_width(80.0).show_percentage());
                 }
                 None => {
-                    ui.spinner();
+                    spinner(ui, self.elapsed());
                 }
             }
             ui.label(format!("{}… {:.1} s", self.label, self.elapsed().as_secs_f64()));
@@ -117,6 +117,22 @@ impl<T> Task<T> {
         ui.ctx().request_repaint_after(Duration::from_millis(50));
         cancel
     }
+}
+
+/// An arc turning with `elapsed` time (egui's spinner asks for every frame at once; this one
+/// is redrawn with the 20-a-second repaints of [`Task::ui`]).
+fn spinner(ui: &mut egui::Ui, elapsed: Duration) {
+    let size = ui.spacing().interact_size.y;
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(size, size), egui::Sense::hover());
+    let t = elapsed.as_secs_f64() * 4.0;
+    let radius = 0.4 * rect.height();
+    let points: Vec<egui::Pos2> = (0..=24)
+        .map(|i| {
+            let a = t + f64::from(i) / 24.0 * 4.5;
+            rect.center() + radius * egui::vec2(a.cos() as f32, a.sin() as f32)
+        })
+        .collect();
+    ui.painter().add(egui::Shape::line(points, egui::Stroke::new(2.0, ui.visuals().strong_text_color())));
 }
 
 #[cfg(test)]

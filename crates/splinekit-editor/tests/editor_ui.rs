@@ -625,3 +625,34 @@ fn usable_at_800_by_600_with_panels_to_hide_and_views_that_refit() {
     h.run();
     assert!((h.state().view.scale - fitted).abs() < 1e-9 * fitted, "{} vs {fitted}", h.state().view.scale);
 }
+
+/// #36: a click on a Bézier spline's control polygon splits that segment by De Casteljau:
+/// three points more, the curve keeps its shape and stays valid.
+#[test]
+fn a_click_on_a_bezier_polygon_splits_the_segment() {
+    let mut app = EditorApp::new(None);
+    app.doc.set_kind(SwpCurveKind::Bezier);
+    for (x, y) in [(0.0, 0.0), (1.0, 2.0), (3.0, 2.0), (4.0, 0.0)] {
+        app.doc.add_point(DVec3::new(x, y, 0.0));
+    }
+    let mut h = harness(app);
+    let before = h.state().doc.spline().unwrap();
+    let (a, b) = (center(&h, "P1"), center(&h, "P2"));
+    click_at(&mut h, a + (b - a) * 0.5, Modifiers::NONE);
+    let doc = &h.state().doc;
+    assert_eq!(doc.points().len(), 7);
+    let after = doc.spline().expect("still a valid Bézier spline");
+    // the middle edge at its middle is parameter 1/2 (to the pixel clicked); the left half's
+    // first inner point is P0 + u·(P1 − P0) with P0 = (0, 0), P1 = (1, 2): u is its x
+    use splinekit::ParamCurve as _;
+    let u = doc.points()[1].x;
+    assert!((u - 0.5).abs() < 0.01, "{u}");
+    assert!((doc.points()[3] - before.eval(u)).length() < 1e-12, "the new point is on the curve");
+    assert_eq!(h.state().view.selected, Some(3));
+    // the halves are the old curve over [0, u] and [u, 1]
+    for k in 0..=20 {
+        let v = f64::from(k) / 20.0;
+        assert!((after.eval(v) - before.eval(v * u)).length() < 1e-12, "left half at {v}");
+        assert!((after.eval(1.0 + v) - before.eval(u + v * (1.0 - u))).length() < 1e-12, "right half at {v}");
+    }
+}

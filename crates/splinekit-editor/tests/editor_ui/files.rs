@@ -365,3 +365,40 @@ fn export_never_targets_the_open_document() {
     assert_eq!(std::fs::read(&ico).unwrap(), bytes);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// The dialog's shortcuts: Parent folder, Home, a folder entered by a click; after a refused
+/// name the field has the focus again, so typing replaces it at once.
+#[test]
+fn the_dialog_walks_folders_and_keeps_the_name_field_ready() {
+    let dir = tempfile_dir("walk");
+    std::fs::create_dir_all(dir.join("inner")).unwrap();
+    let mut h = four_points();
+    click(&mut h, "Save as…");
+    let d = h.state_mut().dialog.as_mut().unwrap();
+    d.go_to(dir.join("inner"));
+    h.run();
+    click(&mut h, "Parent folder");
+    assert_eq!(dialog(&h).dir, dir);
+    click(&mut h, "inner/");
+    assert_eq!(dialog(&h).dir, dir.join("inner"));
+    if let Some(home) = splinekit_editor::files::home_dir() {
+        click(&mut h, "Home");
+        assert_eq!(dialog(&h).dir, home);
+    }
+    let d = h.state_mut().dialog.as_mut().unwrap();
+    d.go_to(dir.clone());
+    d.name = "mesh.obj".to_owned();
+    h.run();
+    h.key_press(Key::Enter);
+    h.run();
+    assert!(dialog(&h).error.is_some());
+    // the field has the focus: select all, type a new name, Enter saves
+    h.key_press_modifiers(Modifiers::COMMAND, Key::A);
+    h.event(egui::Event::Text("curve".to_owned()));
+    h.run();
+    h.key_press(Key::Enter);
+    h.run();
+    assert!(h.state().dialog.is_none(), "{:?}", h.state().dialog.as_ref().map(|d| (&d.name, &d.error)));
+    assert!(dir.join("curve.swp").is_file());
+    let _ = std::fs::remove_dir_all(dir);
+}
