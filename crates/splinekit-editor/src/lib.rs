@@ -412,6 +412,12 @@ pub const BACKGROUND_BYTES: u64 = 4_000_000;
 /// Subdivision levels of more faces than this are made on a worker thread.
 pub const BACKGROUND_FACES: usize = 200_000;
 
+/// What Export mesh writes: a mesh, or a document whose surfaces it sweeps first.
+enum ExportSource {
+    Mesh(TriMesh),
+    Sweep(SwpDocument),
+}
+
 /// A mesh file read on a worker thread, with its Loop level 0 and 3D view data.
 struct Loaded {
     mesh: PolyMesh,
@@ -427,6 +433,13 @@ enum Refined {
     Pyramid(LoopPyramid, view3d::PreparedMesh),
     /// The next level of another scheme.
     Level(PolyMesh, view3d::PreparedMesh),
+    /// Every level made again with new colours.
+    Recolored {
+        pyramid: Result<LoopPyramid, String>,
+        levels: Vec<PolyMesh>,
+        level: usize,
+        prepared: view3d::PreparedMesh,
+    },
 }
 
 /// Which level of which mesh with which scheme is shown: the mesh (its address), the scheme
@@ -482,6 +495,8 @@ pub struct EditorApp {
     sweep_cancelled: Option<u64>,
     /// The window's context (once it has drawn), woken by workers when they finish.
     egui_ctx: Option<egui::Context>,
+    /// A mesh being exported on a worker thread (its file, and how many triangles it wrote).
+    export_task: Option<(PathBuf, work::Task<Result<usize, String>>)>,
     /// A mesh file being read on a worker thread.
     load_task: Option<(PathBuf, work::Task<Result<Loaded, String>>)>,
     /// A subdivision level being made on a worker thread, for the mesh level it refines.
@@ -520,6 +535,7 @@ impl Default for EditorApp {
             sweep_task: None,
             sweep_cancelled: None,
             egui_ctx: None,
+            export_task: None,
             load_task: None,
             refine_task: None,
             prepared_mesh: None,
@@ -864,6 +880,14 @@ impl EditorApp {
                 m.level = m.levels.len();
                 self.prepared_mesh = Some((mesh_key(m), prepared));
             }
+            Ok(Refined::Recolored { pyramid, levels, level, prepared }) => {
+                m.pyramid = pyramid;
+                m.levels = levels;
+                m.level = level;
+                self.mesh_generation += 1;
+                self.prepared_mesh = Some((mesh_key(m), prepared));
+                return;
+            }
             Err(e) => {
                 self.status = format!("Error: {}: {e}", m.name);
                 return;
@@ -906,31 +930,32 @@ impl EditorApp {
         self.cancel_refine();
         let options = self.loop_options();
         let Some(m) = &mut self.mesh else { return };
-        m.pyramid = LoopPyramid::new(&m.source.base, options).map_err(|e| e.to_string());
-        let pyramid = m.uses_pyramid();
-        if let Ok(p) = &mut m.pyramid
-            && pyramid
-        {
-            // the level shown was made before, so it fits; were it refused, show the finest
-            if p.refine_to(m.level, |_| {}).is_err() {
-                m.level = p.finest().depth();
-            }
+        let (source, scheme, pyramid, level, count) =
+            (Arc::clone(&m.source), m.scheme, m.uses_pyramid(), m.level, m.levels.len());
+        let finest = match (&m.pyramid, pyramid) {
+            (Ok(p), true) => p.finest().num_triangles(),
+            _ => m.levels.last().map_or(0, PolyMesh::num_faces),
+        };
+        if finest > BACKGROUND_FACES {
+            let key = mesh_key(m);
+            let label = format!("Colouring {finest} faces");
+            let task = work::Task::spawn(label, 0, self.egui_ctx.clone(), move |_| {
+                let (pyramid, levels, level) = recolored(&source, scheme, pyramid, level, count, options);
+                let shown = match (&pyramid, level) {
+                    (_, 0) => source.base.to_tri_mesh(),
+                    (Ok(p), l) if levels.is_empty() => p.level(l).clone().into_tri_mesh(),
+                    (_, l) => levels[l - 1].to_tri_mesh(),
+                };
+                let prepared = view3d::PreparedMesh::new(&shown);
+                Ok(Refined::Recolored { pyramid, levels, level, prepared })
+            });
+            self.refine_task = Some((key, task));
+            return;
         }
-        // the other scheme's levels made so far, again with the new colours
-        let mut levels: Vec<PolyMesh> = Vec::with_capacity(m.levels.len());
-        if !pyramid {
-            for depth in 1..=m.levels.len() {
-                let coarse = levels.last().unwrap_or(&m.source.base);
-                match m.scheme.polygon_level(&m.source.base, coarse, &m.source.creases, depth, options.color_by_level) {
-                    Ok(fine) => levels.push(fine),
-                    Err(_) => break,
-                }
-            }
-        }
-        if !pyramid {
-            m.level = m.level.min(levels.len());
-        }
+        let (p, levels, level) = recolored(&source, scheme, pyramid, level, count, options);
+        m.pyramid = p;
         m.levels = levels;
+        m.level = level;
         self.mesh_generation += 1;
     }
 
@@ -986,17 +1011,77 @@ impl EditorApp {
             self.status = format!("Error: {}: unknown extension (expected .obj, .glb, .ply or .stl)", path.display());
             return;
         };
-        let mesh = match self.shown_mesh() {
-            Ok(m) => m,
+        // the mesh shown, or the document to sweep in full if what is shown is a preview or
+        // still being swept
+        let source = if let Some(m) = &self.mesh {
+            Ok(ExportSource::Mesh(m.shown()))
+        } else if self.doc.swp.surfaces.is_empty() {
+            Err("the document has no surface (add srev or gcyl to the SWP file)".to_owned())
+        } else if self.surfaces_for == Some((self.doc.revision(), true)) {
+            match self.surfaces.errors.first() {
+                Some(e) => Err(e.clone()),
+                None => Ok(ExportSource::Mesh(self.surfaces.mesh.clone())),
+            }
+        } else {
+            Ok(ExportSource::Sweep(self.doc.swp.clone()))
+        };
+        let source = match source {
+            Ok(source) => source,
             Err(e) => {
                 self.status = format!("Error: {e}");
                 return;
             }
         };
-        match splinekit_io::mesh::save(&mesh, path, format) {
-            Ok(()) => self.status = format!("Exported {} ({} triangles)", path.display(), mesh.num_triangles()),
-            Err(e) => self.status = format!("Error: {e}"),
+        let big = match &source {
+            ExportSource::Mesh(m) => m.num_triangles() > BACKGROUND_FACES,
+            ExportSource::Sweep(_) => true,
+        };
+        let file = path.to_path_buf();
+        let work = move |progress: Option<&work::Progress>| -> Result<usize, String> {
+            let mesh = match source {
+                ExportSource::Mesh(m) => m,
+                ExportSource::Sweep(swp) => {
+                    let swept = SweptSurfaces::sweep(&swp);
+                    if let Some(e) = swept.errors.first() {
+                        return Err(e.clone());
+                    }
+                    swept.mesh
+                }
+            };
+            let cancelled = || progress.is_some_and(work::Progress::is_cancelled);
+            splinekit_io::mesh::save_cancellable(&mesh, &file, format, &cancelled).map_err(|e| e.to_string())?;
+            Ok(mesh.num_triangles())
+        };
+        if big {
+            let label = format!("Exporting {}", path.display());
+            let task = work::Task::spawn(label, 0, self.egui_ctx.clone(), move |p| work(Some(p)));
+            self.export_task = Some((path.to_path_buf(), task));
+            self.status = format!("Exporting {}…", path.display());
+            return;
         }
+        self.exported(path, work(None));
+    }
+
+    fn exported(&mut self, path: &Path, result: Result<usize, String>) {
+        self.status = match result {
+            Ok(n) => format!("Exported {} ({n} triangles)", path.display()),
+            Err(e) => format!("Error: {e}"),
+        };
+    }
+
+    /// Takes the result of an export on a worker thread, if it is done.
+    fn poll_export(&mut self) {
+        let Some((path, task)) = &mut self.export_task else { return };
+        let Some(result) = task.poll() else { return };
+        let path = path.clone();
+        self.export_task = None;
+        self.exported(&path, result.and_then(|r| r));
+    }
+
+    /// Whether a mesh is being exported on a worker thread.
+    #[must_use]
+    pub fn is_exporting(&self) -> bool {
+        self.export_task.is_some()
     }
 
     /// The mesh of the 3D view: the loaded mesh's level, or the document's surfaces merged
@@ -1399,8 +1484,9 @@ impl EditorApp {
             if let Some((_, task)) = &self.refine_task
                 && task.ui(ui)
             {
+                let what = task.label.clone();
                 self.cancel_refine();
-                self.status = "Cancelled the refinement".to_owned();
+                self.status = format!("Cancelled: {what}");
             }
             if ui.checkbox(&mut self.color_by_level, "Colour by level").changed() {
                 self.recolor();
@@ -1608,10 +1694,15 @@ impl EditorApp {
         if let Some(path) = dropped
             && !self.modal_open()
         {
-            self.request(Pending::Open(path));
+            // a file the editor cannot open is refused before anything is asked
+            match Purpose::Open.refuse_extension(&path) {
+                Some(why) => self.status = format!("Error: {why}"),
+                None => self.request(Pending::Open(path)),
+            }
         }
         self.poll_load();
         self.poll_refine();
+        self.poll_export();
         self.sync_mesh();
         egui::Panel::top("file bar").show(ui, |ui| self.file_bar(ui));
         // one line, so the views keep their size whatever it says
@@ -1621,6 +1712,15 @@ impl EditorApp {
             {
                 self.cancel_load();
                 self.status = "Cancelled opening the file".to_owned();
+            }
+            if let Some((_, task)) = &self.export_task
+                && task.ui(ui)
+            {
+                // the worker stops at its next write, and the file is written through a
+                // temporary file: cancelled, it is not created or replaced
+                task.cancel();
+                self.export_task = None;
+                self.status = "Cancelled the export (the file was not written)".to_owned();
             }
             ui.horizontal(|ui| {
                 let error = self.status.starts_with("Error");
@@ -1740,6 +1840,42 @@ fn append(a: &mut TriMesh, b: &TriMesh) {
         a.colors.clear()
     }
     a.triangles.extend(b.triangles.iter().map(|t| t.map(|i| i + offset)));
+}
+
+/// The levels of `source` made again with `options`' colours: the Loop pyramid to `level`
+/// when `pyramid` (Loop without creases), else `count` levels of `scheme`; and the level to
+/// show (the same, or the finest that could be made).
+fn recolored(
+    source: &ViewedMesh,
+    scheme: Scheme,
+    pyramid: bool,
+    level: usize,
+    count: usize,
+    options: LoopOptions,
+) -> (Result<LoopPyramid, String>, Vec<PolyMesh>, usize) {
+    let mut p = LoopPyramid::new(&source.base, options).map_err(|e| e.to_string());
+    let mut level = level;
+    if let Ok(p) = &mut p
+        && pyramid
+    {
+        // the level shown was made before, so it fits; were it refused, show the finest
+        if p.refine_to(level, |_| {}).is_err() {
+            level = p.finest().depth();
+        }
+    }
+    // the other scheme's levels made so far, again with the new colours
+    let mut levels: Vec<PolyMesh> = Vec::with_capacity(count);
+    if !pyramid {
+        for depth in 1..=count {
+            let coarse = levels.last().unwrap_or(&source.base);
+            match scheme.polygon_level(&source.base, coarse, &source.creases, depth, options.color_by_level) {
+                Ok(fine) => levels.push(fine),
+                Err(_) => break,
+            }
+        }
+        level = level.min(levels.len());
+    }
+    (p, levels, level)
 }
 
 /// Reads a mesh file and its creases (an OBJ's crease tags), and whether it is a plain mesh

@@ -11,8 +11,8 @@ use std::path::{Path, PathBuf};
 use glam::{DVec2, DVec3};
 use splinekit::TriMesh;
 use splinekit_io::mesh::{
-    MeshFormat, MeshIoErrorKind, SplineHeader, save, save_revolution_obj, write_glb, write_mesh, write_obj, write_ply,
-    write_revolution_obj, write_stl,
+    MeshFormat, MeshIoErrorKind, SplineHeader, save, save_cancellable, save_revolution_obj, write_glb, write_mesh,
+    write_obj, write_ply, write_revolution_obj, write_stl,
 };
 
 // ---------------------------------------------------------------------------------------
@@ -642,4 +642,29 @@ fn reading_stops_at_the_mesh_and_reports_bad_utf8_in_the_header() {
     let e = SplineHeader::read(&path).unwrap_err();
     assert_eq!((e.line(), e.column()), (5, 7));
     assert!(matches!(e.kind(), MeshIoErrorKind::InvalidUtf8));
+}
+
+/// A cancelled save leaves nothing behind: no new file, an existing file unchanged, no
+/// temporary file; an uncancelled one writes what `save` writes.
+#[test]
+fn a_cancelled_save_writes_nothing() {
+    let dir = Scratch::new("cancel");
+    let mesh = grid(40, 30);
+    for format in [MeshFormat::Obj, MeshFormat::Glb, MeshFormat::Ply, MeshFormat::Stl] {
+        let name = format!("m.{}", format.extension());
+        let path = dir.0.join(&name);
+        // cancelled after a few writes: the first chunks went to the temporary file only
+        let writes = std::sync::atomic::AtomicUsize::new(0);
+        let after_two = || writes.fetch_add(1, std::sync::atomic::Ordering::Relaxed) >= 2;
+        let err = save_cancellable(&mesh, &path, format, &after_two).unwrap_err();
+        assert!(err.to_string().contains("cancelled"), "{err}");
+        assert!(!path.exists(), "{name}");
+        fs::write(&path, b"keep").unwrap();
+        assert!(save_cancellable(&mesh, &path, format, &|| true).is_err());
+        assert_eq!(fs::read(&path).unwrap(), b"keep");
+        save_cancellable(&mesh, &path, format, &|| false).unwrap();
+        assert_eq!(fs::read(&path).unwrap(), to_bytes(&mesh, format), "{name}");
+        fs::remove_file(&path).unwrap();
+    }
+    assert!(dir.entries().is_empty(), "{:?}", dir.entries());
 }

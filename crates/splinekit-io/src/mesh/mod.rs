@@ -177,6 +177,48 @@ pub fn save(mesh: &TriMesh, path: impl AsRef<Path>, format: MeshFormat) -> Resul
     atomic::write_file(path, |w| write_mesh(mesh, w, format).map_err(|e| e.with_origin(path)))
 }
 
+/// Writes `mesh` like [`save`], stopping as soon as `cancelled()` says so (it is asked before
+/// every write to the temporary file, and before the temporary file replaces `path`): a
+/// cancelled save fails with an I/O error saying so and leaves `path` as it was. For saves that run on a worker thread while a person waits.
+///
+/// # Errors
+///
+/// As [`save`], and when cancelled.
+pub fn save_cancellable(
+    mesh: &TriMesh,
+    path: impl AsRef<Path>,
+    format: MeshFormat,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Result<(), MeshIoError> {
+    /// Passes writes on until `cancelled()`.
+    struct Cancellable<'a, W: ?Sized> {
+        inner: &'a mut W,
+        cancelled: &'a (dyn Fn() -> bool + Sync),
+    }
+    impl<W: Write + ?Sized> Write for Cancellable<'_, W> {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            if (self.cancelled)() {
+                return Err(std::io::Error::other("cancelled"));
+            }
+            self.inner.write(buf)
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            self.inner.flush()
+        }
+    }
+    let path = path.as_ref();
+    check(mesh).map_err(|e| e.with_origin(path))?;
+    atomic::write_file(path, |w| {
+        let mut out = Cancellable { inner: w, cancelled };
+        write_mesh(mesh, &mut out, format).map_err(|e| e.with_origin(path))?;
+        // once more before the rename: a cancel after the last write still keeps `path`
+        if cancelled() {
+            return Err(MeshIoError::from(std::io::Error::other("cancelled")).with_origin(path));
+        }
+        Ok(())
+    })
+}
+
 /// Writes the polygon mesh `mesh` to the file at `path` in `format`, atomically (as
 /// [`save`]): OBJ keeps the polygons ([`write_obj_poly`]); the other formats get its fan
 /// triangulation ([`PolyMesh::to_tri_mesh`]).
