@@ -1244,7 +1244,8 @@ impl EditorApp {
 
     /// One key press.
     fn key(&mut self, key: Key, modifiers: Modifiers, repeat: bool, typing: bool) {
-        let command = modifiers.command && !modifiers.alt;
+        // Ctrl on Linux and Windows (egui sets `command` for it; some input sources set only `ctrl`)
+        let command = (modifiers.command || modifiers.ctrl) && !modifiers.alt;
         if command {
             match (key, modifiers.shift) {
                 (Key::S, true) => self.open_dialog(Purpose::SaveAs),

@@ -122,6 +122,10 @@ fn every_key_press_of_a_slow_frame_counts() {
     }
     h.run();
     assert_eq!(h.state().doc.curve().unwrap().kind, KINDS[(start + 1) % KINDS.len()].0);
+    // Ctrl reported as `ctrl` alone counts as the command key too
+    h.key_press_modifiers(Modifiers::CTRL, Key::N);
+    h.run();
+    assert_eq!(h.state().prompt, Some(splinekit_editor::Pending::New));
 }
 
 /// #36, item 6: characters typed into the Save as dialog's name field just before a click on
