@@ -1138,11 +1138,20 @@ impl EditorApp {
         }
     }
 
-    /// The triangle count of the document's surfaces shown (0 if there are none or they
-    /// fail; a preview's while one is shown).
+    /// The triangle count of the document's surfaces (0 if there are none or they fail). When
+    /// the window shows a preview or is still sweeping them on a worker thread, they are swept
+    /// in full here first, so the count is always the whole surfaces'.
     #[must_use]
     pub fn surface_triangles(&mut self) -> usize {
         self.update_surfaces(None);
+        let revision = self.doc.revision();
+        if self.surfaces_for != Some((revision, true)) {
+            self.cancel_sweep();
+            let options = SurfaceOptions { max_triangles: Some(EDITOR_MAX_TRIANGLES), ..SurfaceOptions::default() };
+            self.surfaces = SweptSurfaces::sweep_with(&self.doc.swp, &options);
+            self.prepared = None;
+            self.surfaces_for = Some((revision, true));
+        }
         self.surfaces.mesh.num_triangles()
     }
 

@@ -162,7 +162,7 @@ fn big_glass(dir: &Path, steps: u32, slices: u32) -> PathBuf {
         &format!("srev wineglass {slices}"),
         1,
     );
-    let path = dir.join("big.swp");
+    let path = dir.join(format!("big-{steps}-{slices}.swp"));
     std::fs::write(&path, text).unwrap();
     path
 }
@@ -219,12 +219,28 @@ fn big_surfaces_are_swept_in_the_background_and_previewed_while_dragging() {
     let now = splinekit_editor::SweptSurfaces::sweep(&h.state().doc.swp);
     assert_eq!(h.state().view3d.bounds(), splinekit_editor::view3d::bounds(&now.mesh), "the moved point's surface");
 
-    // Cancel stops the sweep of an edit; the status says the surface shown is not the curves'
-    h.key_press(Key::S);
-    h.run_steps(3);
-    assert!(h.state().is_sweeping());
+    // the count asked for by a program is the whole surface's, even during a drag's preview
+    h.event(Event::PointerMoved(from + Vec2::new(0.0, 18.0)));
+    h.event(press(from + Vec2::new(0.0, 18.0), true));
+    h.event(Event::PointerMoved(from + Vec2::new(0.0, 30.0)));
+    h.run();
+    assert!(h.state().view3d.num_triangles() <= 110_000);
+    let whole = splinekit_editor::SweptSurfaces::sweep(&h.state().doc.swp).mesh.num_triangles();
+    assert_eq!(h.state_mut().surface_triangles(), whole);
+    h.event(press(from + Vec2::new(0.0, 30.0), false));
+    h.step();
+    h.step();
+    run_until(&mut h, "after the second drag", |app| !app.is_sweeping());
+
+    // Cancel stops a sweep; the status says the surface shown is not the curves' (a surface
+    // of 5.5 M triangles, so the sweep is surely still running when Cancel is clicked)
+    let huge = big_glass(&dir, 40, 3000);
+    assert!(h.state_mut().open_file(&huge));
+    h.step();
+    assert!(h.state().is_sweeping(), "{}", h.state().status);
+    h.step();
     h.get_by_label("Cancel").click();
-    h.run_steps(3);
+    h.step();
     assert!(!h.state().is_sweeping());
     assert!(h.state().status.starts_with("Cancelled the sweep"), "{}", h.state().status);
     let _ = std::fs::remove_dir_all(dir);
@@ -306,9 +322,15 @@ fn big_files_open_and_levels_refine_in_the_background() {
     h.step();
     run_until(&mut h, "colouring", |app| !app.is_refining());
 
-    // Catmull-Clark's first level in the background, cancelled: level 0 stays
+    // Catmull-Clark: the first level in the background (162 000 quads); the second (648 000)
+    // cancelled while it is made: level 1 stays
     click(&mut h, "Scheme");
     click(&mut h, "Catmull-Clark");
+    h.get_by_label("Refine subdivision").click();
+    h.step();
+    assert!(h.state().is_refining());
+    run_until(&mut h, "Catmull-Clark level 1", |app| !app.is_refining());
+    h.get_by_label("Faces: 162000");
     h.get_by_label("Refine subdivision").click();
     h.step();
     assert!(h.state().is_refining());
@@ -316,6 +338,8 @@ fn big_files_open_and_levels_refine_in_the_background() {
     h.run();
     assert!(!h.state().is_refining());
     assert!(h.state().status.starts_with("Cancelled: Refining"), "{}", h.state().status);
-    h.get_by_label("Faces: 54000");
+    h.get_by_label("Faces: 162000");
+    // V + E + F = 27 000 + 81 000 + 54 000
+    h.get_by_label("Level 1: 162000 vertices");
     let _ = std::fs::remove_dir_all(dir);
 }
