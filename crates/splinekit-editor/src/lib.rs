@@ -1458,7 +1458,8 @@ impl EditorApp {
         ui.checkbox(&mut show.polygon, "Control polygon");
         ui.checkbox(&mut show.markers, "Arc-length markers");
         ui.add(egui::Slider::new(&mut show.marker_spacing, 0.001..=10.0).logarithmic(true).text("spacing"));
-        ui.checkbox(&mut show.normals, "Tangents and normals");
+        ui.checkbox(&mut show.curves, "Draw curves").on_hover_text("every curve, in 2D and 3D");
+        ui.checkbox(&mut show.normals, "Draw normals").on_hover_text("T, N, B in blue, red, green, in 2D and 3D");
         ui.checkbox(&mut show.frames, "Frames (T, N, B)");
         ui.checkbox(&mut show.comb, "Curvature comb");
         ui.add(egui::Slider::new(&mut show.comb_scale, 0.001..=10.0).logarithmic(true).text("comb scale"));
@@ -1527,14 +1528,10 @@ impl EditorApp {
         });
         ui.separator();
         self.update_view3d(Some(ui.ctx()));
-        // the control points of a 3D curve, dragged in the 3D view
-        let (handles, curve) = if self.mesh.is_none() && !self.doc.is_2d() {
-            let curve = self.doc.spline().map_or_else(|_| Vec::new(), |c| sample_curve(&c));
-            (self.doc.points().to_vec(), curve)
-        } else {
-            (Vec::new(), Vec::new())
-        };
-        let (_, drag) = self.view3d.ui_with_handles(ui, frame, &handles, &curve);
+        // the control points of a 3D curve, dragged in the 3D view; every curve drawn over it
+        let handles = if self.mesh.is_none() && !self.doc.is_2d() { self.doc.points().to_vec() } else { Vec::new() };
+        let overlay = if self.mesh.is_none() { self.scene_overlay() } else { view3d::Overlay::default() };
+        let (_, drag) = self.view3d.ui_with_overlay(ui, frame, &handles, &overlay);
         if let Some(d) = drag {
             if d.started {
                 self.doc.begin_move();
@@ -1542,6 +1539,77 @@ impl EditorApp {
             self.doc.set_point(d.index, d.position);
             self.view.selected = Some(d.index);
         }
+    }
+
+    /// Every curve of the document for the 3D view (2D curves in the xy plane), coloured by
+    /// segment, the active one brighter and wider, with the control points of the others
+    /// (the active 3D curve's are its handles) (`Draw curves`); frames T, N, B in blue, red and
+    /// green along every curve (`Draw normals`); the active curve's arc-length markers.
+    fn scene_overlay(&self) -> view3d::Overlay {
+        use splinekit::ParamCurve as _;
+        let mut overlay = view3d::Overlay::default();
+        let show = &self.view.show;
+        if !show.curves && !show.normals && !show.markers {
+            return overlay;
+        }
+        let curves: Vec<(usize, splinekit::AnyCurve<glam::DVec3>)> =
+            self.doc.swp.curves.iter().enumerate().filter_map(|(i, c)| c.to_curve().ok().map(|c| (i, c))).collect();
+        // frame arrows a twentieth of the scene's size
+        let (_, radius) = view3d::point_bounds(|| {
+            curves.iter().flat_map(|(_, c)| {
+                let n = c.num_segments().max(1);
+                (0..=4 * n).map(move |k| c.eval(n as f64 * k as f64 / (4 * n) as f64))
+            })
+        });
+        let arrow = 0.1 * if radius > 0.0 { radius } else { 1.0 };
+        for (i, c) in &curves {
+            let active = *i == self.doc.active;
+            let segments = c.num_segments().max(1);
+            if show.curves {
+                for seg in 0..segments {
+                    let points = (0..=24).map(|k| c.eval(seg as f64 + f64::from(k) / 24.0)).collect();
+                    let colour = view2d::SEGMENT_COLORS[seg % view2d::SEGMENT_COLORS.len()];
+                    let (colour, width) = if active { (colour, 2.5) } else { (colour.gamma_multiply(0.55), 1.5) };
+                    overlay.lines.push((points, colour, width));
+                }
+                let is_3d = self.doc.swp.curves[*i].dim == 3;
+                if !(active && is_3d) {
+                    let points = match &self.doc.swp.curves[*i].geometry {
+                        splinekit_io::SwpGeometry::Points(p) | splinekit_io::SwpGeometry::Hermite { points: p, .. } => {
+                            p.as_slice()
+                        }
+                        _ => &[],
+                    };
+                    let colour = if active { view3d::HANDLE_COLOUR } else { egui::Color32::from_gray(150) };
+                    overlay.dots.extend(points.iter().map(|&p| (p, colour)));
+                }
+            }
+            if show.normals {
+                let n = segments * 8;
+                let us: Vec<f64> = (0..=n).map(|k| segments as f64 * k as f64 / n as f64).collect();
+                let frames = splinekit::frame::frames(c, &us, &splinekit::frame::FrameOptions::default());
+                for (&u, f) in us.iter().zip(&frames) {
+                    let p = c.eval(u);
+                    for (v, colour) in [
+                        (f.t, egui::Color32::from_rgb(60, 110, 255)),
+                        (f.n, egui::Color32::from_rgb(230, 50, 50)),
+                        (f.b, egui::Color32::from_rgb(40, 180, 70)),
+                    ] {
+                        overlay.lines.push((vec![p, p + v * arrow], colour, 1.5));
+                    }
+                }
+            }
+            if show.markers && active {
+                let index = splinekit::arclen::ArclenIndex::new(c, 1e-9);
+                let spacing = show.marker_spacing.max(index.length() / 5000.0).max(1e-12);
+                let count = (index.length() / spacing).floor() as usize;
+                for k in 0..=count {
+                    let u = index.u_at(c, k as f64 * spacing);
+                    overlay.dots.push((c.eval(u), egui::Color32::from_gray(20)));
+                }
+            }
+        }
+        overlay
     }
 
     fn windows(&mut self, ctx: &egui::Context) {
@@ -1817,14 +1885,6 @@ fn point_count(c: &splinekit_io::SwpCurve) -> usize {
         splinekit_io::SwpGeometry::Points(p) | splinekit_io::SwpGeometry::Hermite { points: p, .. } => p.len(),
         _ => 0,
     }
-}
-
-/// Points along `c`, 32 per segment, for the 3D view's overlay.
-fn sample_curve(c: &splinekit::AnyCurve<glam::DVec3>) -> Vec<glam::DVec3> {
-    use splinekit::ParamCurve as _;
-    let segments = c.num_segments();
-    let n = 32 * segments;
-    (0..=n).map(|i| c.eval(segments as f64 * i as f64 / n.max(1) as f64)).collect()
 }
 
 /// Appends `b` to `a` (per-vertex attributes kept only if both have them).

@@ -78,8 +78,10 @@ pub struct Show {
     pub markers: bool,
     /// Spacing of the markers, in model units.
     pub marker_spacing: f64,
-    /// Tangents and normals (`n`): T blue, N red.
+    /// Tangents and normals (`n`): T blue, N red (and B green in the 3D view).
     pub normals: bool,
+    /// Every curve of the document, not only the active one (2D and 3D views).
+    pub curves: bool,
     /// Whole frames: T, N, B in blue, red, green.
     pub frames: bool,
     /// The curvature comb.
@@ -95,6 +97,7 @@ impl Default for Show {
             markers: false,
             marker_spacing: 0.1,
             normals: false,
+            curves: true,
             frames: false,
             comb: false,
             comb_scale: 0.05,
@@ -132,6 +135,8 @@ pub struct View2d {
     /// Whether a point drag ended in this frame (the background then neither pans nor
     /// takes the release as a click).
     dragged_this_frame: bool,
+    /// The other curves drawn last frame (their index and screen polyline), for picking.
+    others: Vec<(usize, Vec<Pos2>)>,
     /// Where the view was last drawn (screen points).
     pub rect: Rect,
 }
@@ -147,6 +152,7 @@ impl Default for View2d {
             fit_pending: true,
             drag: None,
             dragged_this_frame: false,
+            others: Vec::new(),
             rect: Rect::from_min_size(Pos2::ZERO, Vec2::splat(1.0)),
         }
     }
@@ -173,11 +179,20 @@ impl View2d {
         if doc.is_2d() { Plane::Xy } else { self.plane }
     }
 
-    /// Frames the active curve's points and curve (with a margin).
+    /// Frames the active curve's points and curve, and the other curves when they are drawn
+    /// (with a margin).
     pub fn fit(&mut self, doc: &Document) {
         let plane = self.plane_for(doc);
         let mut pts: Vec<DVec2> = doc.points().iter().map(|&p| plane.project(p)).collect();
-        if let Ok(c) = doc.spline() {
+        // the active curve, and the others when they are drawn: the whole scene
+        let curves = doc
+            .swp
+            .curves
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i == doc.active || self.show.curves)
+            .filter_map(|(_, c)| c.to_curve().ok());
+        for c in curves {
             let n = c.num_segments().max(1) * 16;
             pts.extend((0..=n).map(|i| plane.project(c.eval(c.num_segments() as f64 * i as f64 / n as f64))));
         }
@@ -209,6 +224,20 @@ impl View2d {
         painter.rect_filled(rect, 0.0, Color32::from_gray(250));
         self.draw_axes(&painter, doc);
         let plane = self.plane_for(doc);
+        // the other curves, dimmed; a click on one makes it the active curve
+        self.others.clear();
+        if self.show.curves {
+            for (i, c) in doc.swp.curves.iter().enumerate() {
+                if i == doc.active {
+                    continue;
+                }
+                let Ok(c) = c.to_curve() else { continue };
+                let params = flatten_any(&c, Tessellation::Distance { tolerance: 0.5 / self.scale });
+                let line: Vec<Pos2> = params.iter().map(|&u| self.to_screen(plane.project(c.eval(u)))).collect();
+                painter.add(Shape::line(line.clone(), Stroke::new(1.5, Color32::from_gray(175))));
+                self.others.push((i, line));
+            }
+        }
         let curve = doc.spline().ok();
         if let Some(c) = &curve {
             self.draw_curve(&painter, c, plane);
@@ -271,6 +300,11 @@ impl View2d {
             if shift {
                 doc.add_point(model);
                 self.selected = Some(doc.points().len() - 1);
+            } else if let Some(i) = self.curve_near(pointer)
+                && self.edge_near(doc, &points, pointer).is_none()
+            {
+                doc.select_curve(i);
+                self.selected = None;
             } else if let Some(edge) = self.edge_near(doc, &points, pointer) {
                 let (a, b) = (doc.points()[edge], doc.points()[(edge + 1) % points.len()]);
                 // the third coordinate: interpolated along the edge
@@ -297,6 +331,30 @@ impl View2d {
             }
         }
         background
+    }
+
+    /// The other curve (not the active one) drawn within [`PICK_RADIUS`] of `pointer`.
+    fn curve_near(&self, pointer: Pos2) -> Option<usize> {
+        self.others
+            .iter()
+            .filter_map(|(i, line)| {
+                let d = line
+                    .windows(2)
+                    .map(|w| {
+                        let t = closest_param(w[0], w[1], pointer);
+                        (w[0] + (w[1] - w[0]) * t as f32).distance(pointer)
+                    })
+                    .fold(f32::INFINITY, f32::min);
+                (d <= PICK_RADIUS).then_some((*i, d))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(i, _)| i)
+    }
+
+    /// How many other curves (not the active one) the last frame drew, dimmed.
+    #[must_use]
+    pub fn other_curves_drawn(&self) -> usize {
+        self.others.len()
     }
 
     /// Whether a control point is being dragged.

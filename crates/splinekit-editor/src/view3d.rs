@@ -64,6 +64,8 @@ const NO_WGPU: &str = "3D view: needs the wgpu renderer";
 /// What the view draws. Public fields; change them at will, the view re-renders.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct View3dSettings {
+    /// The surface itself (off: only what is drawn over it, e.g. the curves).
+    pub surface: bool,
     /// Wireframe overlay (hidden lines removed).
     pub wireframe: bool,
     /// Vertex normals as short lines.
@@ -85,6 +87,7 @@ pub struct View3dSettings {
 impl Default for View3dSettings {
     fn default() -> Self {
         Self {
+            surface: true,
             wireframe: false,
             normals: false,
             smooth: true,
@@ -97,9 +100,10 @@ impl Default for View3dSettings {
 }
 
 impl View3dSettings {
-    /// Checkboxes for the settings, labelled "Wireframe", "Normals", "Smooth", "Back faces",
-    /// "Vertex colours" and "MSAA".
+    /// Checkboxes for the settings, labelled "Draw surface", "Wireframe", "Normals", "Smooth",
+    /// "Back faces", "Vertex colours" and "MSAA".
     pub fn ui(&mut self, ui: &mut egui::Ui) {
+        ui.checkbox(&mut self.surface, "Draw surface");
         ui.checkbox(&mut self.wireframe, "Wireframe");
         ui.checkbox(&mut self.normals, "Normals");
         ui.checkbox(&mut self.smooth, "Smooth");
@@ -296,6 +300,16 @@ struct ActiveDrag {
     moved: bool,
 }
 
+/// What is drawn over the mesh in [`View3d::ui_with_overlay`]: polylines (curves, frame
+/// arrows) and dots (control points), in world coordinates.
+#[derive(Clone, Debug, Default)]
+pub struct Overlay {
+    /// Polylines: points, colour and width in points.
+    pub lines: Vec<(Vec<DVec3>, Color32, f32)>,
+    /// Dots: position and colour.
+    pub dots: Vec<(DVec3, Color32)>,
+}
+
 /// Radius of a handle's dot, and of the area that grabs it, in points.
 pub const HANDLE_RADIUS: f32 = 5.0;
 /// The polyline of [`View3d::ui_with_handles`].
@@ -334,8 +348,10 @@ pub struct View3d {
     drag: Option<ActiveDrag>,
     /// Whether a handle drag ended this frame (the camera then stays).
     dragged_this_frame: bool,
-    /// Centre and radius of the last handles and polyline, if any.
+    /// Centre and radius of the last handles and overlay, if any.
     overlay_bounds: Option<(DVec3, f64)>,
+    /// How many polylines the last overlay had.
+    overlay_lines: usize,
 }
 
 impl Default for View3d {
@@ -373,7 +389,14 @@ impl View3d {
             drag: None,
             dragged_this_frame: false,
             overlay_bounds: None,
+            overlay_lines: 0,
         }
+    }
+
+    /// How many polylines (curve segments, frame arrows) the last frame drew over the mesh.
+    #[must_use]
+    pub fn overlay_lines(&self) -> usize {
+        self.overlay_lines
     }
 
     /// Whether a handle is being dragged.
@@ -500,16 +523,37 @@ impl View3d {
         handles: &[DVec3],
         polyline: &[DVec3],
     ) -> (egui::Response, Option<HandleDrag>) {
+        let overlay = Overlay { lines: vec![(polyline.to_vec(), POLYLINE_COLOUR, 2.0)], ..Overlay::default() };
+        self.ui_with_overlay(ui, frame, handles, &overlay)
+    }
+
+    /// [`Self::ui_with_handles`] with a whole [`Overlay`] (curves, frames, points) drawn over
+    /// the mesh under the handles. The camera frames the overlay when there is no mesh.
+    pub fn ui_with_overlay(
+        &mut self,
+        ui: &mut egui::Ui,
+        frame: &eframe::Frame,
+        handles: &[DVec3],
+        overlay: &Overlay,
+    ) -> (egui::Response, Option<HandleDrag>) {
         let avail = ui.available_size();
         let size = egui::vec2(
             if avail.x.is_finite() { avail.x.max(0.0) } else { 400.0 },
             if avail.y.is_finite() { avail.y.max(0.0) } else { 300.0 },
         );
         let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
-        self.overlay_bounds = (!handles.is_empty() || !polyline.is_empty()).then(|| {
-            let (centre, radius) = point_bounds(|| handles.iter().chain(polyline).copied());
+        let points = || {
+            handles
+                .iter()
+                .copied()
+                .chain(overlay.lines.iter().flat_map(|(l, _, _)| l.iter().copied()))
+                .chain(overlay.dots.iter().map(|d| d.0))
+        };
+        self.overlay_bounds = points().next().is_some().then(|| {
+            let (centre, radius) = point_bounds(points);
             (centre, if radius > 0.0 { radius } else { 1.0 })
         });
+        self.overlay_lines = overlay.lines.len();
         if self.fit_pending && self.data.surface.is_empty() && self.overlay_bounds.is_some() {
             self.fit();
         }
@@ -558,16 +602,23 @@ impl View3d {
             ui.painter().image(target.texture_id, rect, uv, Color32::WHITE);
         }
         let painter = ui.painter().with_clip_rect(rect);
-        let mut line = Vec::with_capacity(polyline.len());
-        for &p in polyline {
-            match self.camera.project(p, rect) {
-                Some(q) => line.push(q),
-                None => {
-                    painter.add(egui::Shape::line(std::mem::take(&mut line), (2.0, POLYLINE_COLOUR)));
+        for (polyline, colour, width) in &overlay.lines {
+            let mut line = Vec::with_capacity(polyline.len());
+            for &p in polyline {
+                match self.camera.project(p, rect) {
+                    Some(q) => line.push(q),
+                    None => {
+                        painter.add(egui::Shape::line(std::mem::take(&mut line), (*width, *colour)));
+                    }
                 }
             }
+            painter.add(egui::Shape::line(line, (*width, *colour)));
         }
-        painter.add(egui::Shape::line(line, (2.0, POLYLINE_COLOUR)));
+        for &(p, colour) in &overlay.dots {
+            if let Some(q) = self.camera.project(p, rect) {
+                painter.circle(q, 3.5, colour, egui::Stroke::new(1.0, Color32::BLACK));
+            }
+        }
         for (centre, active) in dots {
             let colour = if active { HANDLE_ACTIVE_COLOUR } else { HANDLE_COLOUR };
             painter.circle(centre, HANDLE_RADIUS, colour, egui::Stroke::new(1.0, Color32::BLACK));
@@ -817,7 +868,7 @@ pub fn bounds(mesh: &TriMesh) -> (DVec3, f64) {
 }
 
 /// [`bounds`] of the points `points()` gives (called twice: box, then sphere).
-fn point_bounds<I: Iterator<Item = DVec3>>(points: impl Fn() -> I) -> (DVec3, f64) {
+pub fn point_bounds<I: Iterator<Item = DVec3>>(points: impl Fn() -> I) -> (DVec3, f64) {
     let mut lo = DVec3::INFINITY;
     let mut hi = DVec3::NEG_INFINITY;
     for p in points().filter(|p| p.is_finite()) {
@@ -1117,6 +1168,7 @@ impl Gpu {
             pass.set_bind_group(0, &self.bind_group, &[]);
             if let Some(buffer) = &self.surface
                 && surface_len > 0
+                && settings.surface
             {
                 pass.set_pipeline(&pipelines.surface);
                 pass.set_vertex_buffer(0, buffer.slice(..surface_len as u64));

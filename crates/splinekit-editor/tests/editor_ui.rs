@@ -656,3 +656,55 @@ fn a_click_on_a_bezier_polygon_splits_the_segment() {
         assert!((after.eval(1.0 + v) - before.eval(u + v * (1.0 - u))).length() < 1e-12, "right half at {v}");
     }
 }
+
+/// #37 (first slice): every curve of the document in both views. `core.swp` has four curves
+/// (two 2D, two 3D): the 2D view draws the three that are not active, dimmed, and a click on
+/// one makes it active; the 3D view draws all four (its pixels differ from an empty
+/// document's), and `Draw normals` adds frames along every curve in 3D.
+#[test]
+fn every_curve_is_drawn_in_2d_and_3d() {
+    let mut empty = harness(EditorApp::new(None));
+    let mut h = harness(EditorApp::new(Some(&data("swp/core.swp"))));
+    assert_eq!(h.state().doc.swp.curves.len(), 4);
+    assert_eq!(h.state().view.other_curves_drawn(), 3);
+    // one polyline a segment: each curve has one
+    assert_eq!(h.state().view3d.overlay_lines(), 4);
+    let view = h.get_by_label("3D view").rect();
+    let (a, b) = (h.render().unwrap(), empty.render().unwrap());
+    // the harness draws one pixel a point
+    let differing = (view.min.y as u32..view.max.y as u32)
+        .flat_map(|y| (view.min.x as u32..view.max.x as u32).map(move |x| (x, y)))
+        .filter(|&(x, y)| x < a.width() && y < a.height() && a.get_pixel(x, y) != b.get_pixel(x, y))
+        .count();
+    assert!(differing > 500, "{differing} pixels of the 3D view differ from an empty document's");
+    click(&mut h, "Draw normals");
+    // T, N and B at 9 places along each of the 4 curves
+    assert_eq!(h.state().view3d.overlay_lines(), 4 + 4 * 9 * 3);
+    click(&mut h, "Draw normals");
+    // a click on the B-spline (x from −3 to −1, y from 0 to 1) makes it the active curve
+    let app = h.state();
+    let c = app.doc.swp.curves[1].to_curve().unwrap();
+    use splinekit::ParamCurve as _;
+    let p = c.eval(0.5);
+    let at = app.view.to_screen(DVec2::new(p.x, p.y));
+    click_at(&mut h, at, Modifiers::NONE);
+    assert_eq!(h.state().doc.active, 1);
+    assert_eq!(h.state().doc.points().len(), 4, "no point was added");
+    // Draw curves off: only the active curve in 2D, nothing over the 3D view
+    click(&mut h, "Draw curves");
+    assert_eq!(h.state().view.other_curves_drawn(), 0);
+    assert_eq!(h.state().view3d.overlay_lines(), 0);
+    // Draw surface: off hides the surface of the wineglass
+    let mut g = harness(EditorApp::new(Some(&data("swp/srev/wineglass.swp"))));
+    let shown = g.render().unwrap();
+    click(&mut g, "Draw surface");
+    assert!(!g.state().view3d.settings.surface);
+    let hidden = g.render().unwrap();
+    let view = g.get_by_label("3D view").rect();
+    let centre = view.center();
+    assert_ne!(
+        shown.get_pixel(centre.x as u32, centre.y as u32),
+        hidden.get_pixel(centre.x as u32, centre.y as u32),
+        "the glass's middle is drawn, then not"
+    );
+}
