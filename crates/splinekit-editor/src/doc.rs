@@ -15,7 +15,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use glam::DVec3;
 use splinekit::subdiv::Creases;
 use splinekit::{AnyCurve, ParamCurve, PolyMesh};
-use splinekit_io::{SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry};
+use splinekit_io::{SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind};
 
 /// Most undo steps kept; older ones are dropped.
 pub const MAX_UNDO: usize = 500;
@@ -568,6 +568,50 @@ impl Document {
         }
         self.swp.curves.push(empty_curve(&format!("curve{k}"), kind, 2));
         self.active = self.swp.curves.len() - 1;
+    }
+
+    /// Adds a surface of revolution of curve `profile` about +y with `slices` slices (SWP
+    /// `srev`), named `surface`, `surface2`, …; one undo step. Returns its index.
+    pub fn add_revolution(&mut self, profile: usize, slices: u32) -> usize {
+        self.checkpoint();
+        // a surface refers to its curve by name: an anonymous profile gets one
+        if self.swp.curves.get(profile).is_some_and(|c| c.name.is_none()) {
+            let name = self.unused_name("profile");
+            self.swp.curves[profile].name = Some(name);
+        }
+        let name = self.unused_name("surface");
+        self.swp.surfaces.push(SwpSurface {
+            name: Some(name),
+            kind: SwpSurfaceKind::Revolution { steps: slices.clamp(1, splinekit_io::swp::MAX_STEPS), profile },
+            pos: SourcePos::new(1, 1),
+        });
+        self.swp.surfaces.len() - 1
+    }
+
+    /// `base`, or `base2`, `base3`, … : the first that names no curve or surface.
+    fn unused_name(&self, base: &str) -> String {
+        (1..)
+            .map(|k| if k == 1 { base.to_owned() } else { format!("{base}{k}") })
+            .find(|n| self.swp.curve_index(n).is_none() && self.swp.surface_index(n).is_none())
+            .unwrap_or_else(|| base.to_owned())
+    }
+
+    /// Sets the slices of surface `i` if it is a surface of revolution (no undo step of its
+    /// own: call [`begin_move`](Self::begin_move) first, once per drag of the value).
+    pub fn set_revolution_slices(&mut self, i: usize, slices: u32) {
+        if let Some(SwpSurfaceKind::Revolution { steps, .. }) = self.swp.surfaces.get_mut(i).map(|s| &mut s.kind) {
+            *steps = slices.clamp(1, splinekit_io::swp::MAX_STEPS);
+            self.revision = next_revision();
+        }
+    }
+
+    /// Sets the tessellation steps of curve `i` (per segment; for circles, of the whole
+    /// curve); no undo step of its own, as [`set_revolution_slices`](Self::set_revolution_slices).
+    pub fn set_curve_steps(&mut self, i: usize, steps: u32) {
+        if let Some(c) = self.swp.curves.get_mut(i) {
+            c.steps = steps.clamp(1, splinekit_io::swp::MAX_STEPS);
+            self.revision = next_revision();
+        }
     }
 
     /// Makes curve `i` the active one (not an edit: no undo step).

@@ -383,6 +383,9 @@ impl SweptSurfaces {
     }
 }
 
+/// The slices of a surface of revolution made with `Revolve`.
+pub const DEFAULT_SLICES: u32 = 32;
+
 /// Surfaces with more triangles than this are swept off the UI thread, and shown at reduced
 /// resolution while a point is dragged (the whole surface follows on release).
 pub const LIVE_TRIANGLES: usize = 200_000;
@@ -493,6 +496,8 @@ pub struct EditorApp {
     sweep_task: Option<(u64, work::Task<SweepResult>)>,
     /// The revision whose sweep the user cancelled (not started again until an edit).
     sweep_cancelled: Option<u64>,
+    /// The value widget being dragged or typed into (its edits make one undo step).
+    value_edit: Option<egui::Id>,
     /// The window's context (once it has drawn), woken by workers when they finish.
     egui_ctx: Option<egui::Context>,
     /// A mesh being exported on a worker thread (its file, and how many triangles it wrote).
@@ -534,6 +539,7 @@ impl Default for EditorApp {
             prepared: None,
             sweep_task: None,
             sweep_cancelled: None,
+            value_edit: None,
             egui_ctx: None,
             export_task: None,
             load_task: None,
@@ -1515,6 +1521,7 @@ impl EditorApp {
                 self.status =
                     "Cancelled the sweep: the surface shown is not the curves' (edit to sweep again)".to_owned();
             }
+            self.surface_controls(ui);
             if self.surfaces.lines.is_empty() {
                 ui.label("No surface in the document");
             }
@@ -1539,6 +1546,65 @@ impl EditorApp {
             self.doc.set_point(d.index, d.position);
             self.view.selected = Some(d.index);
         }
+    }
+
+    /// `Revolve` (a surface of revolution of the active 2D curve about +y, as SWP `srev`), and
+    /// the controls of each surface of revolution: its slices and its profile's steps. Every
+    /// change is one undo step (a drag of a value: one step for the whole drag).
+    fn surface_controls(&mut self, ui: &mut egui::Ui) {
+        let revolvable = self.doc.curve().is_some_and(|c| c.dim != 3) && self.doc.spline().is_ok();
+        let r = ui
+            .add_enabled(revolvable, egui::Button::new("Revolve"))
+            .on_hover_text("a surface of revolution of the active curve about the y axis")
+            .on_disabled_hover_text("needs a valid 2D curve");
+        if r.clicked() {
+            let i = self.doc.add_revolution(self.doc.active, DEFAULT_SLICES);
+            self.status =
+                format!("Revolved {} about y: {DEFAULT_SLICES} slices", self.doc.swp.surfaces[i].display_name(i));
+        }
+        let revolutions: Vec<(usize, String, u32, usize)> = self
+            .doc
+            .swp
+            .surfaces
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| match s.kind {
+                splinekit_io::SwpSurfaceKind::Revolution { steps, profile } => {
+                    Some((i, s.display_name(i), steps, profile))
+                }
+                _ => None,
+            })
+            .collect();
+        for (i, name, slices, profile) in revolutions {
+            ui.horizontal_wrapped(|ui| {
+                let label = ui.label(format!("{name} slices"));
+                let mut n = slices;
+                let r = ui.add(egui::DragValue::new(&mut n).range(3..=4096)).labelled_by(label.id);
+                if r.changed() && n != slices {
+                    self.edit_value(&r);
+                    self.doc.set_revolution_slices(i, n);
+                }
+                let steps = self.doc.swp.curves.get(profile).map_or(1, |c| c.steps);
+                let mut k = steps;
+                let label =
+                    ui.label(format!("{name} steps")).on_hover_text("tessellation steps of each profile segment");
+                let r = ui.add(egui::DragValue::new(&mut k).range(1..=1000)).labelled_by(label.id);
+                if r.changed() && k != steps {
+                    self.edit_value(&r);
+                    self.doc.set_curve_steps(profile, k);
+                }
+            });
+        }
+    }
+
+    /// Records the undo step of a value edited with `r` once per drag or typing (not once per
+    /// frame of it).
+    fn edit_value(&mut self, r: &egui::Response) {
+        let continuing = self.value_edit == Some(r.id) && (r.dragged() || r.has_focus());
+        if !continuing {
+            self.doc.begin_move();
+        }
+        self.value_edit = (r.dragged() || r.has_focus()).then_some(r.id);
     }
 
     /// Every curve of the document for the 3D view (2D curves in the xy plane), coloured by

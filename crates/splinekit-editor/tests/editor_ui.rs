@@ -708,3 +708,57 @@ fn every_curve_is_drawn_in_2d_and_3d() {
         "the glass's middle is drawn, then not"
     );
 }
+
+/// Types `value` into the value widget labelled `label` (click, select all, type, Enter).
+fn type_value(h: &mut Harness<'static, EditorApp>, label: &str, value: &str) {
+    h.get_by_label(label).click();
+    h.run();
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text(value.to_owned()));
+    h.key_press(egui::Key::Enter);
+    h.run();
+}
+
+/// #37: the CS 4620 workflow: draw a profile, `Revolve`, change the slices and the profile's
+/// steps: the triangle count follows 2 · slices · (samples − 1) (a profile off the axis:
+/// no poles), each change one undo step; the document saves and re-opens the same.
+#[test]
+fn draw_a_profile_revolve_it_and_change_its_slices() {
+    let dir = tempfile_dir("revolve");
+    let mut h = harness(EditorApp::new(None));
+    // four clicks right of the axis: a Catmull-Rom spline of one segment
+    for (x, y) in [(0.5, 0.0), (1.0, 0.5), (1.5, 1.0), (2.0, 2.0)] {
+        let at = h.state().view.to_screen(DVec2::new(x, y));
+        click_at(&mut h, at, Modifiers::SHIFT);
+    }
+    assert_eq!(h.state().doc.points().len(), 4);
+    assert!(h.state().doc.spline().is_ok());
+    click(&mut h, "Revolve");
+    // 16 steps a segment: 17 samples; 32 slices
+    assert_eq!(h.state_mut().surface_triangles(), 2 * 32 * 16);
+    h.get_by_label(&format!("Triangles: {}", 2 * 32 * 16));
+    assert!(h.state().view3d.num_triangles() == 2 * 32 * 16);
+    type_value(&mut h, "surface slices", "40");
+    assert_eq!(h.state_mut().surface_triangles(), 2 * 40 * 16);
+    type_value(&mut h, "surface steps", "10");
+    assert_eq!(h.state_mut().surface_triangles(), 2 * 40 * 10);
+    assert_eq!(h.state().view3d.num_triangles(), 2 * 40 * 10);
+    // each change is one undo step
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    assert_eq!(h.state_mut().surface_triangles(), 2 * 40 * 16);
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    assert_eq!(h.state_mut().surface_triangles(), 2 * 32 * 16);
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Y);
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Y);
+    h.run();
+    // saved and re-opened: the same document and surface
+    let path = dir.join("revolved.swp");
+    assert!(h.state_mut().save_swp(&path), "{}", h.state().status);
+    let back = splinekit_editor::Document::read(&path).unwrap();
+    let mut reopened = EditorApp::new(Some(&path));
+    assert_eq!(reopened.surface_triangles(), 2 * 40 * 10);
+    assert_eq!(back.swp.surfaces.len(), 1);
+    let _ = std::fs::remove_dir_all(dir);
+}
