@@ -16,6 +16,9 @@ use crate::doc::Document;
 /// Radius (points) within which a click or drag picks a control point or a polygon edge.
 pub const PICK_RADIUS: f32 = 7.0;
 
+/// A press and release closer than this (points) are a click; farther apart, a drag.
+pub const CLICK_DISTANCE: f32 = 6.0;
+
 /// Colours of consecutive curve segments.
 pub const SEGMENT_COLORS: [Color32; 6] = [
     Color32::from_rgb(230, 90, 60),
@@ -137,6 +140,8 @@ pub struct View2d {
     dragged_this_frame: bool,
     /// The other curves drawn last frame (their index and screen polyline), for picking.
     others: Vec<(usize, Vec<Pos2>)>,
+    /// A primary press on the background not yet released: where, and its modifiers.
+    press: Option<(Pos2, egui::Modifiers)>,
     /// Where the view was last drawn (screen points).
     pub rect: Rect,
 }
@@ -153,6 +158,7 @@ impl Default for View2d {
             drag: None,
             dragged_this_frame: false,
             others: Vec::new(),
+            press: None,
             rect: Rect::from_min_size(Pos2::ZERO, Vec2::splat(1.0)),
         }
     }
@@ -288,31 +294,30 @@ impl View2d {
         }
         let point_drag = dragging_before || self.drag.is_some() || self.dragged_this_frame;
 
-        // the background: shift-click adds, a click on a polygon edge inserts, drag pans,
-        // scroll zooms about the pointer
-        if background.clicked()
-            && !point_drag
-            && let Some(pointer) = background.interact_pointer_pos()
-        {
-            let shift = ui.input(|i| i.modifiers.shift);
-            let base = doc.points().last().copied().unwrap_or(DVec3::ZERO);
-            let model = plane.replace(base, self.to_model(pointer));
-            if shift {
-                doc.add_point(model);
-                self.selected = Some(doc.points().len() - 1);
-            } else if let Some(i) = self.curve_near(pointer)
-                && self.edge_near(doc, &points, pointer).is_none()
-            {
-                doc.select_curve(i);
-                self.selected = None;
-            } else if let Some(edge) = self.edge_near(doc, &points, pointer) {
-                let (a, b) = (doc.points()[edge], doc.points()[(edge + 1) % points.len()]);
-                // the third coordinate: interpolated along the edge
-                let t = closest_param(points[edge], points[(edge + 1) % points.len()], pointer);
-                let p = plane.replace(a.lerp(b, t), self.to_model(pointer));
-                self.selected = Some(doc.insert_on_polygon(edge, t, p));
-            } else {
-                self.selected = None;
+        // the background: shift-click adds, a click on a polygon edge inserts (a click on
+        // another curve makes it active), drag pans, scroll zooms about the pointer. Clicks
+        // are read from the frame's events with their own modifiers, so every click of a slow
+        // frame counts, and a Shift released within the frame still counts for its click.
+        let layer = ui.layer_id();
+        for event in ui.input(|i| i.events.clone()) {
+            match event {
+                egui::Event::PointerButton { pos, button: egui::PointerButton::Primary, pressed: true, modifiers }
+                    if rect.contains(pos) && ui.ctx().layer_id_at(pos).is_none_or(|l| l == layer) =>
+                {
+                    // a press that picked a control point starts a drag, not a click
+                    let on_point = !modifiers.shift
+                        && doc.points().iter().any(|&p| self.to_screen(plane.project(p)).distance(pos) <= PICK_RADIUS);
+                    self.press = (!on_point).then_some((pos, modifiers));
+                }
+                egui::Event::PointerButton { pos, button: egui::PointerButton::Primary, pressed: false, .. } => {
+                    if let Some((at, modifiers)) = self.press.take()
+                        && at.distance(pos) < CLICK_DISTANCE
+                    {
+                        self.click(doc, plane, at, modifiers.shift);
+                    }
+                }
+                egui::Event::PointerGone => self.press = None,
+                _ => {}
             }
         }
         if background.dragged() && !point_drag {
@@ -331,6 +336,30 @@ impl View2d {
             }
         }
         background
+    }
+
+    /// A click on the background at `pointer`: with Shift, a new point at the end of the
+    /// curve; on the control polygon, a point inserted there; on another curve, that curve
+    /// made active; elsewhere, no selection.
+    fn click(&mut self, doc: &mut Document, plane: Plane, pointer: Pos2, shift: bool) {
+        let points: Vec<Pos2> = doc.points().iter().map(|&p| self.to_screen(plane.project(p))).collect();
+        let base = doc.points().last().copied().unwrap_or(DVec3::ZERO);
+        let model = plane.replace(base, self.to_model(pointer));
+        if shift {
+            doc.add_point(model);
+            self.selected = Some(doc.points().len() - 1);
+        } else if let Some(edge) = self.edge_near(doc, &points, pointer) {
+            let (a, b) = (doc.points()[edge], doc.points()[(edge + 1) % points.len()]);
+            // the third coordinate: interpolated along the edge
+            let t = closest_param(points[edge], points[(edge + 1) % points.len()], pointer);
+            let p = plane.replace(a.lerp(b, t), self.to_model(pointer));
+            self.selected = Some(doc.insert_on_polygon(edge, t, p));
+        } else if let Some(i) = self.curve_near(pointer) {
+            doc.select_curve(i);
+            self.selected = None;
+        } else if !points.iter().any(|p| p.distance(pointer) <= PICK_RADIUS) {
+            self.selected = None;
+        }
     }
 
     /// The other curve (not the active one) drawn within [`PICK_RADIUS`] of `pointer`.

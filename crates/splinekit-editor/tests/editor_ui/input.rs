@@ -343,3 +343,34 @@ fn big_files_open_and_levels_refine_in_the_background() {
     h.get_by_label("Level 1: 162000 vertices");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Every click of a slow frame counts, with the modifiers it was made with: four Shift+clicks
+/// in one frame, Shift released before the frame ends (as `xdotool` sends them to a window
+/// that draws slowly), add four points.
+#[test]
+fn every_click_of_a_slow_frame_counts() {
+    let mut h = harness(EditorApp::new(None));
+    let at: Vec<Pos2> = [(0.5, 0.0), (1.0, 0.5), (1.5, 1.0), (2.0, 2.0)]
+        .iter()
+        .map(|&(x, y)| h.state().view.to_screen(glam::DVec2::new(x, y)))
+        .collect();
+    for &p in &at {
+        h.event(Event::ModifiersChanged(Modifiers::SHIFT));
+        h.event(Event::PointerMoved(p));
+        for pressed in [true, false] {
+            h.event(Event::PointerButton {
+                pos: p,
+                button: PointerButton::Primary,
+                pressed,
+                modifiers: Modifiers::SHIFT,
+            });
+        }
+        h.event(Event::ModifiersChanged(Modifiers::NONE));
+    }
+    h.run();
+    let app = h.state();
+    assert_eq!(app.doc.points().len(), 4);
+    for (i, &p) in at.iter().enumerate() {
+        assert!((app.doc.points()[i].truncate() - app.view.to_model(p)).length() < 1e-9, "P{i}");
+    }
+}
