@@ -352,7 +352,7 @@ fn every_click_of_a_slow_frame_counts() {
     let mut h = harness(EditorApp::new(None));
     let at: Vec<Pos2> = [(0.5, 0.0), (1.0, 0.5), (1.5, 1.0), (2.0, 2.0)]
         .iter()
-        .map(|&(x, y)| h.state().view.to_screen(glam::DVec2::new(x, y)))
+        .map(|&(x, y)| h.state().view.to_screen(DVec2::new(x, y)))
         .collect();
     for &p in &at {
         h.event(Event::ModifiersChanged(Modifiers::SHIFT));
