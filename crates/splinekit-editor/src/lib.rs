@@ -1457,6 +1457,7 @@ impl EditorApp {
             if ui.button("Clear curve").clicked() {
                 self.doc.clear();
             }
+            self.selected_point(ui);
         }
         ui.separator();
         ui.heading("Show");
@@ -1595,6 +1596,30 @@ impl EditorApp {
                 }
             });
         }
+    }
+
+    /// The selected point's coordinates, to type or drag (`Point x`, `Point y`, and `Point z`
+    /// for a 3D curve); each change one undo step.
+    fn selected_point(&mut self, ui: &mut egui::Ui) {
+        let Some(i) = self.view.selected else { return };
+        let Some(&p) = self.doc.points().get(i) else { return };
+        ui.label(format!("Selected P{i}"));
+        let axes: &[(&str, usize)] =
+            if self.doc.is_2d() { &[("x", 0), ("y", 1)] } else { &[("x", 0), ("y", 1), ("z", 2)] };
+        ui.horizontal_wrapped(|ui| {
+            for &(name, k) in axes {
+                let label = ui.label(format!("Point {name}"));
+                let mut v = p[k];
+                let speed = 0.01 * (1.0 + p.length());
+                let r = ui.add(egui::DragValue::new(&mut v).speed(speed).max_decimals(6)).labelled_by(label.id);
+                if r.changed() && v != p[k] && v.is_finite() {
+                    self.edit_value(&r);
+                    let mut q = p;
+                    q[k] = v;
+                    self.doc.set_point(i, q);
+                }
+            }
+        });
     }
 
     /// Records the undo step of a value edited with `r` once per drag or typing (not once per

@@ -70,6 +70,16 @@ impl Plane {
             Self::Zx => "zx",
         }
     }
+
+    /// The names of the plane's horizontal and vertical axes.
+    #[must_use]
+    pub fn axes(self) -> (&'static str, &'static str) {
+        match self {
+            Self::Xy => ("x", "y"),
+            Self::Yz => ("y", "z"),
+            Self::Zx => ("z", "x"),
+        }
+    }
 }
 
 /// What the view shows (the toggles of the side panel and the keyboard).
@@ -142,6 +152,8 @@ pub struct View2d {
     others: Vec<(usize, Vec<Pos2>)>,
     /// A primary press on the background not yet released: where, and its modifiers.
     press: Option<(Pos2, egui::Modifiers)>,
+    /// The pointer's plane coordinates when it is over the view (the readout).
+    pub pointer: Option<DVec2>,
     /// Where the view was last drawn (screen points).
     pub rect: Rect,
 }
@@ -159,6 +171,7 @@ impl Default for View2d {
             dragged_this_frame: false,
             others: Vec::new(),
             press: None,
+            pointer: None,
             rect: Rect::from_min_size(Pos2::ZERO, Vec2::splat(1.0)),
         }
     }
@@ -228,6 +241,7 @@ impl View2d {
         }
         let painter = ui.painter_at(rect);
         painter.rect_filled(rect, 0.0, Color32::from_gray(250));
+        self.pointer = ui.input(|i| i.pointer.hover_pos()).filter(|p| rect.contains(*p)).map(|p| self.to_model(p));
         self.draw_axes(&painter, doc);
         let plane = self.plane_for(doc);
         // the other curves, dimmed; a click on one makes it the active curve
@@ -518,11 +532,52 @@ impl View2d {
             .map(|(e, _)| e)
     }
 
+    /// A grid with its values along the view's left and bottom edges (lines at 1, 2 or 5
+    /// times a power of ten, at least 50 points apart), the axes, the plane's name, and the
+    /// pointer's coordinates when it is over the view.
     fn draw_axes(&self, painter: &egui::Painter, doc: &Document) {
         let plane = self.plane_for(doc);
-        let o = self.to_screen(DVec2::ZERO);
         let r = self.rect;
-        let axis = Stroke::new(1.0, Color32::from_gray(205));
+        let step = grid_step(50.0 / self.scale);
+        let lo = self.to_model(r.left_bottom());
+        let hi = self.to_model(r.right_top());
+        let font = egui::FontId::proportional(10.0);
+        let (grid, text) = (Stroke::new(1.0, Color32::from_gray(236)), Color32::from_gray(140));
+        let decimals = (-step.log10().floor()).max(0.0) as usize;
+        // at most a few hundred lines, whatever the numbers
+        let count = |a: f64, b: f64| ((b - a) / step).abs().min(400.0) as i64;
+        let x0 = (lo.x / step).ceil();
+        for k in 0..=count(lo.x, hi.x) {
+            let x = (x0 + k as f64) * step;
+            let sx = self.to_screen(DVec2::new(x, 0.0)).x;
+            painter.line_segment([Pos2::new(sx, r.top()), Pos2::new(sx, r.bottom())], grid);
+            painter.text(
+                Pos2::new(sx + 2.0, r.bottom() - 16.0),
+                egui::Align2::LEFT_BOTTOM,
+                format!("{x:.decimals$}"),
+                font.clone(),
+                text,
+            );
+        }
+        let y0 = (lo.y / step).ceil();
+        for k in 0..=count(lo.y, hi.y) {
+            let y = (y0 + k as f64) * step;
+            let sy = self.to_screen(DVec2::new(0.0, y)).y;
+            painter.line_segment([Pos2::new(r.left(), sy), Pos2::new(r.right(), sy)], grid);
+            // not over the x values and the plane's name along the bottom
+            if sy > r.bottom() - 26.0 {
+                continue;
+            }
+            painter.text(
+                Pos2::new(r.left() + 2.0, sy - 1.0),
+                egui::Align2::LEFT_BOTTOM,
+                format!("{y:.decimals$}"),
+                font.clone(),
+                text,
+            );
+        }
+        let o = self.to_screen(DVec2::ZERO);
+        let axis = Stroke::new(1.0, Color32::from_gray(190));
         painter.line_segment([Pos2::new(r.left(), o.y), Pos2::new(r.right(), o.y)], axis);
         painter.line_segment([Pos2::new(o.x, r.top()), Pos2::new(o.x, r.bottom())], axis);
         let name = plane.name();
@@ -533,6 +588,16 @@ impl View2d {
             egui::FontId::proportional(11.0),
             Color32::from_gray(120),
         );
+        if let Some(p) = self.pointer {
+            let (a, b) = plane.axes();
+            painter.text(
+                r.right_bottom() + Vec2::new(-6.0, -6.0),
+                egui::Align2::RIGHT_BOTTOM,
+                format!("{a} {:.4}   {b} {:.4}", p.x, p.y),
+                egui::FontId::monospace(11.0),
+                Color32::from_gray(90),
+            );
+        }
     }
 
     fn draw_curve(&self, painter: &egui::Painter, c: &AnyCurve<DVec3>, plane: Plane) {
@@ -595,6 +660,16 @@ impl View2d {
             }
         }
     }
+}
+
+/// The grid spacing for lines at least `min` model units apart: 1, 2 or 5 times a power of 10.
+#[must_use]
+pub fn grid_step(min: f64) -> f64 {
+    if !(min.is_finite() && min > 0.0) {
+        return 1.0;
+    }
+    let power = 10f64.powf(min.log10().floor());
+    [1.0, 2.0, 5.0, 10.0].into_iter().map(|m| m * power).find(|&s| s >= min).unwrap_or(10.0 * power)
 }
 
 /// The parameter in `[0, 1]` of the point of segment `ab` closest to `p`.

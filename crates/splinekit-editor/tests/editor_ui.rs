@@ -762,3 +762,31 @@ fn draw_a_profile_revolve_it_and_change_its_slices() {
     assert_eq!(back.swp.surfaces.len(), 1);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// #37: the selected point's coordinates typed in (one undo step), the pointer's coordinates
+/// read out over the 2D view, and a grid step of 1, 2 or 5 times a power of ten.
+#[test]
+fn typed_coordinates_and_the_pointer_readout() {
+    let mut h = four_points();
+    assert!(h.query_by_label("Point x").is_none(), "nothing selected yet");
+    h.get_by_label("P1").click();
+    h.run();
+    h.get_by_label("Selected P1");
+    type_value(&mut h, "Point x", "2.5");
+    assert_eq!(h.state().doc.points()[1], DVec3::new(2.5, 2.0, 0.0));
+    type_value(&mut h, "Point y", "-1.25");
+    assert_eq!(h.state().doc.points()[1], DVec3::new(2.5, -1.25, 0.0));
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    assert_eq!(h.state().doc.points()[1], DVec3::new(2.5, 2.0, 0.0), "one undo step per value typed");
+    // the readout follows the pointer
+    let c = h.state().view.rect.center() + Vec2::new(30.0, -20.0);
+    h.hover_at(c);
+    h.run();
+    let expected = h.state().view.to_model(c);
+    assert_eq!(h.state().view.pointer, Some(expected));
+    for (min, step) in [(0.3, 0.5), (1.0, 1.0), (1.01, 2.0), (3.0, 5.0), (7.0, 10.0), (0.0004, 0.0005)] {
+        let got = splinekit_editor::view2d::grid_step(min);
+        assert!((got - step).abs() < 1e-12 * step, "{min}: {got}");
+    }
+}
