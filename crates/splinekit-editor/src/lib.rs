@@ -1538,8 +1538,12 @@ impl EditorApp {
         self.update_view3d(Some(ui.ctx()));
         // the control points of a 3D curve, dragged in the 3D view; every curve drawn over it
         let handles = if self.mesh.is_none() && !self.doc.is_2d() { self.doc.points().to_vec() } else { Vec::new() };
-        let overlay = if self.mesh.is_none() { self.scene_overlay() } else { view3d::Overlay::default() };
+        let mut overlay = if self.mesh.is_none() { self.scene_overlay() } else { view3d::Overlay::default() };
+        overlay.selected = self.view.selected;
         let (_, drag) = self.view3d.ui_with_overlay(ui, frame, &handles, &overlay);
+        if let Some(i) = self.view3d.take_clicked_handle() {
+            self.view.selected = Some(i);
+        }
         if let Some(d) = drag {
             if d.started {
                 self.doc.begin_move();

@@ -308,6 +308,8 @@ pub struct Overlay {
     pub lines: Vec<(Vec<DVec3>, Color32, f32)>,
     /// Dots: position and colour.
     pub dots: Vec<(DVec3, Color32)>,
+    /// The selected handle (drawn in [`HANDLE_ACTIVE_COLOUR`], as the dragged one).
+    pub selected: Option<usize>,
 }
 
 /// Radius of a handle's dot, and of the area that grabs it, in points.
@@ -352,6 +354,8 @@ pub struct View3d {
     overlay_bounds: Option<(DVec3, f64)>,
     /// How many polylines the last overlay had.
     overlay_lines: usize,
+    /// A handle clicked (pressed and released without moving) and not yet taken.
+    clicked_handle: Option<usize>,
 }
 
 impl Default for View3d {
@@ -390,6 +394,7 @@ impl View3d {
             dragged_this_frame: false,
             overlay_bounds: None,
             overlay_lines: 0,
+            clicked_handle: None,
         }
     }
 
@@ -397,6 +402,11 @@ impl View3d {
     #[must_use]
     pub fn overlay_lines(&self) -> usize {
         self.overlay_lines
+    }
+
+    /// The handle clicked (pressed and released without moving it) since the last call.
+    pub fn take_clicked_handle(&mut self) -> Option<usize> {
+        self.clicked_handle.take()
     }
 
     /// Whether a handle is being dragged.
@@ -619,9 +629,17 @@ impl View3d {
                 painter.circle(q, 3.5, colour, egui::Stroke::new(1.0, Color32::BLACK));
             }
         }
-        for (centre, active) in dots {
-            let colour = if active { HANDLE_ACTIVE_COLOUR } else { HANDLE_COLOUR };
+        for (index, centre, active) in dots {
+            let highlighted = active || overlay.selected == Some(index);
+            let colour = if highlighted { HANDLE_ACTIVE_COLOUR } else { HANDLE_COLOUR };
             painter.circle(centre, HANDLE_RADIUS, colour, egui::Stroke::new(1.0, Color32::BLACK));
+            painter.text(
+                centre + egui::vec2(7.0, -7.0),
+                egui::Align2::LEFT_BOTTOM,
+                format!("P{index}"),
+                egui::FontId::proportional(11.0),
+                Color32::from_gray(220),
+            );
         }
         (response, moved)
     }
@@ -637,7 +655,7 @@ impl View3d {
         ui: &egui::Ui,
         rect: Rect,
         handles: &[DVec3],
-    ) -> (Option<HandleDrag>, Vec<(egui::Pos2, bool)>) {
+    ) -> (Option<HandleDrag>, Vec<(usize, egui::Pos2, bool)>) {
         let mut moved = None;
         if self.drag.is_some_and(|d| d.index >= handles.len()) {
             self.drag = None;
@@ -686,6 +704,10 @@ impl View3d {
                             ..m
                         });
                     }
+                    // a press and release that did not move it: a click that selects it
+                    if let Some(d) = self.drag.filter(|d| !d.moved) {
+                        self.clicked_handle = Some(d.index);
+                    }
                     self.drag = None;
                     self.dragged_this_frame = true;
                 }
@@ -700,7 +722,7 @@ impl View3d {
                     .filter(|m| m.index == index)
                     .and_then(|m| self.camera.project(m.position, rect))
                     .unwrap_or(centre);
-                (dot, self.drag.is_some_and(|d| d.index == index))
+                (index, dot, self.drag.is_some_and(|d| d.index == index))
             })
             .collect();
         (moved, dots)

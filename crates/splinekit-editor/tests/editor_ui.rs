@@ -790,3 +790,23 @@ fn typed_coordinates_and_the_pointer_readout() {
         assert!((got - step).abs() < 1e-12 * step, "{min}: {got}");
     }
 }
+
+/// #37: a click on a 3D curve's handle in the 3D view selects it (highlighted there, its
+/// coordinates in the panel, z too), and typing its z moves it there.
+#[test]
+fn a_click_on_a_3d_handle_selects_it_and_its_z_can_be_typed() {
+    let dir = tempfile_dir("select3d");
+    let path = dir.join("path.swp");
+    std::fs::write(&path, "bsp3 path 10 5\n[0 0 0]\n[1 0 1]\n[2 1 0]\n[3 0 1]\n[4 1 1]\n").unwrap();
+    let mut h = harness(EditorApp::new(Some(&path)));
+    let camera = *h.state().view3d.camera();
+    h.get_by_label("3D P2").click();
+    h.run();
+    assert_eq!(h.state().view.selected, Some(2));
+    assert_eq!(*h.state().view3d.camera(), camera, "a click on a handle does not orbit");
+    assert_eq!(h.state().doc.points()[2], DVec3::new(2.0, 1.0, 0.0), "a click does not move it");
+    h.get_by_label("Selected P2");
+    type_value(&mut h, "Point z", "3");
+    assert_eq!(h.state().doc.points()[2], DVec3::new(2.0, 1.0, 3.0));
+    let _ = std::fs::remove_dir_all(dir);
+}
