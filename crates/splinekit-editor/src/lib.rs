@@ -316,10 +316,7 @@ impl SweptSurfaces {
                     continue;
                 }
                 // too large for the editor: the message of its own limit
-                Err(SurfaceError::TooLarge { .. }) => swp.surface_mesh(
-                    i,
-                    &SurfaceOptions { max_triangles: Some(EDITOR_MAX_TRIANGLES), ..SurfaceOptions::default() },
-                ),
+                Err(SurfaceError::TooLarge { .. }) => swp.surface_mesh(i, &editor_sweep_options()),
                 result => result,
             };
             out.push(&s.display_name(i), result);
@@ -713,9 +710,7 @@ impl EditorApp {
 
     /// Stops waiting for a file being opened.
     fn cancel_load(&mut self) {
-        if let Some((_, task)) = self.load_task.take() {
-            task.cancel();
-        }
+        cancel(&mut self.load_task);
     }
 
     /// Whether a file is being opened on a worker thread.
@@ -904,9 +899,7 @@ impl EditorApp {
 
     /// Stops waiting for a level being refined.
     fn cancel_refine(&mut self) {
-        if let Some((_, task)) = self.refine_task.take() {
-            task.cancel();
-        }
+        cancel(&mut self.refine_task);
     }
 
     /// Whether a subdivision level is being made on a worker thread.
@@ -1153,8 +1146,7 @@ impl EditorApp {
         let revision = self.doc.revision();
         if self.surfaces_for != Some((revision, true)) {
             self.cancel_sweep();
-            let options = SurfaceOptions { max_triangles: Some(EDITOR_MAX_TRIANGLES), ..SurfaceOptions::default() };
-            self.surfaces = SweptSurfaces::sweep_with(&self.doc.swp, &options);
+            self.surfaces = SweptSurfaces::sweep_with(&self.doc.swp, &editor_sweep_options());
             self.prepared = None;
             self.surfaces_for = Some((revision, true));
         }
@@ -1215,9 +1207,7 @@ impl EditorApp {
                 let swp = self.doc.swp.clone();
                 let label = format!("Sweeping {:.1} M triangles", estimate as f64 / 1e6);
                 let task = work::Task::spawn(label, 0, ctx.cloned(), move |_| {
-                    let options =
-                        SurfaceOptions { max_triangles: Some(EDITOR_MAX_TRIANGLES), ..SurfaceOptions::default() };
-                    let swept = SweptSurfaces::sweep_with(&swp, &options);
+                    let swept = SweptSurfaces::sweep_with(&swp, &editor_sweep_options());
                     let prepared = view3d::PreparedMesh::new(&swept.mesh);
                     (swept, prepared)
                 });
@@ -1228,9 +1218,7 @@ impl EditorApp {
 
     /// Stops waiting for the background sweep (its result is dropped).
     fn cancel_sweep(&mut self) {
-        if let Some((_, task)) = self.sweep_task.take() {
-            task.cancel();
-        }
+        cancel(&mut self.sweep_task);
     }
 
     /// Applies every key press of the frame, in order (several presses of one key in one
@@ -1891,8 +1879,7 @@ impl EditorApp {
             {
                 // the worker stops at its next write, and the file is written through a
                 // temporary file: cancelled, it is not created or replaced
-                task.cancel();
-                self.export_task = None;
+                cancel(&mut self.export_task);
                 self.status = "Cancelled the export (the file was not written)".to_owned();
             }
             ui.horizontal(|ui| {
@@ -1944,6 +1931,19 @@ impl EditorApp {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.title_sent = title;
         }
+    }
+}
+
+/// The editor's sweep options: the defaults, at most [`EDITOR_MAX_TRIANGLES`] triangles.
+fn editor_sweep_options() -> SurfaceOptions {
+    SurfaceOptions { max_triangles: Some(EDITOR_MAX_TRIANGLES), ..SurfaceOptions::default() }
+}
+
+/// Stops waiting for the task in `slot` (the work stops at its next check; its result is
+/// dropped).
+fn cancel<K, T>(slot: &mut Option<(K, work::Task<T>)>) {
+    if let Some((_, task)) = slot.take() {
+        task.cancel();
     }
 }
 

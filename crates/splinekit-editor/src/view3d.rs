@@ -448,14 +448,11 @@ impl View3d {
             || colours != self.data.has_colours
             || radius != self.data.radius;
         if changed {
-            std::mem::swap(surface, &mut self.data.surface);
-            std::mem::swap(lines, &mut self.data.lines);
-            self.data.radius = radius;
-            self.data.origin = origin;
-            self.data.has_colours = colours;
-            self.data.generation += 1;
-        }
-        if self.fit_pending && !self.data.surface.is_empty() {
+            // swapped, so the scratch buffers keep their capacity for the next call
+            let (mut surface, mut lines) = (std::mem::take(surface), std::mem::take(lines));
+            self.install(&mut surface, &mut lines, origin, radius, colours);
+            (self.scratch.surface, self.scratch.lines) = (surface, lines);
+        } else if self.fit_pending && !self.data.surface.is_empty() {
             self.fit();
         }
     }
@@ -463,9 +460,15 @@ impl View3d {
     /// Shows a mesh prepared off the UI thread ([`PreparedMesh::new`]), as
     /// [`set_mesh`](Self::set_mesh) would show it.
     pub fn set_prepared(&mut self, mesh: PreparedMesh) {
-        let PreparedMesh { surface, lines, origin, radius, colours } = mesh;
-        self.data.surface = surface;
-        self.data.lines = lines;
+        let PreparedMesh { mut surface, mut lines, origin, radius, colours } = mesh;
+        self.install(&mut surface, &mut lines, origin, radius, colours);
+    }
+
+    /// Makes `surface` and `lines` the vertex data shown (swapping the old data into them),
+    /// and frames the camera if it waits for a mesh.
+    fn install(&mut self, surface: &mut Vec<u8>, lines: &mut Vec<u8>, origin: DVec3, radius: f64, colours: bool) {
+        std::mem::swap(surface, &mut self.data.surface);
+        std::mem::swap(lines, &mut self.data.lines);
         self.data.radius = radius;
         self.data.origin = origin;
         self.data.has_colours = colours;
