@@ -1,5 +1,5 @@
 //! `splinekit arclen`: the u–s table of a curve, its length, `u(s)` queries and points
-//! spaced evenly by arc length (SPEC §1.4).
+//! spaced evenly by arc length (`s(u)`, the distance travelled along the curve from `u = 0`).
 
 use std::io::Write;
 use std::path::PathBuf;

@@ -1,4 +1,5 @@
-//! `splinekit curve`: a curve's tessellated points with frames (SPEC §1.3, §1.5), as CSV, JSON or SVG.
+//! `splinekit curve`: a curve's tessellated points (uniform steps, or adaptive by angle or
+//! distance tolerance) with their frames `(T, N, B)`, as CSV, JSON or SVG.
 
 use std::io::Write;
 use std::path::PathBuf;

@@ -19,8 +19,9 @@ use crate::sweep_cmd;
 #[command(after_help = "Examples:\n  \
     splinekit info wineglass.swp\n  \
     splinekit info scene.swp --json\n\n\
-    Surface counts are given for both layouts: compat (the course program's, SPEC §2.3) and welded \
-    (seams and poles shared; the default of `splinekit sweep`).")]
+    Surface counts are given for both layouts: compat (the course program's: seam vertices \
+    duplicated, poles repeated) and welded (seams and poles shared; the default of \
+    `splinekit sweep`).")]
 pub struct InfoArgs {
     /// SWP file, or mesh file (.obj, .glb, .ply, .stl), to read
     #[arg(value_name = "FILE")]

@@ -25,7 +25,7 @@ use crate::output::JsonNum;
 /// modified butterfly (`--scheme butterfly`) for triangle meshes, Catmull-Clark (`--scheme catmull-clark`) or Doo-Sabin (`--scheme
 /// doo-sabin`) for any polygon mesh.
 ///
-/// Each level splits every triangle into four (SPEC §3.2); a closed mesh with V vertices,
+/// Each level splits every triangle into four; a closed mesh with V vertices,
 /// E edges and F faces becomes V+E, 2E+3F, 4F. Weights: Loop's original β(n) (default; what
 /// OpenSubdiv, CGAL and trimesh compute) or Warren's 3/(8n) (the course formula, libigl).
 /// Boundaries follow the crease rules (boundary curves are cubic B-splines); `--boundary

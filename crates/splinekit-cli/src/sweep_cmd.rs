@@ -43,7 +43,8 @@ use crate::select;
     splinekit sweep doughnut.obj -o out --format glb\n  \
     splinekit sweep doughnut.obj -o out --compat\n\n\
     Layouts: by default seams and poles are welded (closed sweeps are watertight); --compat \
-    reproduces the course program's vertex layout and counts (SPEC §2.3), or, for a \
+    reproduces the course program's vertex layout and counts (seam vertices duplicated, \
+    poles repeated; the same triangles), or, for a \
     sweep-tool OBJ, the mesh stored in the file.")]
 pub struct SweepArgs {
     /// SWP file, or spline-annotated OBJ file (by the extension .obj)
@@ -58,8 +59,8 @@ pub struct SweepArgs {
     #[arg(long, value_enum, value_name = "FORMAT", default_value_t = Format::Obj)]
     pub format: Format,
 
-    /// The course program's vertex layout: duplicated seams, repeated poles (SPEC §2.3
-    /// counts); for a sweep-tool OBJ, the tool's own mesh
+    /// The course program's vertex layout and counts: duplicated seams, repeated poles; for a
+    /// sweep-tool OBJ, the tool's own mesh
     #[arg(long)]
     pub compat: bool,
 

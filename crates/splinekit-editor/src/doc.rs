@@ -775,7 +775,7 @@ mod tests {
         d.preset();
         let c = d.spline().unwrap();
         assert_eq!(c.num_segments(), 5);
-        // SPEC §1.4: chord table with 5 samples per segment ends at 5.06923
+        // reference scene: the chord table with 5 samples per segment ends at 5.06923
         let table = splinekit::arclen::ArclenTable::chord(&c, 5);
         assert!((table.length() - 5.06923).abs() < 5e-6, "{}", table.length());
         assert!(d.undo() && d.curve().unwrap().name.as_deref() == Some("profile"));

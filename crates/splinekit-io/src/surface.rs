@@ -61,7 +61,8 @@ pub enum SurfaceTessellation {
 /// Which frames carry the profile along a sweep curve.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SurfaceFrames {
-    /// The course program's sequential method (SPEC §1.5), with the closed-curve fix.
+    /// The course program's sequential method (`Nᵢ = normalize(Bᵢ₋₁ × Tᵢ)`, `Bᵢ = Tᵢ × Nᵢ`,
+    /// from `B = +z`), with the closed-curve fix.
     #[default]
     Sequential,
     /// Rotation-minimizing frames (double reflection), closed-curve correction by arc length.

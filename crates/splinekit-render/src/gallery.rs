@@ -12,7 +12,8 @@
 //!
 //! 1. every SWP file of the course set (12 files: surfaces of revolution, generalized
 //!    cylinders, curves), swept as `splinekit sweep` sweeps them;
-//! 2. the arc-length reference scene of SPEC §1.4 with its chord table, and a plot with a
+//! 2. the arc-length reference scene (an open uniform Catmull-Rom curve of 8 control points,
+//!    5 segments) with its chord table, and a plot with a
 //!    marker every 0.1 of arc length;
 //! 3. Loop subdivision of the course's icosahedron and bunny at levels 0 to 3;
 //! 4. a flat ribbon swept along a trefoil knot with rotation-minimizing frames.
@@ -61,7 +62,8 @@ const COURSE_FILES: [(&str, &str); 12] = [
     course_file!("circles.swp"),
 ];
 
-/// The arc-length reference scene of SPEC §1.4.
+/// The arc-length reference scene: 8 control points on the rose `r = cos 2θ` rising in z, an
+/// open uniform Catmull-Rom curve of 5 segments.
 const REFERENCE_SCENE: &str = include_str!("../../../examples/reference-scene.swp");
 
 /// The course's meshes (`../shared/data/obj`), as distributed (the HTML lines around them
@@ -363,7 +365,7 @@ impl Writer<'_> {
             chord.iter_rows().map(|(u, s)| vec![format!("{u:.1}"), format!("{s:.5}")]).collect();
         let first = Entry {
             section: Section::ArcLength,
-            title: String::from("The reference scene of SPEC §1.4"),
+            title: String::from("The arc-length reference scene"),
             caption: String::from(
                 "8 control points on a rose r = cos 2θ rising in z, an open uniform Catmull-Rom curve (5 \
                  segments), seen from +x+y+z. The table is the chord method with 5 samples per segment.",

@@ -1,5 +1,5 @@
 //! Arc length: quadrature tables, adaptive arc length to a stated accuracy, inverse
-//! arc length, and resampling by arc length (SPEC §1.4).
+//! arc length, and resampling by arc length (`s(u)`: the distance along the curve from `u = 0`).
 //!
 //! # Accuracy
 //! Every adaptive function takes `accuracy`: a bound, in length units, on the absolute
@@ -227,7 +227,7 @@ pub enum TableMethod {
     Gauss3,
 }
 
-/// The u–s table of SPEC §1.4: `N` samples per segment, rows `u = k + i/N`,
+/// The u–s table (arc length `s` at parameter `u`): `N` samples per segment, rows `u = k + i/N`,
 /// row 0 is `(0, 0)`; a curve of m segments has `N·m + 1` rows.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ArclenTable {

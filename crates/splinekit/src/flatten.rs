@@ -1,4 +1,4 @@
-//! Tessellation of curves into polylines (SPEC §1.3).
+//! Tessellation of curves into polylines: uniform steps, angle tolerance and distance tolerance.
 //!
 //! Every function here returns the *parameters* of the polyline's vertices, ascending, the
 //! first at the start of the domain and the last at its end; evaluate the curve at them for
@@ -120,7 +120,7 @@ pub const DEFAULT_ANGLE_TOLERANCE: f64 = 0.1;
 /// Largest number of uniform steps per segment; larger requests are clamped to it.
 pub const MAX_STEPS: usize = 1 << 16;
 
-/// Largest number of halvings of a cubic segment in angle mode (SPEC §1.3: depth 10, so at
+/// Largest number of halvings of a cubic segment in angle mode (depth 10, so at
 /// most 1024 chords per segment).
 pub const MAX_ANGLE_DEPTH: u32 = 10;
 
@@ -128,7 +128,7 @@ pub const MAX_ANGLE_DEPTH: u32 = 10;
 /// maximum depth).
 const MAX_CIRCLE_ANGLE_CHORDS: usize = 4 << MAX_ANGLE_DEPTH;
 
-/// How a curve is turned into a polyline (SPEC §1.3).
+/// How a curve is turned into a polyline.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Tessellation {
     /// `steps` equal parameter steps per segment (`m·steps + 1` points for `m` segments).

@@ -1,4 +1,4 @@
-//! Frames along curves (SPEC §1.5): the sequential method of the course software,
+//! Frames along curves: the sequential method of the course software,
 //! rotation-minimizing frames, Frenet frames, and the closed-curve fix.
 //!
 //! A [`Frame`] is a right-handed orthonormal triple `(T, N, B)` with `T × N = B`, always in
@@ -87,7 +87,7 @@ const SNAP_ANGLE: f64 = 1e-9;
 /// A right-handed orthonormal frame: unit tangent `t`, normal `n`, binormal `b`, with
 /// `t × n = b`.
 ///
-/// A sweep places a profile point `p` at `[n b t]·p + position` (SPEC §2.2), see
+/// A sweep places a profile point `p` at `[n b t]·p + position`, see
 /// [`to_nbt_matrix`](Self::to_nbt_matrix).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
@@ -132,7 +132,7 @@ impl Frame {
     }
 
     /// The matrix with columns `[n b t]`: maps profile coordinates `(x, y, z)` to
-    /// `n·x + b·y + t·z` (SPEC §2.2).
+    /// `n·x + b·y + t·z`.
     #[must_use]
     pub fn to_nbt_matrix(self) -> DMat3 {
         DMat3::from_cols(self.n, self.b, self.t)
@@ -301,7 +301,7 @@ pub fn sample_with_corners<P: Vector>(
     out
 }
 
-/// Frames by the sequential method of the course software (SPEC §1.5): with the reference
+/// Frames by the sequential method of the course software: with the reference
 /// `B₋₁ = side.up()` (`+z` for [`Side::Left`], `−z` for [`Side::Right`]), at each sample
 /// `Nᵢ = normalize(Bᵢ₋₁ × Tᵢ)` and `Bᵢ = Tᵢ × Nᵢ`, carried through all samples (so a curve's
 /// later segments continue from the previous segment's last B).
@@ -417,7 +417,7 @@ pub fn frenet(samples: &[CurveSample]) -> Vec<Frame> {
 
 /// True when there are at least two samples, the first and last positions are within
 /// `tolerance` (length units) of each other, and their tangents within `angle_tolerance`
-/// radians: the condition of SPEC §1.5 for the closed-curve fix.
+/// radians: the condition for the closed-curve fix.
 #[must_use]
 pub fn is_closed_loop(samples: &[CurveSample], tolerance: f64, angle_tolerance: f64) -> bool {
     let n = samples.len();

@@ -4,7 +4,7 @@
 //! over the target only after everything was written and synced. If anything fails — the
 //! directory does not exist, the callback returns an error or panics, the disk is full, the
 //! rename is refused — the temporary file is removed and the target is left as it was: there
-//! is never a partial output file (SPEC §5).
+//! is never a partial output file.
 //!
 //! ```
 //! use std::io::Write;

@@ -10,7 +10,7 @@
 //! - a stream writer, `write_obj` / `write_glb` / `write_ply` / `write_stl` (or
 //!   [`write_mesh`] with a [`MeshFormat`]), for any [`Write`];
 //! - a path-level [`save`], which writes through [`atomic::write_file`]: the file appears
-//!   complete or not at all (SPEC §5), and errors name the path.
+//!   complete or not at all, and errors name the path.
 //!
 //! | format | contents | precision |
 //! |---|---|---|

@@ -17,9 +17,9 @@
 //!   3` points, `n` segments, indices mod n.
 //! - **Tessellation (`epsilon`).** Each Bézier segment is halved at `t = ½` (De Casteljau)
 //!   while an angle of its control polygon (at `p1` or at `p2`) exceeds **`epsilon`** radians.
-//!   That is SPEC §1.3's angle mode with tolerance `2·epsilon`: the meshes have half the
-//!   points that the rule "exceeds `epsilon/2`" of the later revolution tool would give, on
-//!   all eight curves. Each piece contributes its *start* point, so a curve's samples are
+//!   That is the angle-tolerance tessellation (split while an angle exceeds half the
+//!   tolerance) with tolerance `2·epsilon`: the meshes have half the points that the rule
+//!   "exceeds `epsilon/2`" of the later revolution tool would give, on all eight curves. Each piece contributes its *start* point, so a curve's samples are
 //!   the starts of its pieces: a closed curve then repeats its first sample as a seam, an
 //!   open one ends one piece short of its end point (a quirk kept by the compat layout only).
 //! - **Placement.** The swept-along spline lies in the xz-plane (`(x, y) → (x, 0, y)`), and
@@ -39,15 +39,15 @@
 //! cross-section swept along a closed curve is watertight, and samples open curves up to
 //! their end point.
 //!
-//! # Revolution headers (the interactive revolution tool, SPEC §2.1 second convention)
+//! # Revolution headers (the interactive revolution tool, revolving about +z)
 //!
 //! No mesh of that tool survives, so its layout cannot be checked; the rebuild follows the
-//! tool's spline code and SPEC §2.1, and [`revolve_z`] builds the mesh (seams and poles shared,
-//! in every layout):
+//! tool's spline code and its revolution about +z (below), and [`revolve_z`] builds the mesh
+//! (seams and poles shared, in every layout):
 //!
 //! - **Spline.** `isBSpline` picks a uniform cubic B-spline, else a uniform Catmull-Rom spline
 //!   (same windows and point counts as above).
-//! - **Tessellation.** SPEC §1.3's angle mode with tolerance `epsilon`: halve while a
+//! - **Tessellation.** The angle mode with tolerance `epsilon`: halve while a
 //!   control-polygon angle exceeds `epsilon/2` (the tool's code). The whole curve is sampled,
 //!   end point included.
 //! - **Revolution.** About +z: `(x, y) → (s·x·cos φ, s·x·sin φ, s·y)` with `s = Scale`, and
@@ -61,7 +61,8 @@
 //! only where pieces never straighten out, at a cusp or a corner of the curve (a control point
 //! repeated three times), where the tools have a sample or two more right at that point. A
 //! control polygon with a zero-length edge gave the tools NaN angles (and NaN normals); here it
-//! follows SPEC §1.3's rules for degenerate polygons.
+//! follows the angle mode's rules for degenerate polygons: a zero-length edge takes the
+//! direction of its neighbours, so no angle is NaN.
 //!
 //! [`MAX_ANGLE_DEPTH`]: splinekit::flatten::MAX_ANGLE_DEPTH
 
@@ -340,7 +341,7 @@ struct Samples {
     normals: Vec<DVec2>,
 }
 
-/// Samples `curve` by SPEC §1.3's angle mode with `tolerance` (split while a control-polygon
+/// Samples `curve` by the angle mode with `tolerance` (split while a control-polygon
 /// angle exceeds `tolerance / 2`): the start of every piece, then, for a closed curve, the
 /// first sample again (an exact seam copy), for an open one the end point if `with_end`.
 fn sample(curve: &PiecewiseCubic<DVec2>, tolerance: f64, closed: bool, with_end: bool) -> Samples {

@@ -3,7 +3,7 @@
 //! Those tools save a mesh as plain OBJ whose leading `#` comments describe the spline(s) that
 //! generated it, so that the tool can load the spline again. There are two kinds.
 //!
-//! **Surface of revolution** (the interactive revolution tool, SPEC §4.2):
+//! **Surface of revolution** (the interactive revolution tool):
 //!
 //! ```text
 //! # This mesh is a Surface of Revolution: the comments below describe a Spline (cross-section) swept along
@@ -88,7 +88,8 @@ const SEPARATOR: &str = ">>+<<";
 /// them in an OBJ's leading comments (see the [module docs](self) for the layout).
 ///
 /// The profile (cross-section) is a 2D spline in the xy-plane; the tool revolves it about +z
-/// as described in SPEC §2.1 ("second convention").
+/// ("second convention"): a profile point `(x, y)` goes to `(s·x·cos φ, s·x·sin φ, s·y)` with
+/// scale `s > 0`, in `ceil(2π / slice_tolerance)` slices.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RevolutionHeader {
     /// Whether the cross-section spline is closed.

@@ -5,7 +5,7 @@ use crate::curve::planar::PlanarSpeed;
 use crate::curve::{Aabb, ParamCurve};
 use crate::vector::Vector;
 
-/// Bézier basis matrix of SPEC §1.1: rows per control point, columns per power of t,
+/// Cubic Bézier basis matrix: rows per control point, columns per power of t,
 /// so that `P(t) = [p0 p1 p2 p3] · BEZIER_BASIS · [1, t, t², t³]ᵀ`.
 pub const BEZIER_BASIS: [[f64; 4]; 4] =
     [[1.0, -3.0, 3.0, -1.0], [0.0, 3.0, -6.0, 3.0], [0.0, 0.0, 3.0, -3.0], [0.0, 0.0, 0.0, 1.0]];
@@ -110,7 +110,7 @@ impl<P: Vector> CubicBezier<P> {
     }
 
     /// De Casteljau split at `t`: left half `p0, p01, p012, p0123`, right half
-    /// `p0123, p123, p23, p3` (SPEC §1.2). The halves share the split point exactly.
+    /// `p0123, p123, p23, p3`. The halves share the split point exactly.
     #[must_use]
     pub fn split(&self, t: f64) -> (Self, Self) {
         let p01 = self.p0.lerp(self.p1, t);
@@ -375,7 +375,7 @@ mod tests {
     use proptest::prelude::*;
 
     fn bernstein_reference(c: &CubicBezier<DVec3>, t: f64) -> DVec3 {
-        // matrix form of SPEC §1.1: G · B · [1 t t² t³]ᵀ
+        // matrix form: G · B · [1 t t² t³]ᵀ, G = [p0 p1 p2 p3] as columns
         let powers = [1.0, t, t * t, t * t * t];
         let g = c.points();
         let mut out = DVec3::ZERO;

@@ -4,7 +4,7 @@ use crate::curve::piecewise::{chain, check_finite};
 use crate::curve::{CubicBezier, PiecewiseCubic, SplineError};
 use crate::vector::Vector;
 
-/// Uniform cubic B-spline basis matrix of SPEC §1.1 (rows per control point, columns per
+/// Uniform cubic B-spline basis matrix (rows per control point, columns per
 /// power of t): `P(t) = [P0 P1 P2 P3] · BSPLINE_BASIS · [1, t, t², t³]ᵀ`.
 pub const BSPLINE_BASIS: [[f64; 4]; 4] = [
     [1.0 / 6.0, -3.0 / 6.0, 3.0 / 6.0, -1.0 / 6.0],
@@ -74,7 +74,7 @@ impl<P: Vector> BSpline<P> {
         ]
     }
 
-    /// Compiles to Bézier segments with the exact window conversion of SPEC §1.1:
+    /// Compiles to Bézier segments with the exact window conversion:
     /// `((P0+4P1+P2)/6, (4P1+2P2)/6, (2P1+4P2)/6, (P1+4P2+P3)/6)`.
     #[must_use]
     pub fn to_piecewise(&self) -> PiecewiseCubic<P> {

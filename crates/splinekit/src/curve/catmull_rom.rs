@@ -4,7 +4,7 @@ use crate::curve::piecewise::{chain, check_finite};
 use crate::curve::{CubicBezier, PiecewiseCubic, SplineError};
 use crate::vector::Vector;
 
-/// Uniform Catmull-Rom basis matrix of SPEC §1.1 (rows per control point, columns per
+/// Uniform Catmull-Rom basis matrix (rows per control point, columns per
 /// power of t).
 pub const CATMULL_ROM_BASIS: [[f64; 4]; 4] =
     [[0.0, -0.5, 1.0, -0.5], [1.0, 0.0, -2.5, 1.5], [0.0, 0.5, 2.0, -1.5], [0.0, 0.0, -0.5, 0.5]];
@@ -79,7 +79,7 @@ impl<P: Vector> CatmullRom<P> {
         self.alpha
     }
 
-    /// Compiles to Bézier segments; for α = 0 this is exactly the conversion of SPEC §1.1,
+    /// Compiles to Bézier segments; for α = 0 this is exactly the uniform window conversion
     /// `(P1, P1 + (P2−P0)/6, P2 − (P3−P1)/6, P2)`.
     #[must_use]
     pub fn to_piecewise(&self) -> PiecewiseCubic<P> {

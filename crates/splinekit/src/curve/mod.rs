@@ -4,7 +4,7 @@
 //! Every kind (Bézier, uniform B-spline, Catmull-Rom, Hermite) validates its input once
 //! and compiles into a [`PiecewiseCubic`]: a chain of [`CubicBezier`] segments with the
 //! *concatenated parameter* `u ∈ [0, segments]`, segment `k` covering `[k, k+1]`
-//! with local `t = u − k` (SPEC §1.1). Circles ([`Circle`]), helices ([`Helix`]) and the
+//! with local `t = u − k`. Circles ([`Circle`]), helices ([`Helix`]) and the
 //! trefoil knot ([`Trefoil`]) are exact parametric curves of one segment, not cubics.
 
 /// The single-segment `ParamCurve` methods of an exact curve (circle, helix, trefoil) whose

@@ -115,7 +115,7 @@ impl<P: Vector> ParamCurve<P> for PiecewiseCubic<P> {
 }
 
 /// Piecewise cubic Bézier curve from `3m + 1` control points: segment `k` uses
-/// `P(3k) … P(3k+3)` (SPEC §1.1).
+/// `P(3k) … P(3k+3)`.
 ///
 /// # Interpolation
 /// Passes through every third point `P(3k)`; the inner points shape the segments.

@@ -1,5 +1,5 @@
 //! Edge adjacency of a polygon mesh: for every edge of every face, the neighbouring face's
-//! edge across it, or "boundary" (SPEC §3.1's neighbour-face / neighbour-edge tables, in
+//! edge across it, or "boundary" (the neighbour-face / neighbour-edge tables, in
 //! half-edge form).
 //!
 //! Half-edges are *corners*: corner `c` of [`PolyMesh::face_vertices`] is the half-edge from

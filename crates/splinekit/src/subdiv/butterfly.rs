@@ -2,7 +2,7 @@
 //! interpolating scheme, with OpenMesh's rules and boundary handling
 //! (`Subdivider::Uniform::ModifiedButterflyT`).
 //!
-//! One level splits every triangle into four as Loop's scheme does (SPEC §3.2: the parent's
+//! One level splits every triangle into four as Loop's scheme does (the parent's
 //! vertices keep their indices, then one new vertex per edge in edge order, triangles
 //! `(v₀, m₀₁, m₂₀)`, `(v₁, m₁₂, m₀₁)`, `(v₂, m₂₀, m₁₂)`, `(m₀₁, m₁₂, m₂₀)` for each parent
 //! triangle in order; orientation kept), but **old vertices do not move**: the surface passes

@@ -1,4 +1,4 @@
-//! Catmull-Clark subdivision of polygon meshes (SPEC §3.3), with OpenSubdiv's `catmark`
+//! Catmull-Clark subdivision of polygon meshes, with OpenSubdiv's `catmark`
 //! weights and boundary rules.
 //!
 //! One level turns every `n`-gon into `n` quads. The child's vertices are, in this order:

@@ -1,4 +1,4 @@
-//! Loop subdivision of triangle meshes (SPEC §3.2).
+//! Loop subdivision of triangle meshes.
 //!
 //! Each level splits every triangle into four, inserting one *odd* vertex per edge and moving
 //! the *even* (old) vertices:

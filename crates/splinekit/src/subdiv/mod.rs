@@ -1,5 +1,5 @@
-//! Subdivision surfaces: Loop subdivision of triangle meshes (SPEC §3.2) and Catmull-Clark
-//! subdivision of polygon meshes (SPEC §3.3), with OpenSubdiv's rules; √3 subdivision of
+//! Subdivision surfaces: Loop subdivision of triangle meshes and Catmull-Clark
+//! subdivision of polygon meshes, with OpenSubdiv's rules; √3 subdivision of
 //! triangle meshes ([`sqrt3_subdivide`]) and Doo-Sabin subdivision of polygon meshes
 //! ([`doo_sabin_subdivide`]), with CGAL's; the interpolating modified butterfly scheme
 //! ([`butterfly_subdivide`]), with OpenMesh's.

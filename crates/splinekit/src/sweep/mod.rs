@@ -1,8 +1,8 @@
-//! Swept surfaces (SPEC §2): surfaces of revolution about +y (`srev`) and generalized
+//! Swept surfaces: surfaces of revolution about +y (`srev`) and generalized
 //! cylinders (`gcyl`), from tessellated curves with frames.
 //!
 //! # Layouts
-//! - [`MeshLayout::Compat`]: the course program's vertex layout, counts exactly as SPEC §2.3:
+//! - [`MeshLayout::Compat`]: the course program's vertex layout and counts:
 //!   one vertex per (copy, profile point), seams of generalized cylinders duplicated, poles
 //!   of revolutions repeated in every copy.
 //! - [`MeshLayout::Welded`] (the default): seams and poles shared, zero-area triangles left
@@ -14,8 +14,9 @@
 //! whatever the side or direction of the profile: after building, the flux of the face
 //! normals through the surface's "outward" direction (away from the axis of revolution, or
 //! from the sweep curve) is checked, and the whole mesh is flipped if it is negative. The
-//! course files come out exactly as SPEC §2.1 describes; a profile on the x > 0 side, or
-//! traversed the other way, still gives an outward surface.
+//! course files (profiles at x < 0) come out with outward normals and counter-clockwise front
+//! faces; a profile on the x > 0 side, or traversed the other way, still gives an outward
+//! surface.
 
 pub mod surface;
 
@@ -27,7 +28,7 @@ use crate::mesh::TriMesh;
 /// How seams and poles are laid out; see the module docs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum MeshLayout {
-    /// The course program's layout (SPEC §2.3 counts).
+    /// The course program's layout and counts (seams duplicated, poles repeated).
     Compat,
     /// Seams and poles shared; a closed sweep is a closed 2-manifold.
     #[default]
@@ -217,7 +218,7 @@ fn normalized_lengths(steps: impl Iterator<Item = f64>) -> Vec<f64> {
     acc
 }
 
-/// The surface of revolution of SPEC §2.1 (`srev`): `steps` copies of the profile, copy `j`
+/// The surface of revolution (`srev`): `steps` copies of the profile, copy `j`
 /// rotated by the right-handed angle `2πj/steps` about +y, no duplicate copy at 2π.
 ///
 /// Compat layout: vertex `j·P + i` for profile point `i` of copy `j`; triangles
@@ -288,7 +289,7 @@ pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result
     Ok(mesh)
 }
 
-/// The generalized cylinder of SPEC §2.2 (`gcyl`): a copy of the profile at every sweep
+/// The generalized cylinder (`gcyl`): a copy of the profile at every sweep
 /// point, `vertex = N·p.x + B·p.y + V`, `normal = −(N·n.x + B·n.y)` with the sweep frame
 /// `(T, N, B)` at `V` and the profile normal `n`.
 ///

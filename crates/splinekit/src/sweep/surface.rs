@@ -1,4 +1,4 @@
-//! Triangle meshes of parametric surfaces (SPEC §2.1): a general `(u, v)` grid mesher
+//! Triangle meshes of parametric surfaces: a general `(u, v)` grid mesher
 //! ([`mesh_surface`]), the revolution about +z of the interactive revolution tool (the
 //! "second convention", [`revolve_z`]) and a lathe with independent radius and height
 //! curves ([`Lathe`]).
@@ -432,8 +432,8 @@ impl Default for RevolveOptions {
     }
 }
 
-/// Revolves a profile polyline about +z (the interactive revolution tool, SPEC §2.1 second
-/// convention): profile point `(x, y)`, `x ≥ 0`, goes to `(s·x·cos φ, s·x·sin φ, s·y)` for
+/// Revolves a profile polyline about +z (the interactive revolution tool's convention):
+/// profile point `(x, y)`, `x ≥ 0`, goes to `(s·x·cos φ, s·x·sin φ, s·y)` for
 /// the [`num_slices`](RevolveOptions::num_slices) angles `φ = 2πk/slices`; the seam at
 /// `φ = 2π` is shared.
 ///
@@ -560,7 +560,7 @@ impl Default for LatheOptions {
     }
 }
 
-/// A lathe surface with independent radius and height curves (SPEC §2.1):
+/// A lathe surface with independent radius and height curves:
 /// `P(u, v) = (r(v)·cos 2πu, r(v)·sin 2πu, z(v))`, `u, v ∈ [0, 1]`.
 ///
 /// `r` and `z` are piecewise cubic Bézier curves of scalar keys, each `3m + 1` keys (the
