@@ -19,7 +19,8 @@
 //!   while an angle of its control polygon (at `p1` or at `p2`) exceeds **`epsilon`** radians.
 //!   That is the angle-tolerance tessellation (split while an angle exceeds half the
 //!   tolerance) with tolerance `2·epsilon`: the meshes have half the points that the rule
-//!   "exceeds `epsilon/2`" of the later revolution tool would give, on all eight curves. Each piece contributes its *start* point, so a curve's samples are
+//!   "exceeds `epsilon/2`" of the later revolution tool would give, on all eight curves.
+//!   Each piece contributes its *start* point, so a curve's samples are
 //!   the starts of its pieces: a closed curve then repeats its first sample as a seam, an
 //!   open one ends one piece short of its end point (a quirk kept by the compat layout only).
 //! - **Placement.** The swept-along spline lies in the xz-plane (`(x, y) → (x, 0, y)`), and
