@@ -101,17 +101,12 @@ fn surface_rows(doc: &SwpDocument) -> Vec<SurfaceRow> {
         .enumerate()
         .map(|(k, s)| {
             let name = |i: usize| doc.curves[i].display_name(i);
-            let (kind, curves, steps) = match s.kind {
-                SwpSurfaceKind::Revolution { steps, profile } => {
-                    ("srev", vec![("profile", name(profile))], Some(steps))
-                }
-                SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale, twist } => {
-                    let mut curves = vec![("profile", name(profile)), ("sweep", name(sweep))];
-                    curves.extend(scale.map(|i| ("scale", name(i))));
-                    curves.extend(twist.map(|i| ("twist", name(i))));
-                    ("gcyl", curves, None)
-                }
+            let curves = s.kind.references().into_iter().map(|(role, i)| (role.word(), name(i))).collect();
+            let steps = match s.kind {
+                SwpSurfaceKind::Revolution { steps, .. } | SwpSurfaceKind::Lathe { stacks: steps, .. } => Some(steps),
+                _ => None,
             };
+            let kind = s.kind.keyword();
             let counts = sweep_cmd::counts(doc, k).map_err(|e| crate::output::error_message(&e));
             SurfaceRow { name: s.display_name(k), kind, curves, steps, counts }
         })

@@ -41,7 +41,8 @@ use crate::select;
     splinekit sweep wineglass.swp --tolerance 0.001\n  \
     splinekit sweep weirder.swp --compat\n  \
     splinekit sweep doughnut.obj -o out --format glb\n  \
-    splinekit sweep doughnut.obj -o out --compat\n\n\
+    splinekit sweep doughnut.obj -o out --compat\n  \
+    splinekit sweep vase.swp --format obj --annotated -o out\n\n\
     Layouts: by default seams and poles are welded (closed sweeps are watertight); --compat \
     reproduces the course program's vertex layout and counts (seam vertices duplicated, \
     poles repeated; the same triangles), or, for a \
@@ -89,6 +90,14 @@ pub struct SweepArgs {
     /// tolerance far too fine for the size of the surface)
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_TRIANGLES)]
     pub max_triangles: usize,
+
+    /// Write each surface as the CS 4620 revolution tool's annotated OBJ (its spline and
+    /// settings in the leading comments, then the mesh), which `splinekit sweep FILE.obj` and
+    /// `splinekit edit` open again. Needs --format obj and zrev surfaces whose profile is a
+    /// bsp2 or uniform cr2 curve; the header fixes the tessellation, so --tolerance and
+    /// --angle-tolerance are refused
+    #[arg(long)]
+    pub annotated: bool,
 }
 
 /// Mesh file formats.
@@ -188,6 +197,21 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
     }
     let doc = select::load(&args.file)?;
     let opts = options(args)?;
+    if args.annotated {
+        if args.format != Format::Obj {
+            bail!("--annotated writes OBJ files; use it with --format obj");
+        }
+        if args.tolerance.is_some() || args.angle_tolerance.is_some() {
+            bail!(
+                "--annotated: the header of an annotated OBJ fixes the tessellation (each zrev's epsilon and \
+                 slice-tolerance); leave out --tolerance and --angle-tolerance"
+            );
+        }
+        // every surface must fit the header before anything is written
+        for k in 0..doc.surfaces.len() {
+            doc.revolution_header(k).map_err(|e| anyhow!("{}: {e}", args.file.display()))?;
+        }
+    }
     if doc.surfaces.is_empty() {
         anyhow::bail!("{} has no surfaces (srev or gcyl) to sweep", args.file.display());
     }
@@ -239,7 +263,13 @@ fn sweep_surfaces(
         }
         let path: PathBuf = args.output.join(format!("{stem}.{}", args.format.extension()));
         step(meshes.len() + k, format!("writing {}", path.display()));
-        save_mesh(args, mesh, &path)?;
+        if args.annotated {
+            let header = doc.revolution_header(k).map_err(|e| anyhow!("{}: {e}", args.file.display()))?;
+            splinekit_io::mesh::save_revolution_obj(&header, mesh, &path)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+        } else {
+            save_mesh(args, mesh, &path)?;
+        }
         // the report goes to standard output, above the bar
         match bar {
             Some(bar) => bar.suspend(|| report(mesh, &path, out))?,
@@ -316,5 +346,19 @@ fn run_obj(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
     }
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create output directory {}", args.output.display()))?;
+    if args.annotated {
+        let SplineHeader::Revolution(header) = &header else {
+            bail!(
+                "--annotated: {} has a sweep tool's header; only revolution-tool files are written annotated",
+                file.display()
+            );
+        };
+        if args.format != Format::Obj {
+            bail!("--annotated writes OBJ files; use it with --format obj");
+        }
+        splinekit_io::mesh::save_revolution_obj(header, &mesh, &path)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        return report(&mesh, &path, out);
+    }
     write_mesh(args, &mesh, &path, out)
 }

@@ -204,3 +204,62 @@ fn help_describes_obj_input() {
     let run = sweep(&swp, dir.path(), &["--compat"]);
     assert_eq!(run.ok(), report_line(&dir.path().join("torus.obj"), 9 * 13, 2 * 8 * 12));
 }
+
+/// `sweep FILE.swp --format obj --annotated`: one revolution-tool OBJ per zrev surface, whose
+/// header the tool's layout holds (the lines it writes, in its order), and which reads back
+/// (`sweep x.obj`) to the same mesh; surfaces the header cannot describe are refused before
+/// anything is written.
+#[test]
+fn annotated_obj_from_swp_reads_back_to_the_same_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    let swp = dir.path().join("vases.swp");
+    fs::write(
+        &swp,
+        "bsp2 profile 10 6 [0 -1] [1.2 -1] [0.4 0] [0.5 0.6] [1.2 1.2] [1.3 1.4]\n\
+         cr2 ring 10 4 closed [1 0] [2 -0.5] [2.5 0] [2 0.5]\n\
+         zrev vase profile epsilon 0.1 slice-tolerance 0.2 scale 2\n\
+         zrev torus ring\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let run = sweep(&swp, &out, &["--format", "obj", "--annotated"]);
+    let lines: Vec<&str> = run.ok().lines().collect();
+    assert_eq!(lines.len(), 2, "{lines:?}");
+    for (stem, closed, bspline) in [("vase", "false", "true"), ("torus", "true", "false")] {
+        let written = out.join(format!("{stem}.obj"));
+        let text = fs::read_to_string(&written).unwrap();
+        let head: Vec<&str> = text.lines().take(7).collect();
+        assert_eq!(
+            head[0],
+            "# This mesh is a Surface of Revolution: the comments below describe a Spline (cross-section) swept along"
+        );
+        assert_eq!(head[3], "# Configs: closed, epsilon, isBSpline, Scale, sliceTolerance");
+        assert!(head[4].starts_with(&format!("# {closed} ")) && head[4].contains(&format!(" {bspline} ")), "{head:?}");
+        assert_eq!(head[6], "# Cross-section Spline control points: ");
+        // read back: the header rebuilt gives the mesh stored after it, byte for byte
+        let back = dir.path().join("back");
+        let rebuilt = sweep(&written, &back, &[]);
+        let (v, f) = read_obj(&written);
+        assert_eq!(rebuilt.ok(), report_line(&back.join(format!("{stem}.obj")), v.len(), f.len()));
+        let stored: String = text.lines().filter(|l| !l.starts_with('#')).map(|l| format!("{l}\n")).collect();
+        assert!(fs::read_to_string(back.join(format!("{stem}.obj"))).unwrap() == stored, "{stem}");
+    }
+    // the closed Catmull-Rom ring: ceil(2π / (2π/32)) = 32 slices, watertight
+    let (v, f) = read_obj(&out.join("torus.obj"));
+    assert_eq!((v.len() % 32, f.len()), (0, 2 * v.len()));
+
+    // an srev cannot be described: an error naming it, and no file
+    let mixed = dir.path().join("mixed.swp");
+    fs::write(&mixed, "bsp2 p 10 4 [1 -1] [2 -1] [2 1] [1 1]\nzrev a p\nsrev glass 16 p\n").unwrap();
+    let none = dir.path().join("none");
+    let stderr = sweep(&mixed, &none, &["--annotated"]).fails_with_error().to_string();
+    assert!(stderr.contains("surface glass cannot be written as an annotated OBJ"), "{stderr}");
+    assert!(!none.exists() || entries(&none).is_empty());
+    for (flags, says) in [
+        (&["--annotated", "--format", "glb"][..], "--format obj"),
+        (&["--annotated", "--tolerance", "0.1"][..], "--tolerance"),
+    ] {
+        let stderr = sweep(&swp, &none, flags).fails_with_error().to_string();
+        assert!(stderr.contains(says), "{flags:?}: {stderr}");
+    }
+}

@@ -54,6 +54,7 @@
 //!
 //! None yet.
 
+pub mod annotated;
 pub mod convert;
 pub mod mesh;
 pub mod surface;

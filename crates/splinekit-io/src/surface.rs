@@ -34,9 +34,12 @@
 use glam::{DVec2, DVec3};
 use splinekit::flatten::{self, Tessellation};
 use splinekit::frame::{self, CurveSample, Frame, FrameMethod, FrameOptions, Side, StartNormal};
+use splinekit::sweep::surface::{Lathe, LatheOptions, RevolveOptions, UvMode};
 use splinekit::sweep::{self, MeshLayout, Profile, SweepOptions, SweepPath};
-use splinekit::{AnyCurve, ParamCurve, TriMesh};
+use splinekit::{AnyCurve, CubicBezier, ParamCurve, PiecewiseCubic, TriMesh};
 
+use crate::mesh::rebuild::revolve_spline_z;
+use crate::mesh::{RebuildError, RebuildOptions};
 use crate::swp::{SwpClause, SwpDocument, SwpSurfaceKind};
 
 /// Joins whose tangents turn by more than this (radians, 1°) are creases.
@@ -153,6 +156,14 @@ pub enum SurfaceError {
         /// What went wrong.
         source: sweep::SweepError,
     },
+    /// A `zrev` or `lathe` could not be built (a profile across the axis, a negative radius…).
+    #[error("surface {surface}: {message}")]
+    Revolution {
+        /// Display name of the surface.
+        surface: String,
+        /// What went wrong.
+        message: String,
+    },
 }
 
 impl SwpDocument {
@@ -241,8 +252,87 @@ impl SwpDocument {
                 let path = SweepPath { positions: samples.iter().map(|s| s.position).collect(), frames, scales };
                 sweep::generalized_cylinder(&prof, &path, options.sweep).map_err(sweep_err)
             }
+            SwpSurfaceKind::RevolutionZ { profile, epsilon, slice_tolerance, scale } => {
+                let spline = spline_2d(&curve(profile)?, &self.curves[profile].display_name(profile), &surface_name)?;
+                let (mode, slice_tolerance) = match options.tessellation {
+                    SurfaceTessellation::FileSteps => (Tessellation::Angle { tolerance: epsilon }, slice_tolerance),
+                    SurfaceTessellation::Angle(a) => (Tessellation::Angle { tolerance: a }, a),
+                    SurfaceTessellation::Distance(d) => {
+                        let radius = spline
+                            .segments()
+                            .iter()
+                            .flat_map(|b| [b.p0, b.p1, b.p2, b.p3])
+                            .fold(0.0, |r: f64, p| r.max(p.x.abs()))
+                            * scale;
+                        (Tessellation::Distance { tolerance: d / scale }, slice_angle(radius, d))
+                    }
+                };
+                let revolve = RevolveOptions::new(scale, slice_tolerance);
+                let rebuild =
+                    RebuildOptions::DEFAULT.with_uvs(options.sweep.uvs).with_max_triangles(options.max_triangles);
+                revolve_spline_z(&spline, mode, &revolve, &rebuild).map_err(|e| match e {
+                    RebuildError::TooLarge { triangles, why, limit } => {
+                        SurfaceError::TooLarge { surface: surface_name.clone(), triangles, why, limit }
+                    }
+                    e => SurfaceError::Revolution { surface: surface_name.clone(), message: e.to_string() },
+                })
+            }
+            SwpSurfaceKind::Lathe { stacks, slices, radius, height } => {
+                let keys = |i: usize| -> Result<Vec<f64>, SurfaceError> {
+                    let spline = spline_2d(&curve(i)?, &self.curves[i].display_name(i), &surface_name)?;
+                    let segments = spline.segments();
+                    let mut keys: Vec<f64> = segments.iter().flat_map(|b| [b.p0.y, b.p1.y, b.p2.y]).collect();
+                    keys.extend(segments.last().map(|b| b.p3.y));
+                    Ok(keys)
+                };
+                let (r, z) = (keys(radius)?, keys(height)?);
+                let max_r = r.iter().fold(0.0, |m: f64, &k| m.max(k));
+                let slices = match options.tessellation {
+                    SurfaceTessellation::FileSteps => slices as usize,
+                    SurfaceTessellation::Angle(a) => slice_count(a),
+                    SurfaceTessellation::Distance(d) => slice_count(slice_angle(max_r, d)),
+                };
+                limit.check(2 * slices as u64 * u64::from(stacks), || format!("{slices} slices of {stacks} stacks"))?;
+                let failed = |e: sweep::surface::SurfaceError| SurfaceError::Revolution {
+                    surface: surface_name.clone(),
+                    message: e.to_string(),
+                };
+                let lathe = Lathe::new(&r, &z).map_err(failed)?;
+                let uvs = if options.sweep.uvs { UvMode::SplitSeams } else { UvMode::Omit };
+                lathe.to_mesh(&LatheOptions::new(slices, stacks as usize).with_uvs(uvs)).map_err(failed)
+            }
         }
     }
+}
+
+/// A 2D spline's compiled form in the plane, for `zrev` and `lathe` (circles are refused).
+fn spline_2d(curve: &AnyCurve<DVec3>, name: &str, surface: &str) -> Result<PiecewiseCubic<DVec2>, SurfaceError> {
+    let AnyCurve::Piecewise(c) = curve else {
+        return Err(SurfaceError::Revolution {
+            surface: surface.to_owned(),
+            message: format!("curve {name} must be a spline (bez2, bsp2, cr2 or her2)"),
+        });
+    };
+    let flat =
+        |b: &CubicBezier<DVec3>| CubicBezier::new(b.p0.truncate(), b.p1.truncate(), b.p2.truncate(), b.p3.truncate());
+    PiecewiseCubic::new(c.segments().iter().map(flat).collect(), c.is_closed())
+        .map_err(|source| SurfaceError::Curve { curve: name.to_owned(), source })
+}
+
+/// The largest slice angle whose chords stay within `tolerance` of a circle of `radius`
+/// (a chord of angle θ strays r·(1 − cos(θ/2))); a full turn when any chord would do.
+fn slice_angle(radius: f64, tolerance: f64) -> f64 {
+    if radius > tolerance && tolerance > 0.0 {
+        2.0 * (1.0 - tolerance / radius).clamp(-1.0, 1.0).acos()
+    } else {
+        std::f64::consts::TAU
+    }
+}
+
+/// Slices of at most `angle` radians, at least 3 (and at most [`MAX_STEPS`](crate::swp::MAX_STEPS)).
+fn slice_count(angle: f64) -> usize {
+    let n = (std::f64::consts::TAU / angle).ceil();
+    if n.is_finite() { (n as usize).clamp(3, crate::swp::MAX_STEPS as usize) } else { 3 }
 }
 
 /// Slices around the axis: the file's steps, or enough for the tolerance at the largest radius.

@@ -304,7 +304,7 @@ fn sample_files_round_trip_and_sweep() {
 fn sweeps_closed(doc: &SwpDocument, k: usize) -> bool {
     match doc.surfaces[k].kind {
         SwpSurfaceKind::GeneralizedCylinder { sweep, .. } => doc.curves[sweep].closed,
-        SwpSurfaceKind::Revolution { .. } => true,
+        SwpSurfaceKind::Revolution { .. } | SwpSurfaceKind::RevolutionZ { .. } | SwpSurfaceKind::Lathe { .. } => true,
     }
 }
 

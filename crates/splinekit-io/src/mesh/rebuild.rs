@@ -264,29 +264,8 @@ impl RevolutionHeader {
         } else {
             CatmullRom::new(points, self.closed, CatmullRom::<DVec2>::UNIFORM).map_err(spline_err)?.to_piecewise()
         };
-        let mut samples = sample(&curve, self.epsilon, self.closed, true);
-        // which side of the axis: mirror a profile drawn at x < 0, refuse one across it
-        let (lo, hi) =
-            samples.points.iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-        let tol = AXIS_TOLERANCE * (hi - lo).length();
-        if lo.x < -tol && hi.x > tol {
-            return Err(RebuildError::CrossesAxis { min_x: lo.x * self.scale, max_x: hi.x * self.scale });
-        }
-        if hi.x <= tol {
-            let mirror = |p: &mut DVec2| p.x = -p.x;
-            samples.points.iter_mut().for_each(mirror);
-            samples.normals.iter_mut().for_each(mirror);
-        }
-        let uvs = if options.uvs { UvMode::SplitSeams } else { UvMode::Omit };
-        let revolve = RevolveOptions::new(self.scale, self.slice_tolerance).with_uvs(uvs);
-        if let Ok(slices) = revolve.num_slices() {
-            let p = samples.points.len();
-            // two triangles per cross-section segment and slice
-            options.check(2 * slices as u64 * (p as u64).saturating_sub(1), || {
-                format!("{slices} slices of a {p}-point cross-section")
-            })?;
-        }
-        revolve_z(&samples.points, Some(&samples.normals), &revolve).map_err(RebuildError::Revolve)
+        let revolve = RevolveOptions::new(self.scale, self.slice_tolerance);
+        revolve_spline_z(&curve, Tessellation::Angle { tolerance: self.epsilon }, &revolve, options)
     }
 }
 
@@ -335,6 +314,46 @@ impl SweepHeader {
     }
 }
 
+/// The revolution tool's surface of a 2D spline: `curve` tessellated by `mode` (the start
+/// of every piece, and the end point of an open curve), mirrored when drawn on the x < 0 side,
+/// refused when it crosses the axis, then scaled and revolved about +z by [`revolve_z`] with
+/// `revolve`'s scale and slice tolerance (UVs as `options.uvs` asks).
+///
+/// # Errors
+/// A profile across the axis, more triangles than `options` allow, or a bad scale, slice
+/// tolerance or profile (see [`revolve_z`]).
+pub(crate) fn revolve_spline_z(
+    curve: &PiecewiseCubic<DVec2>,
+    mode: Tessellation,
+    revolve: &RevolveOptions,
+    options: &RebuildOptions,
+) -> Result<TriMesh, RebuildError> {
+    let closed = curve.is_closed();
+    let mut samples = sample_by(curve, mode, closed, true);
+    // which side of the axis: mirror a profile drawn at x < 0, refuse one across it
+    let (lo, hi) =
+        samples.points.iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let tol = AXIS_TOLERANCE * (hi - lo).length();
+    if lo.x < -tol && hi.x > tol {
+        return Err(RebuildError::CrossesAxis { min_x: lo.x * revolve.scale, max_x: hi.x * revolve.scale });
+    }
+    if hi.x <= tol {
+        let mirror = |p: &mut DVec2| p.x = -p.x;
+        samples.points.iter_mut().for_each(mirror);
+        samples.normals.iter_mut().for_each(mirror);
+    }
+    let uvs = if options.uvs { UvMode::SplitSeams } else { UvMode::Omit };
+    let revolve = revolve.with_uvs(uvs);
+    if let Ok(slices) = revolve.num_slices() {
+        let p = samples.points.len();
+        // two triangles per cross-section segment and slice
+        options.check(2 * slices as u64 * (p as u64).saturating_sub(1), || {
+            format!("{slices} slices of a {p}-point cross-section")
+        })?;
+    }
+    revolve_z(&samples.points, Some(&samples.normals), &revolve).map_err(RebuildError::Revolve)
+}
+
 /// A tessellated 2D spline: positions, unit tangents and right normals `(t.y, −t.x)`.
 struct Samples {
     points: Vec<DVec2>,
@@ -346,7 +365,12 @@ struct Samples {
 /// angle exceeds `tolerance / 2`): the start of every piece, then, for a closed curve, the
 /// first sample again (an exact seam copy), for an open one the end point if `with_end`.
 fn sample(curve: &PiecewiseCubic<DVec2>, tolerance: f64, closed: bool, with_end: bool) -> Samples {
-    let mut params = flatten_params(curve, Tessellation::Angle { tolerance });
+    sample_by(curve, Tessellation::Angle { tolerance }, closed, with_end)
+}
+
+/// Samples `curve` as [`sample`] does, tessellated by `mode`.
+fn sample_by(curve: &PiecewiseCubic<DVec2>, mode: Tessellation, closed: bool, with_end: bool) -> Samples {
+    let mut params = flatten_params(curve, mode);
     let end = params.pop();
     let mut s = Samples { points: Vec::new(), tangents: Vec::new(), normals: Vec::new() };
     let mut push = |u: f64| {

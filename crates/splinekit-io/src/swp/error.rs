@@ -224,6 +224,22 @@ pub enum SwpErrorKind {
         /// The surface, like `gcyl surface "spring"`.
         surface: String,
     },
+    /// A lathe's radius or height curve is a 3D curve.
+    #[error(
+        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2 or her2) as the {} curve of {surface}",
+        quote(name), role.word()
+    )]
+    LatheCurveNot2D {
+        /// The curve's name.
+        name: String,
+        /// The curve's keyword, like `bsp3`.
+        keyword: &'static str,
+        /// [`SwpCurveRole::Radius`](super::SwpCurveRole::Radius) or
+        /// [`SwpCurveRole::Height`](super::SwpCurveRole::Height).
+        role: super::SwpCurveRole,
+        /// The surface, like `lathe surface "vase"`.
+        surface: String,
+    },
     /// An unknown curve option, an option on a kind it does not apply to, an option given
     /// twice, a bad `alpha` value, or a gcyl `scale` or `twist` clause given twice.
     #[error("found {}, expected {expected}", quote(found))]

@@ -373,7 +373,7 @@ impl SwpSurface {
 }
 
 /// The kind of an SWP surface. Curve references are indices into [`SwpDocument::curves`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SwpSurfaceKind {
     /// Surface of revolution (`srev`): a 2D profile turned around the y axis.
     Revolution {
@@ -394,6 +394,69 @@ pub enum SwpSurfaceKind {
         /// The 2D twist curve (`twist` clause): its x is the twist angle in degrees.
         twist: Option<usize>,
     },
+    /// Surface of revolution about +z (`zrev`, an extension), as the CS 4620 revolution tool
+    /// made them: the profile tessellated by control-polygon angle, profile point `(x, y)`
+    /// going to `(s·x·cos φ, s·x·sin φ, s·y)` in `ceil(2π / slice_tolerance)` slices.
+    RevolutionZ {
+        /// The 2D profile curve (a spline: `bez2`, `bsp2`, `cr2` or `her2`).
+        profile: usize,
+        /// Angle tolerance ε in radians (`epsilon` option): a piece of the profile is halved
+        /// while an angle of its control polygon exceeds ε/2.
+        epsilon: f64,
+        /// Largest angle between slices, in radians (`slice-tolerance` option).
+        slice_tolerance: f64,
+        /// Uniform scale `s` (`scale` option).
+        scale: f64,
+    },
+    /// Lathe (`lathe`, an extension): separate radius and height curves,
+    /// `P(u, v) = (r(v)·cos 2πu, r(v)·sin 2πu, z(v))` about +z. The keys of `r` and `z` are
+    /// the y coordinates of the two curves' control points (their x only places the keys on
+    /// the graph); both curves are `bez2` curves of `3m + 1` points.
+    Lathe {
+        /// Intervals along `v`, 1..=[`MAX_STEPS`].
+        stacks: u32,
+        /// Slices around the axis, 3..=[`MAX_STEPS`].
+        slices: u32,
+        /// The radius curve r(v).
+        radius: usize,
+        /// The height curve z(v).
+        height: usize,
+    },
+}
+
+/// The default angle tolerance ε of a `zrev` surface, in radians (about 5.7°).
+pub const DEFAULT_ZREV_EPSILON: f64 = 0.1;
+/// The default slice tolerance of a `zrev` surface, in radians: 32 slices.
+pub const DEFAULT_ZREV_SLICE_TOLERANCE: f64 = std::f64::consts::TAU / 32.0;
+
+impl SwpSurfaceKind {
+    /// The surface's keyword: `srev`, `gcyl`, `zrev` or `lathe`.
+    #[must_use]
+    pub fn keyword(&self) -> &'static str {
+        match self {
+            Self::Revolution { .. } => "srev",
+            Self::GeneralizedCylinder { .. } => "gcyl",
+            Self::RevolutionZ { .. } => "zrev",
+            Self::Lathe { .. } => "lathe",
+        }
+    }
+
+    /// The curves the surface uses, with their roles, in file order.
+    #[must_use]
+    pub fn references(&self) -> Vec<(SwpCurveRole, usize)> {
+        match *self {
+            Self::Revolution { profile, .. } | Self::RevolutionZ { profile, .. } => {
+                vec![(SwpCurveRole::Profile, profile)]
+            }
+            Self::GeneralizedCylinder { profile, sweep, scale, twist } => {
+                let mut refs = vec![(SwpCurveRole::Profile, profile), (SwpCurveRole::Sweep, sweep)];
+                refs.extend(scale.map(|c| (SwpCurveRole::Scale, c)));
+                refs.extend(twist.map(|c| (SwpCurveRole::Twist, c)));
+                refs
+            }
+            Self::Lathe { radius, height, .. } => vec![(SwpCurveRole::Radius, radius), (SwpCurveRole::Height, height)],
+        }
+    }
 }
 
 /// A `gcyl` clause (an extension): which shaping curve it names.

@@ -6,14 +6,17 @@ use glam::DVec3;
 
 use super::error::{SwpError, SwpErrorKind};
 use super::lexer::{Token, TokenKind, tokenize};
+use super::validate::SwpCurveRole;
 use super::{
-    MAX_HELIX_TURNS, MAX_STEPS, SourcePos, SwpClause, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface,
-    SwpSurfaceKind,
+    DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, MAX_HELIX_TURNS, MAX_STEPS, SourcePos, SwpClause, SwpCurve,
+    SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind,
 };
 
 /// Every keyword that starts an object.
-const KEYWORDS: [&str; 13] =
-    ["bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "circ", "helix", "trefoil", "srev", "gcyl"];
+const KEYWORDS: [&str; 15] = [
+    "bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "circ", "helix", "trefoil", "srev", "gcyl", "zrev",
+    "lathe",
+];
 
 /// Whether `word` is an SWP keyword.
 pub(crate) fn is_keyword(word: &str) -> bool {
@@ -38,6 +41,8 @@ enum Keyword {
     Trefoil,
     Revolution,
     Cylinder,
+    RevolutionZ,
+    Lathe,
 }
 
 fn keyword(word: &str) -> Option<Keyword> {
@@ -56,6 +61,8 @@ fn keyword(word: &str) -> Option<Keyword> {
         "trefoil" => Some(Keyword::Trefoil),
         "srev" => Some(Keyword::Revolution),
         "gcyl" => Some(Keyword::Cylinder),
+        "zrev" => Some(Keyword::RevolutionZ),
+        "lathe" => Some(Keyword::Lathe),
         _ => None,
     }
 }
@@ -186,6 +193,8 @@ impl<'a> Parser<'a> {
             Some(Keyword::Trefoil) => self.trefoil(token.pos),
             Some(Keyword::Revolution) => self.revolution(token.pos),
             Some(Keyword::Cylinder) => self.cylinder(token.pos),
+            Some(Keyword::RevolutionZ) => self.revolution_z(token.pos),
+            Some(Keyword::Lathe) => self.lathe(token.pos),
         }
     }
 
@@ -202,10 +211,7 @@ impl<'a> Parser<'a> {
         if let Some(&(named, first)) = self.names.get(token.text) {
             let what = match named {
                 Named::Curve(i) => self.doc.curves.get(i).map_or("curve", |c| c.keyword()),
-                Named::Surface(i) => match self.doc.surfaces.get(i).map(|s| s.kind) {
-                    Some(SwpSurfaceKind::Revolution { .. }) => "srev",
-                    _ => "gcyl",
-                },
+                Named::Surface(i) => self.doc.surfaces.get(i).map_or("surface", |s| s.kind.keyword()),
             };
             let noun = match named {
                 Named::Curve(_) => "curve",
@@ -514,6 +520,70 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// `zrev NAME PROFILE option*`, after the keyword; the options `epsilon E`,
+    /// `slice-tolerance T` and `scale S` (each a number > 0, at most once, any order).
+    fn revolution_z(&mut self, pos: SourcePos) -> Result<(), SwpError> {
+        let index = self.doc.surfaces.len();
+        let (name, name_pos) = self.name("zrev surface")?;
+        let label = label("zrev", "surface", name, index);
+        let profile = self.reference(&label, Role::Profile)?;
+        let mut values: [Option<(Token<'a>, f64)>; 3] = [None; 3];
+        const WORDS: [&str; 3] = ["epsilon", "slice-tolerance", "scale"];
+        while let Some(token) = self.peek().filter(|t| t.kind == TokenKind::Word) {
+            let Some(k) = WORDS.iter().position(|&w| w == token.text) else { break };
+            if let Some((first, _)) = values[k] {
+                return Err(self.bad_option(token, already(&label, first, token.text)));
+            }
+            self.next += 1;
+            let value = match k {
+                0 => self.value("an angle tolerance in radians (a number > 0)", &label, |v| v > 0.0)?,
+                // at most MAX_STEPS slices
+                1 => self.value(
+                    &format!("a slice tolerance in radians (a number ≥ 2π/{MAX_STEPS}, at most {MAX_STEPS} slices)"),
+                    &label,
+                    |v| v > 0.0 && std::f64::consts::TAU / v <= f64::from(MAX_STEPS),
+                )?,
+                _ => self.value("a scale (a number > 0)", &label, |v| v > 0.0)?,
+            };
+            values[k] = Some((token, value));
+        }
+        self.register(name, name_pos, Named::Surface(index));
+        self.doc.surfaces.push(SwpSurface {
+            name: name.map(str::to_owned),
+            kind: SwpSurfaceKind::RevolutionZ {
+                profile,
+                epsilon: values[0].map_or(DEFAULT_ZREV_EPSILON, |(_, v)| v),
+                slice_tolerance: values[1].map_or(DEFAULT_ZREV_SLICE_TOLERANCE, |(_, v)| v),
+                scale: values[2].map_or(1.0, |(_, v)| v),
+            },
+            pos,
+        });
+        Ok(())
+    }
+
+    /// `lathe NAME STEPS SLICES RADIUS HEIGHT`, after the keyword.
+    fn lathe(&mut self, pos: SourcePos) -> Result<(), SwpError> {
+        let index = self.doc.surfaces.len();
+        let (name, name_pos) = self.name("lathe surface")?;
+        let label = label("lathe", "surface", name, index);
+        let stacks = self.steps(&label)?;
+        let expected = || format!("a slice count (an integer from 3 to {MAX_STEPS}) for {label}");
+        let token = self.expect(expected)?;
+        let slices = int_value(token.text)
+            .and_then(|v| u32::try_from(v).ok())
+            .filter(|n| (3..=MAX_STEPS).contains(n))
+            .ok_or_else(|| self.invalid_number(token, expected()))?;
+        let radius = self.reference(&label, Role::Radius)?;
+        let height = self.reference(&label, Role::Height)?;
+        self.register(name, name_pos, Named::Surface(index));
+        self.doc.surfaces.push(SwpSurface {
+            name: name.map(str::to_owned),
+            kind: SwpSurfaceKind::Lathe { stacks, slices, radius, height },
+            pos,
+        });
+        Ok(())
+    }
+
     /// Reads a reference to a curve defined earlier, for `role` in the surface `label`
     /// (profiles, scale and twist curves must be 2D).
     fn reference(&mut self, label: &str, role: Role) -> Result<usize, SwpError> {
@@ -545,6 +615,8 @@ impl<'a> Parser<'a> {
                 Role::Sweep => return Ok(index),
                 Role::Profile => SwpErrorKind::ProfileNot2D { name, keyword, surface },
                 Role::Clause(role) => SwpErrorKind::CurveNot2D { name, keyword, role, surface },
+                Role::Radius => SwpErrorKind::LatheCurveNot2D { name, keyword, role: SwpCurveRole::Radius, surface },
+                Role::Height => SwpErrorKind::LatheCurveNot2D { name, keyword, role: SwpCurveRole::Height, surface },
             };
             return Err(self.error(token.pos, kind));
         }
@@ -558,6 +630,8 @@ enum Role {
     Profile,
     Sweep,
     Clause(SwpClause),
+    Radius,
+    Height,
 }
 
 impl Role {
@@ -566,6 +640,8 @@ impl Role {
             Self::Profile => "profile",
             Self::Sweep => "sweep",
             Self::Clause(clause) => clause.keyword(),
+            Self::Radius => "radius",
+            Self::Height => "height",
         }
     }
 }

@@ -149,9 +149,26 @@ pub enum SwpCurveRole {
     Scale,
     /// The twist curve of a `gcyl` (must be 2D).
     Twist,
+    /// The radius curve of a `lathe` (must be 2D).
+    Radius,
+    /// The height curve of a `lathe` (must be 2D).
+    Height,
 }
 
 impl SwpCurveRole {
+    /// The role in one word: `profile`, `sweep`, `scale`, `twist`, `radius` or `height`.
+    #[must_use]
+    pub fn word(self) -> &'static str {
+        match self {
+            Self::Profile => "profile",
+            Self::Sweep => "sweep",
+            Self::Scale => "scale",
+            Self::Twist => "twist",
+            Self::Radius => "radius",
+            Self::Height => "height",
+        }
+    }
+
     /// How messages call a curve in this role: `profile`, `sweep`, `scale curve`, `twist curve`.
     fn noun(self) -> &'static str {
         match self {
@@ -159,6 +176,8 @@ impl SwpCurveRole {
             Self::Sweep => "sweep",
             Self::Scale => "scale curve",
             Self::Twist => "twist curve",
+            Self::Radius => "radius curve",
+            Self::Height => "height curve",
         }
     }
 }
@@ -190,6 +209,12 @@ pub enum SwpNumber {
     Size,
     /// The alpha (parametrization) of a Catmull-Rom spline.
     Alpha,
+    /// The angle tolerance ε of a `zrev` surface.
+    Epsilon,
+    /// The slice tolerance of a `zrev` surface.
+    SliceTolerance,
+    /// The scale of a `zrev` surface.
+    Scale,
 }
 
 impl fmt::Display for SwpNumber {
@@ -207,6 +232,9 @@ impl fmt::Display for SwpNumber {
             Self::Turns => f.write_str("the number of turns"),
             Self::Size => f.write_str("the size"),
             Self::Alpha => f.write_str("the Catmull-Rom alpha"),
+            Self::Epsilon => f.write_str("the angle tolerance epsilon"),
+            Self::SliceTolerance => f.write_str("the slice tolerance"),
+            Self::Scale => f.write_str("the scale"),
         }
     }
 }
@@ -264,6 +292,11 @@ pub enum SwpInvalidKind {
     /// `steps` of a curve or surface of revolution is not in `1..=MAX_STEPS`.
     Steps {
         /// The steps.
+        found: u32,
+    },
+    /// The slices of a lathe are not in `3..=MAX_STEPS`.
+    Slices {
+        /// The slices.
         found: u32,
     },
     /// The number of points breaks the kind's point-count rule
@@ -366,6 +399,9 @@ impl fmt::Display for SwpInvalidKind {
             Self::Steps { found } => {
                 write!(f, "the number of steps must be from 1 to {MAX_STEPS}; this one has {found}")
             }
+            Self::Slices { found } => {
+                write!(f, "the number of slices must be from 3 to {MAX_STEPS}; this one has {found}")
+            }
             Self::PointCount { kind, closed, found } => {
                 let need = match (kind, closed) {
                     (SwpCurveKind::Bezier, false) => "4, 7, 10, … points",
@@ -383,6 +419,11 @@ impl fmt::Display for SwpInvalidKind {
                     write!(f, "{number} must be more than 0 and at most {MAX_HELIX_TURNS}; it is {value}")
                 }
                 SwpNumber::Alpha => write!(f, "{number} must be from 0 to 1; it is {value}"),
+                SwpNumber::SliceTolerance => write!(
+                    f,
+                    "{number} must be at least 2π/{MAX_STEPS} radians (at most {MAX_STEPS} slices); it is {value}"
+                ),
+                SwpNumber::Epsilon | SwpNumber::Scale => write!(f, "{number} must be more than 0; it is {value}"),
                 _ => write!(f, "{number} must be 0 or more; it is {value}"),
             },
             Self::NonzeroZ { number, value } => write!(f, "{number} is {value}; in a 2D curve it must be 0"),
@@ -577,25 +618,25 @@ fn check_curve(curve: &SwpCurve) -> Result<(), SwpInvalidKind> {
 
 /// Checks one surface (not its name). The curves have been checked already.
 fn check_surface(curves: &[SwpCurve], surface: &SwpSurface) -> Result<(), SwpInvalidKind> {
-    let references = match surface.kind {
-        SwpSurfaceKind::Revolution { steps, profile } => {
-            if !(1..=MAX_STEPS).contains(&steps) {
-                return Err(SwpInvalidKind::Steps { found: steps });
-            }
-            [
-                (SwpCurveRole::Profile, Some(profile)),
-                (SwpCurveRole::Sweep, None),
-                (SwpCurveRole::Scale, None),
-                (SwpCurveRole::Twist, None),
-            ]
+    match surface.kind {
+        SwpSurfaceKind::Revolution { steps, .. } | SwpSurfaceKind::Lathe { stacks: steps, .. }
+            if !(1..=MAX_STEPS).contains(&steps) =>
+        {
+            return Err(SwpInvalidKind::Steps { found: steps });
         }
-        SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale, twist } => [
-            (SwpCurveRole::Profile, Some(profile)),
-            (SwpCurveRole::Sweep, Some(sweep)),
-            (SwpCurveRole::Scale, scale),
-            (SwpCurveRole::Twist, twist),
-        ],
-    };
+        SwpSurfaceKind::Lathe { slices, .. } if !(3..=MAX_STEPS).contains(&slices) => {
+            return Err(SwpInvalidKind::Slices { found: slices });
+        }
+        SwpSurfaceKind::RevolutionZ { epsilon, slice_tolerance, scale, .. } => {
+            check_number(SwpNumber::Epsilon, epsilon, |v| v > 0.0)?;
+            check_number(SwpNumber::SliceTolerance, slice_tolerance, |v| {
+                v > 0.0 && std::f64::consts::TAU / v <= f64::from(MAX_STEPS)
+            })?;
+            check_number(SwpNumber::Scale, scale, |v| v > 0.0)?;
+        }
+        _ => {}
+    }
+    let references = surface.kind.references().into_iter().map(|(role, curve)| (role, Some(curve)));
     for (role, index) in references {
         let Some(curve) = index else { continue };
         let Some(target) = curves.get(curve) else {

@@ -6,7 +6,10 @@ use std::fmt::Write as _;
 use glam::DVec3;
 
 use super::validate::name_problem;
-use super::{SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurfaceKind};
+use super::{
+    DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry,
+    SwpSurfaceKind,
+};
 
 /// Whether `name` can be written as a NAME token that reads back as itself (the rule that
 /// [`SwpDocument::validate`] applies too).
@@ -16,17 +19,8 @@ fn is_writable_name(name: &str) -> bool {
 
 /// Picks the name written for every curve and surface (`None` writes `.`).
 fn output_names(doc: &SwpDocument) -> (Vec<Option<String>>, Vec<Option<String>>) {
-    let referenced: HashSet<usize> = doc
-        .surfaces
-        .iter()
-        .flat_map(|s| match s.kind {
-            SwpSurfaceKind::Revolution { profile, .. } => [Some(profile), None, None, None],
-            SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale, twist } => {
-                [Some(profile), Some(sweep), scale, twist]
-            }
-        })
-        .flatten()
-        .collect();
+    let referenced: HashSet<usize> =
+        doc.surfaces.iter().flat_map(|s| s.kind.references().into_iter().map(|(_, curve)| curve)).collect();
 
     // First pass: keep every writable name at its first use.
     fn keep<'a>(taken: &mut HashSet<&'a str>, name: Option<&'a str>) -> Option<String> {
@@ -92,6 +86,22 @@ pub(crate) fn write(doc: &SwpDocument) -> String {
                     let _ = write!(out, " twist {}", reference(twist));
                 }
                 writeln!(out)
+            }
+            SwpSurfaceKind::RevolutionZ { profile, epsilon, slice_tolerance, scale } => {
+                let _ = write!(out, "zrev {name} {}", reference(profile));
+                if epsilon != DEFAULT_ZREV_EPSILON {
+                    let _ = write!(out, " epsilon {epsilon}");
+                }
+                if slice_tolerance != DEFAULT_ZREV_SLICE_TOLERANCE {
+                    let _ = write!(out, " slice-tolerance {slice_tolerance}");
+                }
+                if scale != 1.0 {
+                    let _ = write!(out, " scale {scale}");
+                }
+                writeln!(out)
+            }
+            SwpSurfaceKind::Lathe { stacks, slices, radius, height } => {
+                writeln!(out, "lathe {name} {stacks} {slices} {} {}", reference(radius), reference(height))
             }
         };
     }

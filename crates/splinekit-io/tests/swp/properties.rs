@@ -168,7 +168,10 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
 /// A valid document: unique names, references to earlier curves only, 2D profiles, and a name
 /// on every referenced curve (so that the round trip is exact).
 fn document() -> impl Strategy<Value = SwpDocument> {
-    let surface = (any::<bool>(), 1..=MAX_STEPS, any::<Index>(), any::<Index>(), prop::option::of("[a-z]{1,5}"));
+    let positive = || prop_oneof![Just(1.0), 1e-3f64..10.0, proptest::num::f64::POSITIVE | proptest::num::f64::NORMAL];
+    // zrev numbers: epsilon, slice tolerance (at most MAX_STEPS slices), scale; lathe slices
+    let extension = (positive(), (core::f64::consts::TAU / f64::from(MAX_STEPS))..10.0, positive(), 3..=MAX_STEPS);
+    let surface = ((0u8..4, extension), 1..=MAX_STEPS, any::<Index>(), any::<Index>(), prop::option::of("[a-z]{1,5}"));
     (prop::collection::vec(curve(), 0..6), prop::collection::vec(surface, 0..4)).prop_map(
         |(mut curves, raw_surfaces)| {
             for (i, c) in curves.iter_mut().enumerate() {
@@ -177,13 +180,17 @@ fn document() -> impl Strategy<Value = SwpDocument> {
             let flat: Vec<usize> = (0..curves.len()).filter(|&i| curves[i].dim == 2).collect();
             let mut surfaces = Vec::new();
             if !flat.is_empty() {
-                for (j, (revolution, steps, profile, sweep, name)) in raw_surfaces.into_iter().enumerate() {
+                for (j, ((which, (epsilon, slice_tolerance, scale, slices)), steps, profile, sweep, name)) in
+                    raw_surfaces.into_iter().enumerate()
+                {
+                    let other = flat[sweep.index(flat.len())];
                     let profile = flat[profile.index(flat.len())];
                     let sweep = sweep.index(curves.len());
-                    let kind = if revolution {
-                        SwpSurfaceKind::Revolution { steps, profile }
-                    } else {
-                        SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale: None, twist: None }
+                    let kind = match which {
+                        0 => SwpSurfaceKind::Revolution { steps, profile },
+                        1 => SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale: None, twist: None },
+                        2 => SwpSurfaceKind::RevolutionZ { profile, epsilon, slice_tolerance, scale },
+                        _ => SwpSurfaceKind::Lathe { stacks: steps, slices, radius: profile, height: other },
                     };
                     surfaces.push(SwpSurface {
                         name: name.map(|base| format!("{base}S{j}")),
@@ -193,11 +200,7 @@ fn document() -> impl Strategy<Value = SwpDocument> {
                 }
             }
             for s in &surfaces {
-                let (a, b) = match s.kind {
-                    SwpSurfaceKind::Revolution { profile, .. } => (profile, profile),
-                    SwpSurfaceKind::GeneralizedCylinder { profile, sweep, .. } => (profile, sweep),
-                };
-                for i in [a, b] {
+                for (_, i) in s.kind.references() {
                     curves[i].name.get_or_insert_with(|| format!("r{i}"));
                 }
             }

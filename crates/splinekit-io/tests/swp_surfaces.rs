@@ -1,0 +1,213 @@
+//! The `zrev` (revolution about +z, the revolution tool's settings) and `lathe` (separate
+//! radius and height curves) surfaces: parsing, errors with positions, validation, writing
+//! and reading back, and their meshes against closed forms and the annotated-OBJ rebuild.
+
+use core::f64::consts::{PI, TAU};
+
+use glam::DVec2;
+use splinekit::ParamCurve;
+use splinekit::sweep::{MeshLayout, SweepOptions};
+use splinekit_io::mesh::{RebuildOptions, RevolutionHeader};
+use splinekit_io::surface::{SurfaceError, SurfaceOptions, SurfaceTessellation};
+use splinekit_io::swp::{DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE};
+use splinekit_io::{SwpDocument, SwpInvalidKind, SwpNumber, SwpSurfaceKind};
+
+fn parse(text: &str) -> SwpDocument {
+    SwpDocument::parse(text, "t.swp").unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn parse_err(text: &str) -> String {
+    SwpDocument::parse(text, "t.swp").map(|_| ()).unwrap_err().to_string()
+}
+
+/// A profile from (1, −1) out to (2, 0) and back in to (1, 1): a B-spline on the x > 0 side.
+const BSP: &str = "bsp2 p 10 5 [1 -1] [2 -1] [2.5 0] [2 1] [1 1]\n";
+
+#[test]
+fn zrev_parses_with_defaults_and_options() {
+    let doc = parse(&format!("{BSP}zrev a p\nzrev b p scale 2 epsilon 0.05 slice-tolerance 0.5\n"));
+    assert_eq!(
+        doc.surfaces[0].kind,
+        SwpSurfaceKind::RevolutionZ {
+            profile: 0,
+            epsilon: DEFAULT_ZREV_EPSILON,
+            slice_tolerance: DEFAULT_ZREV_SLICE_TOLERANCE,
+            scale: 1.0
+        }
+    );
+    assert_eq!(
+        doc.surfaces[1].kind,
+        SwpSurfaceKind::RevolutionZ { profile: 0, epsilon: 0.05, slice_tolerance: 0.5, scale: 2.0 }
+    );
+    // written back: defaults left out, the rest exactly
+    let text = doc.to_swp_string();
+    assert!(text.contains("zrev a p\n"), "{text}");
+    assert!(text.contains("zrev b p epsilon 0.05 slice-tolerance 0.5 scale 2\n"), "{text}");
+    let again = SwpDocument::parse(&text, "again.swp").unwrap();
+    assert_eq!(again.surfaces[1].kind, doc.surfaces[1].kind);
+}
+
+#[test]
+fn lathe_parses_and_writes_back() {
+    let doc = parse(
+        "bez2 r 8 4 [0 0] [0.3 1] [0.6 1] [1 0]\nbez2 z 8 4 [0 -1] [0.3 -1] [0.6 1] [1 1]\nlathe vase 24 48 r z\n",
+    );
+    assert_eq!(doc.surfaces[0].kind, SwpSurfaceKind::Lathe { stacks: 24, slices: 48, radius: 0, height: 1 });
+    let text = doc.to_swp_string();
+    assert!(text.ends_with("lathe vase 24 48 r z\n"), "{text}");
+    assert_eq!(SwpDocument::parse(&text, "again.swp").unwrap().surfaces[0].kind, doc.surfaces[0].kind);
+}
+
+#[test]
+fn bad_numbers_are_errors_at_their_position() {
+    let cases = [
+        ("zrev a p epsilon 0", "t.swp:2:18", "an angle tolerance"),
+        ("zrev a p scale -1", "t.swp:2:16", "a scale"),
+        ("zrev a p slice-tolerance 0.000001", "t.swp:2:26", "a slice tolerance"),
+        ("zrev a p scale 2 scale 3", "t.swp:2:18", "at most one"),
+        ("lathe a 10 2 p p", "t.swp:2:12", "a slice count (an integer from 3"),
+        ("lathe a 0 8 p p", "t.swp:2:9", "step"),
+        ("bsp3 q 10 4 [0 0 0] [1 0 0] [1 1 0] [0 1 1]\nlathe a 10 8 p q", "t.swp:3:16", "as the height curve"),
+    ];
+    for (line, at, what) in cases {
+        let message = parse_err(&format!("{BSP}{line}\n"));
+        assert!(message.starts_with(at) && message.contains(what), "{line}: {message}");
+    }
+}
+
+#[test]
+fn validate_checks_the_numbers() {
+    let mut doc = parse(&format!("{BSP}zrev a p\nlathe b 4 8 p p\n"));
+    assert_eq!(doc.validate(), Ok(()));
+    doc.surfaces[0].kind =
+        SwpSurfaceKind::RevolutionZ { profile: 0, epsilon: f64::NAN, slice_tolerance: 0.1, scale: 1.0 };
+    let err = doc.validate().unwrap_err();
+    assert!(matches!(err.kind(), SwpInvalidKind::NonFinite { number: SwpNumber::Epsilon, .. }), "{err}");
+    doc.surfaces[0].kind = SwpSurfaceKind::RevolutionZ { profile: 0, epsilon: 0.1, slice_tolerance: 1e-9, scale: 1.0 };
+    assert!(doc.validate().unwrap_err().to_string().contains("at most 1000000 slices"));
+    doc.surfaces[0].kind = SwpSurfaceKind::Lathe { stacks: 4, slices: 2, radius: 0, height: 0 };
+    assert_eq!(doc.validate().unwrap_err().kind(), &SwpInvalidKind::Slices { found: 2 });
+}
+
+/// A `zrev` of a B-spline is the revolution tool's surface: the same mesh as the annotated
+/// OBJ header with the same spline and settings, rebuilt.
+#[test]
+fn zrev_is_the_revolution_tools_surface() {
+    let doc = parse(&format!("{BSP}zrev a p epsilon 0.2 slice-tolerance 0.4 scale 1.5\n"));
+    let mesh = doc.surface_mesh(0, &SurfaceOptions::default()).unwrap();
+    let header = RevolutionHeader {
+        closed: false,
+        epsilon: 0.2,
+        is_bspline: true,
+        scale: 1.5,
+        slice_tolerance: 0.4,
+        control_points: [(1.0, -1.0), (2.0, -1.0), (2.5, 0.0), (2.0, 1.0), (1.0, 1.0)]
+            .map(|(x, y)| DVec2::new(x, y))
+            .to_vec(),
+    };
+    let rebuilt = header.rebuild(&RebuildOptions::DEFAULT).unwrap();
+    assert_eq!(mesh, rebuilt);
+    // ceil(2π/0.4) = 16 slices, the profile's samples in each
+    assert_eq!(mesh.num_vertices() % 16, 0);
+    assert_eq!(mesh.num_triangles(), 2 * 16 * (mesh.num_vertices() / 16 - 1));
+}
+
+/// A half circle about +z is a sphere of radius `s·r`: closed, outward, its volume close to
+/// 4/3·π·(s·r)³, and every vertex at that distance within the chord error.
+#[test]
+fn zrev_of_a_half_circle_is_a_sphere() {
+    // a Bézier half circle of radius 1 from the south to the north pole
+    let k = 0.552_284_75;
+    let doc = parse(&format!(
+        "bez2 half 10 7 [0 -1] [{k} -1] [1 -{k}] [1 0] [1 {k}] [{k} 1] [0 1]\nzrev ball half epsilon 0.05 slice-tolerance {} scale 2\n",
+        TAU / 64.0
+    ));
+    let mesh = doc.surface_mesh(0, &SurfaceOptions::default()).unwrap();
+    assert!(mesh.is_closed_oriented());
+    let volume = 4.0 / 3.0 * PI * 8.0;
+    assert!((mesh.signed_volume() - volume).abs() < 0.02 * volume, "{}", mesh.signed_volume());
+    for p in &mesh.positions {
+        assert!((p.length() - 2.0).abs() < 2.0 * 1e-3 + 2.0 * (1.0 - (PI / 64.0).cos()), "{p}");
+    }
+    // the profile's y is the height
+    let (lo, hi) = mesh.positions.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| (lo.min(p.z), hi.max(p.z)));
+    assert!((lo + 2.0).abs() < 1e-12 && (hi - 2.0).abs() < 1e-12);
+}
+
+/// `--tolerance` and `--angle-tolerance` replace a zrev's own ε and slice tolerance, and a
+/// finer distance gives more vertices, all within the tolerance of the exact sphere.
+#[test]
+fn zrev_follows_the_tessellation_options() {
+    let k = 0.552_284_75;
+    let doc = parse(&format!("bez2 half 10 7 [0 -1] [{k} -1] [1 -{k}] [1 0] [1 {k}] [{k} 1] [0 1]\nzrev ball half\n"));
+    let with = |t| doc.surface_mesh(0, &SurfaceOptions { tessellation: t, ..SurfaceOptions::default() }).unwrap();
+    let coarse = with(SurfaceTessellation::Distance(1e-2));
+    let fine = with(SurfaceTessellation::Distance(1e-4));
+    assert!(fine.num_vertices() > 4 * coarse.num_vertices());
+    // the Bézier circle itself is within 2.8e-4 of the unit circle
+    for p in &fine.positions {
+        assert!((p.length() - 1.0).abs() < 1e-4 + 3e-4, "{p}");
+    }
+    let angle = with(SurfaceTessellation::Angle(TAU / 20.0));
+    // 20 slices: every ring has 20 vertices, poles aside
+    assert_eq!((angle.num_vertices() - 2) % 20, 0);
+}
+
+/// A lathe's radius and height are the y coordinates of its curves, at the same fraction of
+/// their parameter ranges: rings of `slices` vertices at `z(v)` with radius `r(v)`.
+#[test]
+fn lathe_rings_follow_the_curves() {
+    // r: a B-spline (not a Bézier): keys come from its Bézier segments
+    let doc = parse(
+        "bsp2 r 8 6 [0 1] [0.2 1.5] [0.4 0.5] [0.6 2] [0.8 1] [1 1.2]\nbez2 z 8 4 [0 0] [0.3 1] [0.6 2] [1 3]\nlathe vase 12 16 r z\n",
+    );
+    let mesh = doc.surface_mesh(0, &SurfaceOptions::default()).unwrap();
+    assert_eq!(mesh.num_vertices(), 16 * 13);
+    assert_eq!(mesh.num_triangles(), 2 * 16 * 12);
+    let r = doc.curves[0].to_curve().unwrap();
+    let z = doc.curves[1].to_curve().unwrap();
+    for j in 0..=12 {
+        let v = f64::from(j) / 12.0;
+        let (radius, height) = (r.eval(v * r.domain().1).y, z.eval(v * z.domain().1).y);
+        let ring: Vec<_> = mesh.positions.iter().filter(|p| (p.z - height).abs() < 1e-9).collect();
+        assert_eq!(ring.len(), 16, "ring {j} at z = {height}");
+        for p in ring {
+            assert!((p.truncate().length() - radius).abs() < 1e-9, "ring {j}: {p}");
+        }
+    }
+}
+
+/// Rounded tips: a radius curve that starts and ends at 0 closes in one pole each.
+#[test]
+fn lathe_with_tips_is_closed() {
+    let k = 0.552_284_75;
+    let doc = parse(&format!(
+        "bez2 r 8 7 [0 0] [0 {k}] [0 1] [0 1] [0 1] [0 {k}] [0 0]\nbez2 z 8 7 [0 -1] [0 -1] [0 -{k}] [0 0] [0 {k}] [0 1] [0 1]\nlathe ball 32 48 r z\n"
+    ));
+    let mesh = doc.surface_mesh(0, &SurfaceOptions::default()).unwrap();
+    assert!(mesh.is_closed_oriented());
+    assert_eq!(mesh.num_vertices(), 2 + 48 * 31);
+    // a lathe too large for the limit is refused before it is built
+    let small = SurfaceOptions { max_triangles: Some(1000), ..SurfaceOptions::default() };
+    assert!(matches!(doc.surface_mesh(0, &small), Err(SurfaceError::TooLarge { .. })));
+}
+
+#[test]
+fn what_cannot_be_revolved_says_why() {
+    let across = parse("bsp2 p 10 4 [-2 0] [-2 1] [2 1] [2 0]\nzrev a p\n");
+    let err = across.surface_mesh(0, &SurfaceOptions::default()).map(|_| ()).unwrap_err().to_string();
+    assert!(err.contains("surface a") && err.contains("crosses the axis"), "{err}");
+    let circle = parse("circ c 10 1\nzrev a c\n");
+    let err = circle.surface_mesh(0, &SurfaceOptions::default()).map(|_| ()).unwrap_err().to_string();
+    assert!(err.contains("must be a spline"), "{err}");
+    let negative = parse("bez2 r 8 4 [0 1] [0 -1] [0 1] [0 1]\nbez2 z 8 4 [0 0] [0 1] [0 2] [0 3]\nlathe a 4 8 r z\n");
+    let err = negative.surface_mesh(0, &SurfaceOptions::default()).map(|_| ()).unwrap_err().to_string();
+    assert!(err.contains("surface a"), "{err}");
+    // layouts and caps do not change a revolution about +z
+    let doc = parse(&format!("{BSP}zrev a p\n"));
+    let compat = SurfaceOptions {
+        sweep: SweepOptions { layout: MeshLayout::Compat, uvs: false, caps: false },
+        ..SurfaceOptions::default()
+    };
+    assert_eq!(doc.surface_mesh(0, &compat).unwrap(), doc.surface_mesh(0, &SurfaceOptions::default()).unwrap());
+}
