@@ -46,8 +46,8 @@ pub fn kind_name(kind: SwpCurveKind) -> &'static str {
 pub enum DocKind {
     /// An SWP file (or a new document, which Save writes as SWP).
     Swp,
-    /// An OBJ file with a spline header (shown as its rebuilt surface; Save asks for a new
-    /// SWP file instead of writing it back).
+    /// An OBJ file with the revolution tool's spline header, opened as its profile curve and
+    /// `zrev` surface; Save writes the annotated OBJ back (header and mesh).
     AnnotatedObj,
     /// A mesh opened for viewing (OBJ, glb, PLY, STL): never written back by Save.
     Mesh,
@@ -176,6 +176,14 @@ impl Document {
         }
     }
 
+    /// A document for the curves and surface of an annotated OBJ file `path` (see
+    /// [`SplineHeader::to_document`](splinekit_io::mesh::SplineHeader::to_document)): not
+    /// modified; Save writes the annotated OBJ back.
+    #[must_use]
+    pub fn from_annotated(swp: SwpDocument, path: PathBuf) -> Self {
+        Self::with_file(swp, Some(path), DocKind::AnnotatedObj, None)
+    }
+
     /// Reads an SWP file.
     ///
     /// # Errors
@@ -214,7 +222,7 @@ impl Document {
     /// editor writes (SWP), else `None` (Save then asks for a name, as Save as).
     #[must_use]
     pub fn save_path(&self) -> Option<&Path> {
-        if self.file.kind == DocKind::Swp { self.path() } else { None }
+        if matches!(self.file.kind, DocKind::Swp | DocKind::AnnotatedObj) { self.path() } else { None }
     }
 
     /// A number that differs between documents (each file opened, new document or preset
@@ -253,11 +261,13 @@ impl Document {
         modified
     }
 
-    /// Records that the document was written to the SWP file `path`: it becomes the
-    /// document's file, and the document is no longer modified. Not an edit (no undo step).
+    /// Records that the document was written to `path` (an SWP file, or an annotated OBJ
+    /// for a `.obj` path): it becomes the document's file, and the document is no longer
+    /// modified. Not an edit (no undo step).
     pub fn mark_saved(&mut self, path: &Path) {
         self.file.path = Some(path.to_path_buf());
-        self.file.kind = DocKind::Swp;
+        let obj = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+        self.file.kind = if obj { DocKind::AnnotatedObj } else { DocKind::Swp };
         self.file.saved = Arc::new(self.swp.clone());
         self.file.saved_generation = next_revision();
     }
@@ -575,10 +585,7 @@ impl Document {
     pub fn add_revolution(&mut self, profile: usize, slices: u32) -> usize {
         self.checkpoint();
         // a surface refers to its curve by name: an anonymous profile gets one
-        if self.swp.curves.get(profile).is_some_and(|c| c.name.is_none()) {
-            let name = self.unused_name("profile");
-            self.swp.curves[profile].name = Some(name);
-        }
+        self.name_curve(profile, "profile");
         let name = self.unused_name("surface");
         self.swp.surfaces.push(SwpSurface {
             name: Some(name),
@@ -586,6 +593,94 @@ impl Document {
             pos: SourcePos::new(1, 1),
         });
         self.swp.surfaces.len() - 1
+    }
+
+    /// Adds a surface of revolution of curve `profile` about +z with the revolution tool's
+    /// settings (SWP `zrev`: default angle tolerance, 32 slices, scale 1), named `surface`,
+    /// `surface2`, …; one undo step. Returns its index.
+    pub fn add_revolution_z(&mut self, profile: usize) -> usize {
+        self.checkpoint();
+        self.name_curve(profile, "profile");
+        let name = self.unused_name("surface");
+        self.swp.surfaces.push(SwpSurface {
+            name: Some(name),
+            kind: SwpSurfaceKind::RevolutionZ {
+                profile,
+                epsilon: splinekit_io::swp::DEFAULT_ZREV_EPSILON,
+                slice_tolerance: splinekit_io::swp::DEFAULT_ZREV_SLICE_TOLERANCE,
+                scale: 1.0,
+            },
+            pos: SourcePos::new(1, 1),
+        });
+        self.swp.surfaces.len() - 1
+    }
+
+    /// Adds a generalized cylinder (SWP `gcyl`): curve `profile` swept along curve `sweep`,
+    /// named `sweep`, `sweep2`, …; one undo step. Returns its index.
+    pub fn add_sweep(&mut self, profile: usize, sweep: usize) -> usize {
+        self.checkpoint();
+        self.name_curve(profile, "profile");
+        self.name_curve(sweep, "path");
+        let name = self.unused_name("sweep");
+        self.swp.surfaces.push(SwpSurface {
+            name: Some(name),
+            kind: SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale: None, twist: None },
+            pos: SourcePos::new(1, 1),
+        });
+        self.swp.surfaces.len() - 1
+    }
+
+    /// Adds a lathe (SWP `lathe`) with two new Bézier curves, `radius` and `height` (graphs
+    /// over x from 0 to 1 whose y are r(v) and z(v): a vase with a rounded bottom), 32 stacks
+    /// and 32 slices; one undo step. The radius curve becomes the active one. Returns the
+    /// surface's index.
+    pub fn add_lathe(&mut self) -> usize {
+        self.checkpoint();
+        let graph = |name: &str, ys: [f64; 7]| {
+            let mut curve = empty_curve(name, SwpCurveKind::Bezier, 2);
+            let points = ys.iter().enumerate().map(|(i, &y)| DVec3::new(i as f64 / 6.0, y, 0.0)).collect();
+            curve.geometry = SwpGeometry::Points(points);
+            curve.steps = 16;
+            curve
+        };
+        let radius_name = self.unused_name("radius");
+        let mut radius = graph(&radius_name, [0.0, 0.6, 1.0, 0.6, 0.4, 0.7, 0.8]);
+        radius.name = Some(radius_name);
+        self.swp.curves.push(radius);
+        let r = self.swp.curves.len() - 1;
+        let height_name = self.unused_name("height");
+        self.swp.curves.push(graph(&height_name, [0.0, 0.0, 0.4, 1.0, 1.6, 2.0, 2.4]));
+        let h = self.swp.curves.len() - 1;
+        let name = self.unused_name("lathe");
+        self.swp.surfaces.push(SwpSurface {
+            name: Some(name),
+            kind: SwpSurfaceKind::Lathe { stacks: 32, slices: 32, radius: r, height: h },
+            pos: SourcePos::new(1, 1),
+        });
+        self.active = r;
+        self.swp.surfaces.len() - 1
+    }
+
+    /// Replaces the kind of surface `i` (its settings or curves), no undo step of its own, as
+    /// [`set_revolution_slices`](Self::set_revolution_slices); curves it now uses get names.
+    pub fn set_surface_kind(&mut self, i: usize, kind: SwpSurfaceKind) {
+        if i >= self.swp.surfaces.len() {
+            return;
+        }
+        for (role, c) in kind.references() {
+            self.name_curve(c, role.word());
+        }
+        self.swp.surfaces[i].kind = kind;
+        self.revision = next_revision();
+    }
+
+    /// Gives curve `i` a name (`base`, `base2`, …) if it has none: a surface refers to its
+    /// curves by name.
+    fn name_curve(&mut self, i: usize, base: &str) {
+        if self.swp.curves.get(i).is_some_and(|c| c.name.is_none()) {
+            let name = self.unused_name(base);
+            self.swp.curves[i].name = Some(name);
+        }
     }
 
     /// `base`, or `base2`, `base3`, … : the first that names no curve or surface.

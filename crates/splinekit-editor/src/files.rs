@@ -51,7 +51,7 @@ impl Purpose {
     pub fn extensions(self) -> &'static [&'static str] {
         match self {
             Self::Open => &["swp", "obj", "glb", "ply", "stl"],
-            Self::SaveAs => &["swp"],
+            Self::SaveAs => &["swp", "obj"],
             Self::Export => &["obj", "glb", "ply", "stl"],
         }
     }
@@ -74,10 +74,14 @@ impl Purpose {
             Self::Open => format!("cannot open {name}: the editor opens {list} files"),
             Self::SaveAs if ext.as_deref().is_some_and(|e| Self::Export.extensions().contains(&e)) => {
                 format!(
-                    "cannot save the document as {name}: Save as writes SWP files (.swp); use Export mesh for a mesh"
+                    "cannot save the document as {name}: Save as writes SWP files (.swp) and the revolution \
+                     tool's annotated OBJ (.obj); use Export mesh for a mesh"
                 )
             }
-            Self::SaveAs => format!("cannot save the document as {name}: Save as writes SWP files (.swp)"),
+            Self::SaveAs => format!(
+                "cannot save the document as {name}: Save as writes SWP files (.swp) and the revolution tool's \
+                 annotated OBJ (.obj)"
+            ),
             Self::Export => format!("cannot export to {name}: Export mesh writes {list} files"),
         })
     }
@@ -116,6 +120,9 @@ pub struct FileDialog {
     pub confirm_replace: Option<PathBuf>,
     /// A path the dialog refuses to write (the open document's file, for Export mesh).
     pub forbidden: Option<PathBuf>,
+    /// Why `.obj` names are refused (Save as of a document that is not one curve and its
+    /// revolution about +z, which is all an annotated OBJ holds).
+    pub obj_refused: Option<String>,
     /// Recent files, shown by the Open dialog.
     pub recent: Vec<PathBuf>,
     entries: Vec<Entry>,
@@ -135,6 +142,7 @@ impl FileDialog {
             error: None,
             confirm_replace: None,
             forbidden: None,
+            obj_refused: None,
             recent: Vec::new(),
             entries: Vec::new(),
             focus_name: true,
@@ -211,6 +219,12 @@ impl FileDialog {
         self.error = None;
         if let Some(why) = self.purpose.refuse_extension(&path) {
             self.error = Some(why);
+            return Outcome::Open;
+        }
+        if let Some(why) = &self.obj_refused
+            && path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"))
+        {
+            self.error = Some(why.clone());
             return Outcome::Open;
         }
         if self.purpose.writes() {
@@ -475,8 +489,9 @@ mod tests {
     fn extensions_are_checked_per_action() {
         assert!(Purpose::Open.refuse_extension(Path::new("a.SWP")).is_none());
         assert!(Purpose::Open.refuse_extension(Path::new("a.ply")).is_none());
-        let why = Purpose::SaveAs.refuse_extension(Path::new("bunny.obj")).unwrap();
+        let why = Purpose::SaveAs.refuse_extension(Path::new("bunny.ply")).unwrap();
         assert!(why.contains("Save as writes SWP files") && why.contains("Export mesh"), "{why}");
+        assert!(Purpose::SaveAs.refuse_extension(Path::new("vase.obj")).is_none());
         assert!(Purpose::SaveAs.refuse_extension(Path::new("a.swp")).is_none());
         assert!(Purpose::Export.refuse_extension(Path::new("a.swp")).is_some());
         assert!(Purpose::Export.refuse_extension(Path::new("a.glb")).is_none());
@@ -491,7 +506,7 @@ mod tests {
         std::fs::create_dir(dir.join("sub")).unwrap();
         let d = FileDialog::new(Purpose::SaveAs, dir.clone(), String::new());
         let names: Vec<_> = d.entries().map(|(n, f)| (n.to_owned(), f)).collect();
-        assert_eq!(names, [("sub".to_owned(), true), ("b.swp".to_owned(), false)]);
+        assert_eq!(names, [("sub".to_owned(), true), ("A.obj".to_owned(), false), ("b.swp".to_owned(), false)]);
         let d = FileDialog::new(Purpose::Open, dir.clone(), String::new());
         let names: Vec<_> = d.entries().map(|(n, _)| n.to_owned()).collect();
         assert_eq!(names, ["sub", "A.obj", "b.swp"]);
@@ -507,7 +522,7 @@ mod tests {
         d.name = "sub".to_owned();
         assert_eq!(d.confirm(), Outcome::Open);
         assert_eq!(d.dir, dir.join("sub"));
-        d.name = "x.obj".to_owned();
+        d.name = "x.ply".to_owned();
         assert_eq!(d.confirm(), Outcome::Open);
         assert!(d.error.as_deref().unwrap().contains("SWP"));
 

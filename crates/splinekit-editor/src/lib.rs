@@ -44,9 +44,9 @@ use splinekit::subdiv::{
     loop_subdivide_creased, sqrt3_subdivide,
 };
 use splinekit::{PolyMesh, TriMesh};
-use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
 use splinekit_io::surface::{SurfaceError, SurfaceOptions};
+use splinekit_io::{SwpDocument, SwpSurfaceKind};
 
 pub use doc::{DocKind, Document, ViewedMesh};
 use files::{FileDialog, Outcome, Purpose, RecentFiles};
@@ -337,8 +337,18 @@ impl SweptSurfaces {
                 c.steps = scaled(c.steps, 1);
             }
             for s in &mut coarse.surfaces {
-                if let splinekit_io::SwpSurfaceKind::Revolution { steps, .. } = &mut s.kind {
-                    *steps = scaled(*steps, 3);
+                match &mut s.kind {
+                    SwpSurfaceKind::Revolution { steps, .. } => *steps = scaled(*steps, 3),
+                    SwpSurfaceKind::Lathe { stacks, slices, .. } => {
+                        *stacks = scaled(*stacks, 1);
+                        *slices = scaled(*slices, 3);
+                    }
+                    // coarser angles: the profile's pieces and the slices
+                    SwpSurfaceKind::RevolutionZ { epsilon, slice_tolerance, .. } => {
+                        *epsilon = (*epsilon * factor).min(std::f64::consts::PI);
+                        *slice_tolerance = (*slice_tolerance * factor).min(std::f64::consts::TAU / 3.0);
+                    }
+                    SwpSurfaceKind::GeneralizedCylinder { .. } => {}
                 }
             }
             if let Ok(mut out) = Self::sweep_within(&coarse, limit) {
@@ -450,6 +460,16 @@ fn mesh_key(m: &MeshState) -> MeshKey {
     (Arc::as_ptr(&m.source) as usize, m.scheme, m.level)
 }
 
+/// The axis `Revolve` turns the active curve about.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RevolveAxis {
+    /// +y, as SWP `srev` (steps of the profile, slices).
+    #[default]
+    Y,
+    /// +z, as the revolution tool and SWP `zrev` (angle tolerance, slice tolerance, scale).
+    Z,
+}
+
 /// The editor application.
 pub struct EditorApp {
     /// The document.
@@ -460,6 +480,8 @@ pub struct EditorApp {
     pub mesh: Option<MeshState>,
     /// Colour the subdivision levels.
     pub color_by_level: bool,
+    /// The axis `Revolve` turns the active curve about.
+    pub revolve_axis: RevolveAxis,
     /// The 3D view (its settings: wireframe, normals, …).
     pub view3d: View3d,
     /// The last message (errors start with "Error").
@@ -519,6 +541,7 @@ impl Default for EditorApp {
             view: View2d::default(),
             mesh: None,
             color_by_level: false,
+            revolve_axis: RevolveAxis::Y,
             view3d: View3d::new(),
             status: "Shift+click to add points; press h for help".to_owned(),
             show_help: false,
@@ -637,12 +660,23 @@ impl EditorApp {
             self.status = format!("Opening {}…", path.display());
             return true;
         }
+        let annotated = match path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj")) {
+            true => annotated_document(path),
+            false => Ok(None),
+        };
         let loaded = if DocKind::of_path(path) == Some(DocKind::Swp) {
             Document::read(path).map(|doc| {
                 self.doc.replace_with(doc);
                 self.sync_mesh();
                 self.status = format!("Loaded {}", path.display());
             })
+        } else if let Err(e) = annotated {
+            Err(e)
+        } else if let Ok(Some(doc)) = annotated {
+            self.doc.replace_with(doc);
+            self.sync_mesh();
+            self.status = format!("Loaded {}: the revolution tool's spline and settings, editable", path.display());
+            Ok(())
         } else {
             load_mesh(path).map(|(mesh, creases, kind)| {
                 let pyramid = LoopPyramid::new(&mesh, self.loop_options()).map_err(|e| e.to_string());
@@ -723,7 +757,7 @@ impl EditorApp {
     /// (Save as). Returns whether it was written.
     pub fn save(&mut self) -> bool {
         match self.doc.save_path().map(Path::to_path_buf) {
-            Some(path) => self.save_swp(&path),
+            Some(path) => self.save_to(&path),
             None => {
                 self.open_dialog(Purpose::SaveAs);
                 false
@@ -750,6 +784,9 @@ impl EditorApp {
         let mut dialog = FileDialog::new(purpose, dir, name);
         if purpose == Purpose::Export {
             dialog.forbidden = self.doc.path().map(Path::to_path_buf);
+        }
+        if purpose == Purpose::SaveAs {
+            dialog.obj_refused = self.annotated_refusal();
         }
         if purpose == Purpose::Open {
             dialog.recent = self.recent.list.clone();
@@ -969,6 +1006,67 @@ impl EditorApp {
         }
     }
 
+    /// Saves the document to `path`: as the revolution tool's annotated OBJ for a `.obj`
+    /// path ([`save_annotated`](Self::save_annotated)), else as SWP
+    /// ([`save_swp`](Self::save_swp)). Returns whether it was written.
+    pub fn save_to(&mut self, path: &Path) -> bool {
+        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj")) {
+            self.save_annotated(path)
+        } else {
+            self.save_swp(path)
+        }
+    }
+
+    /// Why the document cannot be saved as an annotated OBJ, if it cannot.
+    fn annotated_refusal(&self) -> Option<String> {
+        let swp = &self.doc.swp;
+        if swp.surfaces.len() != 1 || swp.curves.len() != 1 {
+            return Some(format!(
+                "Save as writes SWP files (.swp), or an annotated OBJ of one curve and its revolution about +z; \
+                 this document has {} curves and {} surfaces (use Export mesh for a mesh)",
+                swp.curves.len(),
+                swp.surfaces.len()
+            ));
+        }
+        swp.revolution_header(0).err().map(|e| format!("Save as writes SWP files (.swp) here: {e}"))
+    }
+
+    /// Writes the document's one surface, a `zrev` of a `bsp2` or uniform `cr2` profile, as
+    /// the revolution tool's annotated OBJ (its spline and settings in the leading comments,
+    /// then the mesh), which opens again as the same curve and surface. Anything else is
+    /// refused with the reason and nothing is written. Returns whether it was written.
+    pub fn save_annotated(&mut self, path: &Path) -> bool {
+        let swp = &self.doc.swp;
+        let refuse = |why: String| format!("Error: not saved as {}: {why}", path.display());
+        if swp.surfaces.len() != 1 || swp.curves.len() != 1 {
+            self.status = refuse(format!(
+                "an annotated OBJ holds one curve and its revolution about +z; this document has {} curves and {} \
+                 surfaces (Save as .swp keeps them all, Export mesh writes the mesh)",
+                swp.curves.len(),
+                swp.surfaces.len()
+            ));
+            return false;
+        }
+        let options = SurfaceOptions { max_triangles: Some(EDITOR_MAX_TRIANGLES), ..SurfaceOptions::default() };
+        match swp.save_annotated_obj(0, &options, path) {
+            Ok(mesh) => {
+                self.doc.mark_saved(path);
+                self.recent.add(path);
+                self.status = format!(
+                    "Saved {} (annotated OBJ: {} vertices, {} triangles)",
+                    path.display(),
+                    mesh.num_vertices(),
+                    mesh.num_triangles()
+                );
+                true
+            }
+            Err(e) => {
+                self.status = refuse(e.to_string());
+                false
+            }
+        }
+    }
+
     /// Saves the document as SWP to `path` (through a temporary file, so a failed write
     /// leaves the file as it was), which becomes the document's file. The document is first
     /// checked with the reader's rules: a curve the reader would refuse blocks the save with
@@ -1151,6 +1249,13 @@ impl EditorApp {
             self.surfaces_for = Some((revision, true));
         }
         self.surfaces.mesh.num_triangles()
+    }
+
+    /// The document's surfaces, swept in full (as [`surface_triangles`](Self::surface_triangles)
+    /// does): the merged mesh, and a line per surface.
+    pub fn surfaces(&mut self) -> &SweptSurfaces {
+        let _ = self.surface_triangles();
+        &self.surfaces
     }
 
     /// Whether the surfaces are being swept in the background.
@@ -1541,52 +1646,125 @@ impl EditorApp {
         }
     }
 
-    /// `Revolve` (a surface of revolution of the active 2D curve about +y, as SWP `srev`), and
-    /// the controls of each surface of revolution: its slices and its profile's steps. Every
-    /// change is one undo step (a drag of a value: one step for the whole drag).
+    /// `Revolve` (a surface of revolution of the active 2D curve about +y, SWP `srev`, or
+    /// about +z with the revolution tool's settings, SWP `zrev`), `Sweep` (the active 2D curve
+    /// swept along another curve, SWP `gcyl`) and `Lathe` (separate radius and height curves,
+    /// SWP `lathe`), then the controls of every surface. Every change is one undo step (a drag
+    /// of a value: one step for the whole drag).
     fn surface_controls(&mut self, ui: &mut egui::Ui) {
-        let revolvable = self.doc.curve().is_some_and(|c| c.dim != 3) && self.doc.spline().is_ok();
-        let r = ui
-            .add_enabled(revolvable, egui::Button::new("Revolve"))
-            .on_hover_text("a surface of revolution of the active curve about the y axis")
-            .on_disabled_hover_text("needs a valid 2D curve");
-        if r.clicked() {
-            let i = self.doc.add_revolution(self.doc.active, DEFAULT_SLICES);
-            self.status =
-                format!("Revolved {} about y: {DEFAULT_SLICES} slices", self.doc.swp.surfaces[i].display_name(i));
-        }
-        let revolutions: Vec<(usize, String, u32, usize)> = self
-            .doc
-            .swp
-            .surfaces
-            .iter()
-            .enumerate()
-            .filter_map(|(i, s)| match s.kind {
-                splinekit_io::SwpSurfaceKind::Revolution { steps, profile } => {
-                    Some((i, s.display_name(i), steps, profile))
-                }
-                _ => None,
-            })
-            .collect();
-        for (i, name, slices, profile) in revolutions {
+        let profile_ok = self.doc.curve().is_some_and(|c| c.dim != 3) && self.doc.spline().is_ok();
+        let active = self.doc.active;
+        // the sweep curve: the first other curve, 3D ones first
+        let path = {
+            let others =
+                || self.doc.swp.curves.iter().enumerate().filter(|&(i, c)| i != active && c.to_curve().is_ok());
+            others().find(|(_, c)| c.dim == 3).or_else(|| others().next()).map(|(i, _)| i)
+        };
+        ui.horizontal_wrapped(|ui| {
+            let r = ui
+                .add_enabled(profile_ok, egui::Button::new("Revolve"))
+                .on_hover_text("a surface of revolution of the active curve about the chosen axis")
+                .on_disabled_hover_text("needs a valid 2D curve");
+            if r.clicked() {
+                let (i, how) = match self.revolve_axis {
+                    RevolveAxis::Y => {
+                        (self.doc.add_revolution(active, DEFAULT_SLICES), format!("about y: {DEFAULT_SLICES} slices"))
+                    }
+                    RevolveAxis::Z => {
+                        (self.doc.add_revolution_z(active), "about z (the revolution tool's settings)".to_owned())
+                    }
+                };
+                self.status = format!("Revolved {} {how}", self.doc.swp.surfaces[i].display_name(i));
+            }
+            ui.label("about");
+            ui.selectable_value(&mut self.revolve_axis, RevolveAxis::Y, "+y")
+                .on_hover_text("SWP srev: steps and slices");
+            ui.selectable_value(&mut self.revolve_axis, RevolveAxis::Z, "+z").on_hover_text(
+                "the revolution tool: angle tolerance, slice tolerance and scale; saves as its annotated OBJ",
+            );
+        });
+        ui.horizontal_wrapped(|ui| {
+            let r = ui
+                .add_enabled(profile_ok && path.is_some(), egui::Button::new("Sweep"))
+                .on_hover_text("the active 2D curve swept along another curve (a generalized cylinder)")
+                .on_disabled_hover_text("needs a valid 2D curve as the profile and another curve to sweep along");
+            if r.clicked()
+                && let Some(path) = path
+            {
+                let i = self.doc.add_sweep(active, path);
+                let along = self.doc.swp.curves[path].display_name(path);
+                self.status =
+                    format!("Swept the active curve along {along}: {}", self.doc.swp.surfaces[i].display_name(i));
+            }
+            if ui
+                .button("Lathe")
+                .on_hover_text("a lathe: new radius and height curves, r(v) and z(v) as the y of each graph")
+                .clicked()
+            {
+                let i = self.doc.add_lathe();
+                self.view.selected = None;
+                self.view.fit_pending = true;
+                self.status = format!(
+                    "Lathe {}: drag the points of its radius and height curves (y is r(v) and z(v))",
+                    self.doc.swp.surfaces[i].display_name(i)
+                );
+            }
+        });
+        let surfaces: Vec<(usize, String, SwpSurfaceKind)> =
+            self.doc.swp.surfaces.iter().enumerate().map(|(i, s)| (i, s.display_name(i), s.kind)).collect();
+        let curve_names: Vec<String> = self.doc.swp.curves.iter().enumerate().map(|(i, c)| c.display_name(i)).collect();
+        for (i, name, kind) in surfaces {
+            ui.separator();
+            ui.label(format!("{name} ({})", kind.keyword()));
             ui.horizontal_wrapped(|ui| {
-                let label = ui.label(format!("{name} slices"));
-                let mut n = slices;
-                let r = ui.add(egui::DragValue::new(&mut n).range(3..=4096)).labelled_by(label.id);
-                if r.changed() && n != slices {
-                    self.edit_value(&r);
-                    self.doc.set_revolution_slices(i, n);
+                let mut next = kind;
+                let mut edited: Option<egui::Response> = None;
+                match &mut next {
+                    SwpSurfaceKind::Revolution { steps, profile } => {
+                        edited = edited.or(int_value(ui, &format!("{name} slices"), steps, 3..=4096, "slices about the y axis"));
+                        self.curve_steps_value(ui, &name, *profile);
+                    }
+                    SwpSurfaceKind::RevolutionZ { profile: _, epsilon, slice_tolerance, scale } => {
+                        let hint = "angle tolerance ε of the profile, radians: a piece is halved while its control polygon turns by more than ε/2";
+                        edited = edited.or(float_value(ui, &format!("{name} epsilon"), epsilon, 1e-4..=3.0, hint));
+                        let hint = "largest angle between slices, radians";
+                        let range = std::f64::consts::TAU / 100_000.0..=std::f64::consts::TAU / 3.0;
+                        edited = edited.or(float_value(ui, &format!("{name} slice tolerance"), slice_tolerance, range, hint));
+                        edited = edited.or(float_value(ui, &format!("{name} scale"), scale, 1e-6..=1e6, "uniform scale"));
+                    }
+                    SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale, twist } => {
+                        edited = edited.or(curve_choice(ui, &format!("{name} profile"), &curve_names, profile));
+                        edited = edited.or(curve_choice(ui, &format!("{name} sweep"), &curve_names, sweep));
+                        edited = edited.or(optional_curve_choice(ui, &format!("{name} scale curve"), &curve_names, scale));
+                        edited = edited.or(optional_curve_choice(ui, &format!("{name} twist curve"), &curve_names, twist));
+                        self.curve_steps_value(ui, &name, *sweep);
+                    }
+                    SwpSurfaceKind::Lathe { stacks, slices, radius, height } => {
+                        edited = edited.or(int_value(ui, &format!("{name} stacks"), stacks, 1..=4096, "intervals along v"));
+                        edited = edited.or(int_value(ui, &format!("{name} slices"), slices, 3..=4096, "slices about the z axis"));
+                        edited = edited.or(curve_choice(ui, &format!("{name} radius"), &curve_names, radius));
+                        edited = edited.or(curve_choice(ui, &format!("{name} height"), &curve_names, height));
+                    }
                 }
-                let steps = self.doc.swp.curves.get(profile).map_or(1, |c| c.steps);
-                let mut k = steps;
-                let label =
-                    ui.label(format!("{name} steps")).on_hover_text("tessellation steps of each profile segment");
-                let r = ui.add(egui::DragValue::new(&mut k).range(1..=1000)).labelled_by(label.id);
-                if r.changed() && k != steps {
+                if let Some(r) = edited
+                    && next != kind
+                {
                     self.edit_value(&r);
-                    self.doc.set_curve_steps(profile, k);
+                    self.doc.set_surface_kind(i, next);
                 }
             });
+        }
+    }
+
+    /// The steps of curve `curve`, labelled `{name} steps`, as a value to drag or type.
+    fn curve_steps_value(&mut self, ui: &mut egui::Ui, name: &str, curve: usize) {
+        let steps = self.doc.swp.curves.get(curve).map_or(1, |c| c.steps);
+        let mut k = steps;
+        let label = ui.label(format!("{name} steps")).on_hover_text("tessellation steps of each segment of the curve");
+        let r = ui.add(egui::DragValue::new(&mut k).range(1..=1000)).labelled_by(label.id);
+        if r.changed() && k != steps {
+            self.edit_value(&r);
+            self.doc.set_curve_steps(curve, k);
         }
     }
 
@@ -1831,7 +2009,7 @@ impl EditorApp {
                         self.open_file(&path);
                     }
                     Purpose::SaveAs => {
-                        if self.save_swp(&path)
+                        if self.save_to(&path)
                             && let Some(then) = then
                         {
                             self.perform(then);
@@ -1935,6 +2113,67 @@ impl EditorApp {
 }
 
 /// The editor's sweep options: the defaults, at most [`EDITOR_MAX_TRIANGLES`] triangles.
+/// A labelled integer to drag or type; the response when it changed.
+fn int_value(
+    ui: &mut egui::Ui,
+    label: &str,
+    value: &mut u32,
+    range: std::ops::RangeInclusive<u32>,
+    hint: &str,
+) -> Option<egui::Response> {
+    let label = ui.label(label).on_hover_text(hint);
+    let r = ui.add(egui::DragValue::new(value).range(range)).labelled_by(label.id);
+    r.changed().then_some(r)
+}
+
+/// A labelled number to drag or type (finite, within `range`); the response when it changed.
+fn float_value(
+    ui: &mut egui::Ui,
+    label: &str,
+    value: &mut f64,
+    range: std::ops::RangeInclusive<f64>,
+    hint: &str,
+) -> Option<egui::Response> {
+    let label = ui.label(label).on_hover_text(hint);
+    let speed = 0.005 * value.abs().max(1e-3);
+    let r = ui.add(egui::DragValue::new(value).range(range).speed(speed).max_decimals(6)).labelled_by(label.id);
+    r.changed().then_some(r)
+}
+
+/// A labelled choice of one of the document's curves; the response when it changed.
+fn curve_choice(ui: &mut egui::Ui, label: &str, names: &[String], curve: &mut usize) -> Option<egui::Response> {
+    let before = *curve;
+    let r = egui::ComboBox::from_label(label)
+        .selected_text(names.get(*curve).map_or("?", String::as_str))
+        .show_ui(ui, |ui| {
+            for (i, n) in names.iter().enumerate() {
+                ui.selectable_value(curve, i, n);
+            }
+        })
+        .response;
+    (*curve != before).then_some(r)
+}
+
+/// A labelled choice of one of the document's curves or none; the response when it changed.
+fn optional_curve_choice(
+    ui: &mut egui::Ui,
+    label: &str,
+    names: &[String],
+    curve: &mut Option<usize>,
+) -> Option<egui::Response> {
+    let before = *curve;
+    let r = egui::ComboBox::from_label(label)
+        .selected_text(curve.and_then(|i| names.get(i)).map_or("none", String::as_str))
+        .show_ui(ui, |ui| {
+            ui.selectable_value(curve, None, "none");
+            for (i, n) in names.iter().enumerate() {
+                ui.selectable_value(curve, Some(i), n);
+            }
+        })
+        .response;
+    (*curve != before).then_some(r)
+}
+
 fn editor_sweep_options() -> SurfaceOptions {
     SurfaceOptions { max_triangles: Some(EDITOR_MAX_TRIANGLES), ..SurfaceOptions::default() }
 }
@@ -2041,6 +2280,17 @@ fn recolored(
         level = level.min(levels.len());
     }
     (p, levels, level)
+}
+
+/// The editable document of an OBJ file with the revolution tool's spline header (its
+/// profile curve and `zrev` surface), `None` for an OBJ without one or with the sweep tool's
+/// header (which opens as its rebuilt mesh).
+fn annotated_document(path: &Path) -> Result<Option<Document>, String> {
+    let header = SplineHeader::read(path).map_err(|e| e.to_string())?;
+    let Some(header @ SplineHeader::Revolution(_)) = header else { return Ok(None) };
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let swp = header.to_document(&stem).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(Some(Document::from_annotated(swp, path.to_path_buf())))
 }
 
 /// Reads a mesh file and its creases (an OBJ's crease tags), and whether it is a plain mesh

@@ -16,6 +16,8 @@ use splinekit_io::{SwpCurveKind, SwpDocument};
 mod files;
 #[path = "editor_ui/input.rs"]
 mod input;
+#[path = "editor_ui/surfaces.rs"]
+mod surfaces;
 
 /// A test data file, relative to the package (the tests' working directory), so that the
 /// snapshots showing the path do not depend on where the repository is.

@@ -1,0 +1,160 @@
+//! Surfaces made in the UI (#37): `Revolve` about +z with the revolution tool's settings,
+//! `Sweep` and `Lathe`, each with its controls (every change one undo step), and the
+//! revolution tool's annotated OBJ opened as an editable document and saved back.
+
+use splinekit_io::SwpSurfaceKind;
+use splinekit_io::mesh::SplineHeader;
+
+use super::*;
+
+/// Four collinear clicks right of the axis: a straight Catmull-Rom segment, which the angle
+/// tessellation keeps as its two end points, so a revolution about +z has 2 · slices
+/// triangles.
+fn straight_profile() -> Harness<'static, EditorApp> {
+    let mut h = harness(EditorApp::new(None));
+    for (x, y) in [(0.5, 0.0), (1.0, 0.5), (1.5, 1.0), (2.0, 1.5)] {
+        let at = h.state().view.to_screen(DVec2::new(x, y));
+        click_at(&mut h, at, Modifiers::SHIFT);
+    }
+    assert_eq!(h.state().doc.points().len(), 4);
+    h
+}
+
+#[test]
+fn revolve_about_z_with_the_revolution_tools_settings() {
+    let dir = tempfile_dir("zrev");
+    let mut h = straight_profile();
+    click(&mut h, "+z");
+    click(&mut h, "Revolve");
+    // 32 slices (2π/32) of one straight piece
+    assert_eq!(h.state_mut().surface_triangles(), 2 * 32);
+    // ceil(2π / 0.5) = 13 slices
+    type_value(&mut h, "surface slice tolerance", "0.5");
+    assert_eq!(h.state_mut().surface_triangles(), 2 * 13);
+    assert_eq!(h.state().view3d.num_triangles(), 2 * 13);
+    type_value(&mut h, "surface scale", "3");
+    let kind = h.state().doc.swp.surfaces[0].kind;
+    assert_eq!(
+        kind,
+        SwpSurfaceKind::RevolutionZ {
+            profile: 0,
+            epsilon: splinekit_io::swp::DEFAULT_ZREV_EPSILON,
+            slice_tolerance: 0.5,
+            scale: 3.0
+        }
+    );
+    // one undo step each
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    assert!(matches!(h.state().doc.swp.surfaces[0].kind, SwpSurfaceKind::RevolutionZ { scale: 1.0, .. }));
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Y);
+    h.run();
+
+    // Save as an annotated OBJ: the revolution tool's header, then the mesh
+    let obj = dir.join("vase.obj");
+    assert!(h.state_mut().save_to(&obj), "{}", h.state().status);
+    let Some(SplineHeader::Revolution(header)) = SplineHeader::read(&obj).unwrap() else { panic!("no header") };
+    assert_eq!((header.is_bspline, header.closed, header.scale, header.slice_tolerance), (false, false, 3.0, 0.5));
+    assert_eq!(h.state().doc.kind(), splinekit_editor::DocKind::AnnotatedObj);
+    assert!(!h.state().doc.is_modified());
+
+    // opened again: the same curve and surface, editable; Save writes it back
+    let mut g = harness(EditorApp::new(Some(&obj)));
+    assert_eq!(g.state().doc.kind(), splinekit_editor::DocKind::AnnotatedObj);
+    assert_eq!(g.state().doc.swp.surfaces[0].kind, kind);
+    assert_eq!(g.state().doc.points(), h.state().doc.points());
+    assert_eq!(g.state_mut().surface_triangles(), 2 * 13);
+    type_value(&mut g, "vase slice tolerance", "0.25");
+    // ceil(2π / 0.25) = 26 slices
+    assert_eq!(g.state_mut().surface_triangles(), 2 * 26);
+    g.key_press_modifiers(Modifiers::COMMAND, egui::Key::S);
+    g.run();
+    assert!(!g.state().doc.is_modified(), "{}", g.state().status);
+    let Some(SplineHeader::Revolution(header)) = SplineHeader::read(&obj).unwrap() else { panic!("no header") };
+    assert_eq!(header.slice_tolerance, 0.25);
+    // the mesh stored after the header is the one shown
+    let stored = splinekit_io::load_mesh(&obj).unwrap().mesh;
+    assert_eq!(stored.num_faces(), 2 * 26);
+
+    // a document the header cannot describe is refused, and nothing is written
+    click(&mut g, "Lathe");
+    let other = dir.join("two.obj");
+    assert!(!g.state_mut().save_to(&other));
+    assert!(g.state().status.contains("an annotated OBJ holds one curve"), "{}", g.state().status);
+    assert!(!other.exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// `Lathe`: new radius and height curves and the surface; stacks and slices follow the
+/// count of a lathe with one pole (the radius starts at 0): 2·slices·stacks − slices.
+#[test]
+fn lathe_from_the_panel() {
+    let mut h = harness(EditorApp::new(None));
+    click(&mut h, "Lathe");
+    let doc = &h.state().doc;
+    assert_eq!(doc.swp.curves.len(), 3);
+    assert_eq!(doc.swp.curves[doc.active].name.as_deref(), Some("radius"));
+    assert_eq!(h.state_mut().surface_triangles(), 2 * 32 * 32 - 32);
+    type_value(&mut h, "lathe stacks", "10");
+    assert_eq!(h.state_mut().surface_triangles(), 2 * 32 * 10 - 32);
+    type_value(&mut h, "lathe slices", "12");
+    assert_eq!(h.state_mut().surface_triangles(), 2 * 12 * 10 - 12);
+    // the radius is the y of its curve: a wider curve, a wider lathe
+    let before = h.state_mut().surfaces().mesh.positions.iter().map(|p| p.truncate().length()).fold(0.0, f64::max);
+    let last = h.state().doc.points().len() - 1;
+    let p = h.state().doc.points()[last];
+    h.state_mut().doc.begin_move();
+    h.state_mut().doc.set_point(last, p + DVec3::new(0.0, 1.0, 0.0));
+    h.run();
+    let after = h.state_mut().surfaces().mesh.positions.iter().map(|p| p.truncate().length()).fold(0.0, f64::max);
+    assert!((after - before - 1.0).abs() < 1e-9, "{before} → {after}");
+}
+
+/// `Sweep`: the active 2D curve swept along the other curve, the same mesh as the same
+/// gcyl written by hand; its curves are chosen in the panel.
+#[test]
+fn sweep_from_the_panel() {
+    let dir = tempfile_dir("sweep");
+    let path = dir.join("parts.swp");
+    let curves = "bsp2 ring 8 4 closed [0.2 0] [0 0.2] [-0.2 0] [0 -0.2]
+                  bez3 path 12 4 [0 0 0] [1 0 1] [2 1 1] [3 1 0]
+                  circ hoop 24 0.3
+";
+    std::fs::write(&path, curves).unwrap();
+    let mut h = harness(EditorApp::new(Some(&path)));
+    assert_eq!(h.state().doc.active, 0);
+    click(&mut h, "Sweep");
+    let by_hand = SwpDocument::parse(
+        &format!(
+            "{curves}gcyl sweep ring path
+"
+        ),
+        "hand.swp",
+    )
+    .unwrap();
+    let expected = by_hand.surface_mesh(0, &Default::default()).unwrap();
+    assert_eq!(h.state().doc.swp.surfaces[0].kind, by_hand.surfaces[0].kind);
+    assert_eq!(h.state_mut().surface_triangles(), expected.num_triangles());
+    // another profile, chosen in the panel: the circle
+    h.get_by_label("sweep profile").click();
+    h.run();
+    h.get_by_label("hoop").click();
+    h.run();
+    let by_hand = SwpDocument::parse(
+        &format!(
+            "{curves}gcyl sweep hoop path
+"
+        ),
+        "hand.swp",
+    )
+    .unwrap();
+    assert_eq!(h.state().doc.swp.surfaces[0].kind, by_hand.surfaces[0].kind);
+    assert_eq!(
+        h.state_mut().surface_triangles(),
+        by_hand.surface_mesh(0, &Default::default()).unwrap().num_triangles()
+    );
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    assert!(matches!(h.state().doc.swp.surfaces[0].kind, SwpSurfaceKind::GeneralizedCylinder { profile: 0, .. }));
+    let _ = std::fs::remove_dir_all(dir);
+}
