@@ -14,11 +14,13 @@ use splinekit_io::surface::{DEFAULT_MAX_TRIANGLES, SurfaceError, SurfaceFrames, 
 
 use crate::select;
 
-/// Sweep every surface of an SWP file (srev, gcyl) into a mesh file, or rebuild the surface
-/// of a spline-annotated OBJ file (`.obj`) from the spline in its header.
+/// Sweep every surface of an SWP file (srev, gcyl, zrev, lathe) into a mesh file, or rebuild
+/// the surface of a spline-annotated OBJ file (`.obj`) from the spline in its header.
 ///
 /// SWP: writes one file per surface into the output directory, named `<surface name>.<ext>`
-/// (anonymous surfaces: `surface_<k>.<ext>`, k counting the file's surfaces from 0).
+/// (anonymous surfaces: `surface_<k>.<ext>`, k counting the file's surfaces from 0). A
+/// surface's own settings in the file (`tolerance`, `angle-tolerance`, `layout`, `frames`,
+/// `caps`, `no-caps`) apply unless the matching option below is given.
 ///
 /// OBJ: the file must start with the comment header of the CS 4620 revolution tool (`#
 /// Configs: closed, epsilon, isBSpline, Scale, sliceTolerance`) or sweep tool (`#
@@ -181,8 +183,17 @@ fn safe_stem(name: &str) -> Option<String> {
 /// Compat and welded `(vertices, triangles)` of surface `k`, for `info`.
 pub fn counts(doc: &SwpDocument, k: usize) -> anyhow::Result<[(usize, usize); 2]> {
     let mut out = [(0, 0); 2];
+    // the two layouts, whatever the surface's own layout; the compat layout never has caps
+    let mut doc = doc.clone();
+    let own_caps = doc.surfaces.get(k).and_then(|s| s.settings.caps);
+    if let Some(s) = doc.surfaces.get_mut(k) {
+        s.settings.layout = None;
+    }
     for (slot, layout) in out.iter_mut().zip([MeshLayout::Compat, MeshLayout::Welded]) {
         let caps = layout == MeshLayout::Welded;
+        if let Some(s) = doc.surfaces.get_mut(k) {
+            s.settings.caps = if caps { own_caps } else { None };
+        }
         let opts = SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps }, ..SurfaceOptions::default() };
         let mesh = doc.surface_mesh(k, &opts)?;
         *slot = (mesh.num_vertices(), mesh.num_triangles());
@@ -195,8 +206,25 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
     if is_obj(&args.file) {
         return run_obj(args, out);
     }
-    let doc = select::load(&args.file)?;
+    let mut doc = select::load(&args.file)?;
     let opts = options(args)?;
+    // what the command line asks for replaces the surfaces' own settings
+    for s in &mut doc.surfaces {
+        let own = &mut s.settings;
+        if args.tolerance.is_some() || args.angle_tolerance.is_some() {
+            own.tessellation = None;
+        }
+        if args.frames.is_some() {
+            own.frames = None;
+        }
+        if args.compat {
+            own.layout = None;
+            own.caps = None;
+        }
+        if args.no_caps {
+            own.caps = None;
+        }
+    }
     if args.annotated {
         if args.format != Format::Obj {
             bail!("--annotated writes OBJ files; use it with --format obj");

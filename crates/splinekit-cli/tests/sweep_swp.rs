@@ -252,3 +252,31 @@ fn info_lists_curves_and_surfaces_with_both_layouts_counts() {
     let (v, t) = counts_of(sweep(&wineglass, out.path(), &[]).ok().trim_end());
     assert!(lines[4].ends_with(&format!("welded {v} vertices, {t} triangles")), "{text}");
 }
+
+/// A surface's own settings in the file apply, and the matching option on the command line
+/// replaces them: the same meshes either way.
+#[test]
+fn surface_settings_and_the_options_that_replace_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let curves = "circ ring 12 0.2\nbez3 path 10 4 [0 0 0] [1 0 1] [2 1 1] [3 1 0]\n";
+    let own = dir.path().join("own.swp");
+    fs::write(&own, format!("{curves}gcyl tube ring path tolerance 0.001 frames rmf no-caps\n")).unwrap();
+    let plain = dir.path().join("plain.swp");
+    fs::write(&plain, format!("{curves}gcyl tube ring path\n")).unwrap();
+    let read = |file: &PathBuf, out: &str, flags: &[&str]| {
+        let out = dir.path().join(out);
+        sweep(file, &out, flags).ok();
+        fs::read(out.join("tube.obj")).unwrap()
+    };
+    let by_settings = read(&own, "a", &[]);
+    assert!(by_settings == read(&plain, "b", &["--tolerance", "0.001", "--frames", "rmf", "--no-caps"]));
+    // each option replaces its own setting only: the file's no-caps stays
+    assert!(read(&own, "c", &["--tolerance", "0.001", "--frames", "rmf"]) == by_settings);
+    let replaced = read(&own, "e", &["--angle-tolerance", "3", "--frames", "sequential"]);
+    assert!(replaced == read(&plain, "f", &["--angle-tolerance", "3", "--frames", "sequential", "--no-caps"]));
+    assert!(replaced != by_settings);
+    read(&plain, "d", &[]);
+    let (v, _) = read_obj(&dir.path().join("a/tube.obj"));
+    let (w, _) = read_obj(&dir.path().join("d/tube.obj"));
+    assert!(v.len() > 4 * w.len(), "the tolerance makes many more vertices: {} vs {}", v.len(), w.len());
+}

@@ -590,6 +590,7 @@ impl Document {
         self.swp.surfaces.push(SwpSurface {
             name: Some(name),
             kind: SwpSurfaceKind::Revolution { steps: slices.clamp(1, splinekit_io::swp::MAX_STEPS), profile },
+            settings: Default::default(),
             pos: SourcePos::new(1, 1),
         });
         self.swp.surfaces.len() - 1
@@ -610,6 +611,7 @@ impl Document {
                 slice_tolerance: splinekit_io::swp::DEFAULT_ZREV_SLICE_TOLERANCE,
                 scale: 1.0,
             },
+            settings: Default::default(),
             pos: SourcePos::new(1, 1),
         });
         self.swp.surfaces.len() - 1
@@ -625,6 +627,7 @@ impl Document {
         self.swp.surfaces.push(SwpSurface {
             name: Some(name),
             kind: SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale: None, twist: None },
+            settings: Default::default(),
             pos: SourcePos::new(1, 1),
         });
         self.swp.surfaces.len() - 1
@@ -655,6 +658,7 @@ impl Document {
         self.swp.surfaces.push(SwpSurface {
             name: Some(name),
             kind: SwpSurfaceKind::Lathe { stacks: 32, slices: 32, radius: r, height: h },
+            settings: Default::default(),
             pos: SourcePos::new(1, 1),
         });
         self.active = r;
@@ -672,6 +676,15 @@ impl Document {
         }
         self.swp.surfaces[i].kind = kind;
         self.revision = next_revision();
+    }
+
+    /// Replaces the settings of surface `i` (tessellation, layout, frames, caps), no undo step
+    /// of its own, as [`set_revolution_slices`](Self::set_revolution_slices).
+    pub fn set_surface_settings(&mut self, i: usize, settings: splinekit_io::SwpSurfaceSettings) {
+        if let Some(s) = self.swp.surfaces.get_mut(i) {
+            s.settings = settings;
+            self.revision = next_revision();
+        }
     }
 
     /// Gives curve `i` a name (`base`, `base2`, …) if it has none: a surface refers to its

@@ -46,7 +46,7 @@ use splinekit::subdiv::{
 use splinekit::{PolyMesh, TriMesh};
 use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
 use splinekit_io::surface::{SurfaceError, SurfaceOptions};
-use splinekit_io::{SwpDocument, SwpSurfaceKind};
+use splinekit_io::{SwpDocument, SwpFrames, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation};
 
 pub use doc::{DocKind, Document, ViewedMesh};
 use files::{FileDialog, Outcome, Purpose, RecentFiles};
@@ -349,6 +349,12 @@ impl SweptSurfaces {
                         *slice_tolerance = (*slice_tolerance * factor).min(std::f64::consts::TAU / 3.0);
                     }
                     SwpSurfaceKind::GeneralizedCylinder { .. } => {}
+                }
+                // the samples of a distance tolerance go as 1/√d
+                match &mut s.settings.tessellation {
+                    Some(SwpTessellation::Distance(d)) => *d *= factor * factor,
+                    Some(SwpTessellation::AngleDegrees(a)) => *a = (*a * factor).min(180.0),
+                    None => {}
                 }
             }
             if let Ok(mut out) = Self::sweep_within(&coarse, limit) {
@@ -1753,6 +1759,16 @@ impl EditorApp {
                     self.doc.set_surface_kind(i, next);
                 }
             });
+            ui.horizontal_wrapped(|ui| {
+                let settings = self.doc.swp.surfaces[i].settings;
+                let mut next = settings;
+                if let Some(r) = settings_controls(ui, &name, kind, &mut next)
+                    && next != settings
+                {
+                    self.edit_value(&r);
+                    self.doc.set_surface_settings(i, next);
+                }
+            });
         }
     }
 
@@ -2113,6 +2129,96 @@ impl EditorApp {
 }
 
 /// The editor's sweep options: the defaults, at most [`EDITOR_MAX_TRIANGLES`] triangles.
+/// A surface's own settings: its tessellation (`{name} tessellation`: the curves' steps, a
+/// distance or an angle tolerance, with `{name} tolerance` or `{name} angle tolerance` in
+/// degrees), `{name} layout` (srev, gcyl), `{name} frames` and `{name} caps` (gcyl). Returns
+/// the response of the control that changed.
+fn settings_controls(
+    ui: &mut egui::Ui,
+    name: &str,
+    kind: SwpSurfaceKind,
+    settings: &mut SwpSurfaceSettings,
+) -> Option<egui::Response> {
+    let mut edited = None;
+    let mode = match settings.tessellation {
+        None => 0,
+        Some(SwpTessellation::Distance(_)) => 1,
+        Some(SwpTessellation::AngleDegrees(_)) => 2,
+    };
+    let modes = ["steps", "distance", "angle"];
+    let mut chosen = mode;
+    let r = egui::ComboBox::from_label(format!("{name} tessellation"))
+        .selected_text(modes[mode])
+        .show_ui(ui, |ui| {
+            for (k, m) in modes.iter().enumerate() {
+                ui.selectable_value(&mut chosen, k, *m);
+            }
+        })
+        .response
+        .on_hover_text("the curves' steps, or adaptive: within a distance, or by angle");
+    if chosen != mode {
+        settings.tessellation = match chosen {
+            0 => None,
+            1 => Some(SwpTessellation::Distance(0.01)),
+            _ => Some(SwpTessellation::AngleDegrees(5.0)),
+        };
+        edited = Some(r);
+    }
+    match &mut settings.tessellation {
+        Some(SwpTessellation::Distance(d)) => {
+            let hint = "every polyline within this distance of its curve";
+            edited = edited.or(float_value(ui, &format!("{name} tolerance"), d, 1e-6..=1e6, hint));
+        }
+        Some(SwpTessellation::AngleDegrees(a)) => {
+            let hint = "degrees: control-polygon angle, and the largest angle between slices";
+            edited = edited.or(float_value(ui, &format!("{name} angle tolerance"), a, 0.01..=180.0, hint));
+        }
+        None => {}
+    }
+    let keyword = kind.keyword();
+    if matches!(keyword, "srev" | "gcyl") {
+        let compat = settings.layout == Some(splinekit::sweep::MeshLayout::Compat);
+        let mut c = compat;
+        let r = egui::ComboBox::from_label(format!("{name} layout"))
+            .selected_text(if compat { "compat" } else { "welded" })
+            .show_ui(ui, |ui| {
+                ui.selectable_value(&mut c, false, "welded");
+                ui.selectable_value(&mut c, true, "compat");
+            })
+            .response
+            .on_hover_text("welded: seams and poles shared; compat: the course program's vertices");
+        if c != compat {
+            use splinekit::sweep::MeshLayout;
+            settings.layout = Some(if c { MeshLayout::Compat } else { MeshLayout::Welded });
+            edited = Some(r);
+        }
+    }
+    if keyword == "gcyl" {
+        let rmf = settings.frames == Some(SwpFrames::RotationMinimizing);
+        let mut f = rmf;
+        let r = egui::ComboBox::from_label(format!("{name} frames"))
+            .selected_text(if rmf { "rotation-minimizing" } else { "sequential" })
+            .show_ui(ui, |ui| {
+                ui.selectable_value(&mut f, false, "sequential");
+                ui.selectable_value(&mut f, true, "rotation-minimizing");
+            })
+            .response;
+        if f != rmf {
+            settings.frames = Some(if f { SwpFrames::RotationMinimizing } else { SwpFrames::Sequential });
+            edited = Some(r);
+        }
+        let mut caps = settings.caps.unwrap_or(true);
+        let r = ui
+            .checkbox(&mut caps, format!("{name} caps"))
+            .on_hover_text("flat caps on an open sweep of a closed profile");
+        if r.changed() {
+            settings.caps = Some(caps);
+            edited = Some(r);
+        }
+    }
+    edited
+}
+
 /// A labelled integer to drag or type; the response when it changed.
 fn int_value(
     ui: &mut egui::Ui,

@@ -32,7 +32,9 @@ use splinekit::TriMesh;
 
 use crate::mesh::{MeshIoError, RevolutionHeader, SplineHeader, save_revolution_obj};
 use crate::surface::{SurfaceError, SurfaceOptions};
-use crate::swp::{SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind};
+use crate::swp::{
+    SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind, SwpSurfaceSettings,
+};
 
 /// Steps of the profile curve of a document opened from an annotated OBJ (used to draw it;
 /// the surface uses the header's `epsilon`).
@@ -83,6 +85,13 @@ impl SwpDocument {
                 surface.kind.keyword()
             )));
         };
+        if surface.settings.tessellation.is_some() {
+            return Err(unsupported(
+                "it has its own tolerance; the revolution tool's file holds an angle tolerance epsilon and a slice \
+                 tolerance only"
+                    .into(),
+            ));
+        }
         let curve = self.curves.get(profile).ok_or_else(|| unsupported("its profile does not exist".into()))?;
         let is_bspline = match curve.kind {
             SwpCurveKind::BSpline => true,
@@ -165,6 +174,7 @@ impl SplineHeader {
                 slice_tolerance: h.slice_tolerance,
                 scale: h.scale,
             },
+            settings: SwpSurfaceSettings::default(),
             pos: SourcePos::default(),
         };
         Ok(SwpDocument { curves: vec![profile], surfaces: vec![surface] })

@@ -63,6 +63,7 @@ pub mod swp;
 pub use mesh::atomic;
 pub use mesh::{LoadedMesh, MeshFormat, MeshIoError, MeshIoErrorKind, ReadWarning, load_mesh};
 pub use swp::{
-    MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpCurveRole, SwpDocument, SwpError, SwpErrorKind, SwpGeometry,
-    SwpInvalid, SwpInvalidKind, SwpNumber, SwpObject, SwpSurface, SwpSurfaceKind,
+    MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpCurveRole, SwpDocument, SwpError, SwpErrorKind, SwpFrames,
+    SwpGeometry, SwpInvalid, SwpInvalidKind, SwpNumber, SwpObject, SwpSurface, SwpSurfaceKind, SwpSurfaceSettings,
+    SwpTessellation,
 };

@@ -40,7 +40,7 @@ use splinekit::{AnyCurve, CubicBezier, ParamCurve, PiecewiseCubic, TriMesh};
 
 use crate::mesh::rebuild::revolve_spline_z;
 use crate::mesh::{RebuildError, RebuildOptions};
-use crate::swp::{SwpClause, SwpDocument, SwpSurfaceKind};
+use crate::swp::{SwpClause, SwpDocument, SwpFrames, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation};
 
 /// Joins whose tangents turn by more than this (radians, 1°) are creases.
 pub const CREASE_ANGLE: f64 = std::f64::consts::PI / 180.0;
@@ -91,6 +91,32 @@ pub struct SurfaceOptions {
     /// tessellated), so a tolerance far too fine for the size of a surface, or absurd steps in
     /// a file, fail at once with [`SurfaceError::TooLarge`] instead of exhausting memory.
     pub max_triangles: Option<usize>,
+}
+
+impl SurfaceOptions {
+    /// These options with a surface's own settings in place of theirs (each setting the
+    /// surface gives replaces the option; the angle tolerance goes from degrees to radians).
+    #[must_use]
+    pub fn with_settings(&self, settings: &SwpSurfaceSettings) -> Self {
+        let mut o = *self;
+        match settings.tessellation {
+            Some(SwpTessellation::Distance(d)) => o.tessellation = SurfaceTessellation::Distance(d),
+            Some(SwpTessellation::AngleDegrees(a)) => o.tessellation = SurfaceTessellation::Angle(a.to_radians()),
+            None => {}
+        }
+        if let Some(layout) = settings.layout {
+            o.sweep.layout = layout;
+        }
+        match settings.frames {
+            Some(SwpFrames::Sequential) => o.frames = SurfaceFrames::Sequential,
+            Some(SwpFrames::RotationMinimizing) => o.frames = SurfaceFrames::RotationMinimizing,
+            None => {}
+        }
+        if let Some(caps) = settings.caps {
+            o.sweep.caps = caps;
+        }
+        o
+    }
 }
 
 impl Default for SurfaceOptions {
@@ -176,6 +202,7 @@ impl SwpDocument {
     /// a degenerate sweep.
     pub fn surface_mesh(&self, index: usize, options: &SurfaceOptions) -> Result<TriMesh, SurfaceError> {
         let surface = self.surfaces.get(index).ok_or(SurfaceError::NoSuchSurface(index))?;
+        let options = &options.with_settings(&surface.settings);
         let surface_name = surface.display_name(index);
         let curve = |i: usize| {
             self.curves[i]

@@ -211,3 +211,72 @@ fn what_cannot_be_revolved_says_why() {
     };
     assert_eq!(doc.surface_mesh(0, &compat).unwrap(), doc.surface_mesh(0, &SurfaceOptions::default()).unwrap());
 }
+
+// ---------------------------------------------------------------------------------------
+// A surface's own settings
+
+/// A ring swept along an open curve, written with and without its own settings.
+const TUBE: &str = "circ ring 12 0.2\nbez3 path 10 4 [0 0 0] [1 0 1] [2 1 1] [3 1 0]\n";
+
+#[test]
+fn settings_are_read_written_back_and_checked() {
+    use splinekit_io::swp::{SwpFrames, SwpTessellation};
+    let doc = parse(&format!(
+        "{TUBE}gcyl a ring path tolerance 0.01 frames rmf no-caps layout compat\ngcyl b ring path scale ring angle-tolerance 5 caps\n"
+    ));
+    let a = doc.surfaces[0].settings;
+    assert_eq!(a.tessellation, Some(SwpTessellation::Distance(0.01)));
+    assert_eq!(
+        (a.frames, a.caps, a.layout),
+        (Some(SwpFrames::RotationMinimizing), Some(false), Some(MeshLayout::Compat))
+    );
+    let b = doc.surfaces[1].settings;
+    assert_eq!((b.tessellation, b.caps), (Some(SwpTessellation::AngleDegrees(5.0)), Some(true)));
+    let text = doc.to_swp_string();
+    assert!(text.contains("gcyl a ring path tolerance 0.01 layout compat frames rmf no-caps\n"), "{text}");
+    assert!(text.contains("gcyl b ring path scale ring angle-tolerance 5 caps\n"), "{text}");
+    let again = SwpDocument::parse(&text, "again.swp").unwrap();
+    assert_eq!((again.surfaces[0].settings, again.surfaces[1].settings), (a, b));
+
+    let cases = [
+        (format!("{BSP}srev s 10 p frames rmf\n"), "t.swp:2:13", "frames applies to gcyl only"),
+        (format!("{BSP}zrev s p layout welded\n"), "t.swp:2:10", "layout applies to srev, gcyl only"),
+        (format!("{TUBE}gcyl s ring path tolerance 0.1 angle-tolerance 4\n"), "t.swp:3:32", "at most one of tolerance"),
+        (format!("{TUBE}gcyl s ring path angle-tolerance 200\n"), "t.swp:3:34", "at most 180"),
+        (format!("{TUBE}gcyl s ring path frames frenet\n"), "t.swp:3:25", "sequential or rmf"),
+        (format!("{TUBE}gcyl s ring path caps no-caps\n"), "t.swp:3:23", "at most one of caps or no-caps"),
+    ];
+    for (text, at, what) in cases {
+        let message = parse_err(&text);
+        assert!(message.starts_with(at) && message.contains(what), "{text}: {message}");
+    }
+    let mut doc = parse(&format!("{BSP}srev s 10 p\n"));
+    doc.surfaces[0].settings.caps = Some(true);
+    assert_eq!(doc.validate().unwrap_err().to_string(), r#"surface "s": caps does not apply to srev surfaces"#);
+}
+
+/// The settings do what the same sweep options do.
+#[test]
+fn settings_replace_the_sweep_options() {
+    use splinekit_io::surface::SurfaceFrames;
+    let plain = parse(&format!("{TUBE}gcyl a ring path\n"));
+    let own = parse(&format!("{TUBE}gcyl a ring path tolerance 0.001 frames rmf no-caps\n"));
+    let asked = SurfaceOptions {
+        tessellation: SurfaceTessellation::Distance(0.001),
+        frames: SurfaceFrames::RotationMinimizing,
+        sweep: SweepOptions { caps: false, ..SweepOptions::default() },
+        ..SurfaceOptions::default()
+    };
+    let by_settings = own.surface_mesh(0, &SurfaceOptions::default()).unwrap();
+    assert_eq!(by_settings, plain.surface_mesh(0, &asked).unwrap());
+    assert_ne!(by_settings, plain.surface_mesh(0, &SurfaceOptions::default()).unwrap());
+    // a lathe's angle tolerance sets its slices: ceil(360 / 10) = 36
+    let lathe = parse(
+        "bez2 r 8 4 [0 1] [0 1] [0 1] [0 1]\nbez2 z 8 4 [0 0] [0 1] [0 2] [0 3]\nlathe a 4 8 r z angle-tolerance 10\n",
+    );
+    assert_eq!(lathe.surface_mesh(0, &SurfaceOptions::default()).unwrap().num_vertices(), 36 * 5);
+    // a zrev with its own tolerance has no revolution-tool header
+    let zrev = parse(&format!("{BSP}zrev a p tolerance 0.01\n"));
+    let err = zrev.revolution_header(0).unwrap_err().to_string();
+    assert!(err.contains("its own tolerance"), "{err}");
+}

@@ -158,3 +158,40 @@ fn sweep_from_the_panel() {
     assert!(matches!(h.state().doc.swp.surfaces[0].kind, SwpSurfaceKind::GeneralizedCylinder { profile: 0, .. }));
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// A surface's own settings from the panel: a distance tolerance, rotation-minimizing frames
+/// and no caps give the mesh the same options give, are one undo step each, and are saved.
+#[test]
+fn surface_settings_from_the_panel() {
+    let dir = tempfile_dir("settings");
+    let path = dir.join("tube.swp");
+    let curves = "circ ring 12 0.2\nbez3 path 10 4 [0 0 0] [1 0 1] [2 1 1] [3 1 0]\n";
+    std::fs::write(&path, format!("{curves}gcyl tube ring path\n")).unwrap();
+    let mut h = harness(EditorApp::new(Some(&path)));
+    h.get_by_label("tube tessellation").click();
+    h.run();
+    h.get_by_label("distance").click();
+    h.run();
+    type_value(&mut h, "tube tolerance", "0.001");
+    h.get_by_label("tube frames").click();
+    h.run();
+    h.get_by_label("rotation-minimizing").click();
+    h.run();
+    h.get_by_label("tube caps").click();
+    h.run();
+    let by_hand =
+        SwpDocument::parse(&format!("{curves}gcyl tube ring path tolerance 0.001 frames rmf no-caps\n"), "h.swp")
+            .unwrap();
+    assert_eq!(h.state().doc.swp.surfaces[0].settings, by_hand.surfaces[0].settings);
+    let expected = by_hand.surface_mesh(0, &Default::default()).unwrap().num_triangles();
+    assert_eq!(h.state_mut().surface_triangles(), expected);
+    // undo the caps, then redo
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    assert_eq!(h.state().doc.swp.surfaces[0].settings.caps, None);
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Y);
+    h.run();
+    assert!(h.state_mut().save_swp(&path), "{}", h.state().status);
+    assert!(std::fs::read_to_string(&path).unwrap().contains("gcyl tube ring path tolerance 0.001 frames rmf no-caps"));
+    let _ = std::fs::remove_dir_all(dir);
+}

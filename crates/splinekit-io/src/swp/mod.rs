@@ -152,6 +152,7 @@ mod writer;
 use std::path::Path;
 
 use glam::DVec3;
+use splinekit::sweep::MeshLayout;
 
 pub use error::{SwpError, SwpErrorKind};
 pub use validate::{SwpCurveRole, SwpInvalid, SwpInvalidKind, SwpNumber, SwpObject};
@@ -356,9 +357,65 @@ pub struct SwpSurface {
     pub name: Option<String>,
     /// The kind of surface, with its curve references.
     pub kind: SwpSurfaceKind,
+    /// Its own tessellation, layout, frames and caps (option words after the surface), which
+    /// replace the sweep options given to [`SwpDocument::surface_mesh`].
+    pub settings: SwpSurfaceSettings,
     /// Where the surface's keyword stood.
     pub pos: SourcePos,
 }
+
+/// A surface's own settings (an extension: option words after the surface, such as
+/// `gcyl tube ring path tolerance 0.01 frames rmf no-caps`). `None` leaves the value to the
+/// options the surface is swept with.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SwpSurfaceSettings {
+    /// `tolerance D` or `angle-tolerance DEGREES`: adaptive tessellation instead of the
+    /// curves' steps (any surface).
+    pub tessellation: Option<SwpTessellation>,
+    /// `layout welded` or `layout compat` (`srev`, `gcyl`).
+    pub layout: Option<MeshLayout>,
+    /// `frames sequential` or `frames rmf` (`gcyl`).
+    pub frames: Option<SwpFrames>,
+    /// `caps` or `no-caps`: flat caps on an open sweep of a closed profile (`gcyl`).
+    pub caps: Option<bool>,
+}
+
+impl SwpSurfaceSettings {
+    /// Whether no setting is given.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// A surface's own tessellation (see [`SwpSurfaceSettings`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SwpTessellation {
+    /// `tolerance D`: every polyline within distance `D` of its curve, revolutions in enough
+    /// slices that no chord strays further from its circle.
+    Distance(f64),
+    /// `angle-tolerance A`: adaptive by control-polygon angle, `A` in degrees; revolutions
+    /// in slices of at most `A`.
+    AngleDegrees(f64),
+}
+
+/// The frames a `gcyl` carries its profile with (see [`SwpSurfaceSettings`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SwpFrames {
+    /// `frames sequential`: the course program's frames.
+    Sequential,
+    /// `frames rmf`: rotation-minimizing frames.
+    RotationMinimizing,
+}
+
+/// The setting words and the surface keywords each applies to.
+pub(crate) const SETTING_WORDS: [(&str, &[&str]); 5] = [
+    ("tolerance", &["srev", "gcyl", "zrev", "lathe"]),
+    ("angle-tolerance", &["srev", "gcyl", "zrev", "lathe"]),
+    ("layout", &["srev", "gcyl"]),
+    ("frames", &["gcyl"]),
+    ("caps", &["gcyl"]),
+];
 
 impl SwpSurface {
     /// The surface's name, or `#<index>` for an anonymous surface (`index` being its position in

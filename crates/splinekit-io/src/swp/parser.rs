@@ -7,9 +7,12 @@ use glam::DVec3;
 use super::error::{SwpError, SwpErrorKind};
 use super::lexer::{Token, TokenKind, tokenize};
 use super::validate::SwpCurveRole;
+use splinekit::sweep::MeshLayout;
+
 use super::{
-    DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, MAX_HELIX_TURNS, MAX_STEPS, SourcePos, SwpClause, SwpCurve,
-    SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind,
+    DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, MAX_HELIX_TURNS, MAX_STEPS, SETTING_WORDS, SourcePos,
+    SwpClause, SwpCurve, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry, SwpSurface, SwpSurfaceKind,
+    SwpSurfaceSettings, SwpTessellation,
 };
 
 /// Every keyword that starts an object.
@@ -106,6 +109,10 @@ fn label(keyword: &str, noun: &str, name: Option<&str>, index: usize) -> String 
         None => format!("{keyword} {noun} #{index}"),
     }
 }
+
+/// The first token of each group of surface settings read so far (tessellation, layout,
+/// frames, caps).
+type Seen<'a> = [Option<Token<'a>>; 4];
 
 /// What a name refers to.
 #[derive(Debug, Clone, Copy)]
@@ -469,10 +476,14 @@ impl<'a> Parser<'a> {
         let label = label("srev", "surface", name, index);
         let steps = self.steps(&label)?;
         let profile = self.reference(&label, Role::Profile)?;
+        let mut settings = SwpSurfaceSettings::default();
+        let mut seen = Seen::default();
+        while self.setting("srev", &label, &mut settings, &mut seen)? {}
         self.register(name, name_pos, Named::Surface(index));
         self.doc.surfaces.push(SwpSurface {
             name: name.map(str::to_owned),
             kind: SwpSurfaceKind::Revolution { steps, profile },
+            settings,
             pos,
         });
         Ok(())
@@ -490,10 +501,13 @@ impl<'a> Parser<'a> {
         let sweep = self.reference(&label, Role::Sweep)?;
         let mut scale: Option<(Token<'a>, usize)> = None;
         let mut twist: Option<(Token<'a>, usize)> = None;
+        let mut settings = SwpSurfaceSettings::default();
+        let mut seen = Seen::default();
         while let Some(token) = self.peek().filter(|t| t.kind == TokenKind::Word) {
             let (slot, role) = match token.text {
                 "scale" => (&mut scale, Role::Clause(SwpClause::Scale)),
                 "twist" => (&mut twist, Role::Clause(SwpClause::Twist)),
+                _ if self.setting("gcyl", &label, &mut settings, &mut seen)? => continue,
                 _ => break,
             };
             if let Some((first, _)) = *slot {
@@ -515,6 +529,7 @@ impl<'a> Parser<'a> {
                 scale: scale.map(|(_, curve)| curve),
                 twist: twist.map(|(_, curve)| curve),
             },
+            settings,
             pos,
         });
         Ok(())
@@ -529,8 +544,15 @@ impl<'a> Parser<'a> {
         let profile = self.reference(&label, Role::Profile)?;
         let mut values: [Option<(Token<'a>, f64)>; 3] = [None; 3];
         const WORDS: [&str; 3] = ["epsilon", "slice-tolerance", "scale"];
+        let mut settings = SwpSurfaceSettings::default();
+        let mut seen = Seen::default();
         while let Some(token) = self.peek().filter(|t| t.kind == TokenKind::Word) {
-            let Some(k) = WORDS.iter().position(|&w| w == token.text) else { break };
+            let Some(k) = WORDS.iter().position(|&w| w == token.text) else {
+                if self.setting("zrev", &label, &mut settings, &mut seen)? {
+                    continue;
+                }
+                break;
+            };
             if let Some((first, _)) = values[k] {
                 return Err(self.bad_option(token, already(&label, first, token.text)));
             }
@@ -556,6 +578,7 @@ impl<'a> Parser<'a> {
                 slice_tolerance: values[1].map_or(DEFAULT_ZREV_SLICE_TOLERANCE, |(_, v)| v),
                 scale: values[2].map_or(1.0, |(_, v)| v),
             },
+            settings,
             pos,
         });
         Ok(())
@@ -575,13 +598,78 @@ impl<'a> Parser<'a> {
             .ok_or_else(|| self.invalid_number(token, expected()))?;
         let radius = self.reference(&label, Role::Radius)?;
         let height = self.reference(&label, Role::Height)?;
+        let mut settings = SwpSurfaceSettings::default();
+        let mut seen = Seen::default();
+        while self.setting("lathe", &label, &mut settings, &mut seen)? {}
         self.register(name, name_pos, Named::Surface(index));
         self.doc.surfaces.push(SwpSurface {
             name: name.map(str::to_owned),
             kind: SwpSurfaceKind::Lathe { stacks, slices, radius, height },
+            settings,
             pos,
         });
         Ok(())
+    }
+
+    /// Reads one setting of the surface `label` (whose keyword is `keyword`) if the next
+    /// token is a setting word: `tolerance D`, `angle-tolerance DEGREES`, `layout
+    /// welded|compat`, `frames sequential|rmf`, `caps` or `no-caps`. Returns whether it read
+    /// one. A setting given twice (or both tolerances), or one that does not apply to the
+    /// kind, is an error.
+    fn setting(
+        &mut self,
+        keyword: &str,
+        label: &str,
+        settings: &mut SwpSurfaceSettings,
+        seen: &mut Seen<'a>,
+    ) -> Result<bool, SwpError> {
+        let Some(token) = self.peek().filter(|t| t.kind == TokenKind::Word) else { return Ok(false) };
+        let word = if token.text == "no-caps" { "caps" } else { token.text };
+        let Some(&(_, kinds)) = SETTING_WORDS.iter().find(|(w, _)| *w == word) else { return Ok(false) };
+        if !kinds.contains(&keyword) {
+            let expected = format!("a setting of {label} ({} applies to {} only)", token.text, kinds.join(", "));
+            return Err(self.bad_option(token, expected));
+        }
+        let group = match word {
+            "tolerance" | "angle-tolerance" => 0,
+            "layout" => 1,
+            "frames" => 2,
+            _ => 3,
+        };
+        if let Some(first) = seen[group] {
+            let groups = ["tolerance or angle-tolerance", "layout", "frames", "caps or no-caps"];
+            return Err(self.bad_option(token, already(label, first, groups[group])));
+        }
+        seen[group] = Some(token);
+        self.next += 1;
+        let mut choice = |options: &[&str], what: &str| -> Result<usize, SwpError> {
+            let expected = || format!("{} for the {what} of {label}", options.join(" or "));
+            let value = self.expect(expected)?;
+            options.iter().position(|&o| o == value.text).ok_or_else(|| self.bad_option(value, expected()))
+        };
+        match token.text {
+            "tolerance" => {
+                let d = self.value("a distance tolerance (a number > 0)", label, |v| v > 0.0)?;
+                settings.tessellation = Some(SwpTessellation::Distance(d));
+            }
+            "angle-tolerance" => {
+                let a = self.value("an angle tolerance in degrees (more than 0, at most 180)", label, |v| {
+                    v > 0.0 && v <= 180.0
+                })?;
+                settings.tessellation = Some(SwpTessellation::AngleDegrees(a));
+            }
+            "layout" => {
+                let k = choice(&["welded", "compat"], "layout")?;
+                settings.layout = Some([MeshLayout::Welded, MeshLayout::Compat][k]);
+            }
+            "frames" => {
+                let k = choice(&["sequential", "rmf"], "frames")?;
+                settings.frames = Some([SwpFrames::Sequential, SwpFrames::RotationMinimizing][k]);
+            }
+            "caps" => settings.caps = Some(true),
+            _ => settings.caps = Some(false),
+        }
+        Ok(true)
     }
 
     /// Reads a reference to a curve defined earlier, for `role` in the surface `label`

@@ -7,7 +7,10 @@ use glam::DVec3;
 
 use super::error::quote;
 use super::lexer::is_space;
-use super::{MAX_HELIX_TURNS, MAX_STEPS, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind};
+use super::{
+    MAX_HELIX_TURNS, MAX_STEPS, SETTING_WORDS, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface,
+    SwpSurfaceKind, SwpTessellation,
+};
 
 impl SwpDocument {
     /// Checks the document with the rules the reader applies, so that it can be saved and
@@ -294,6 +297,20 @@ pub enum SwpInvalidKind {
         /// The steps.
         found: u32,
     },
+    /// A surface setting that does not apply to its kind (such as `frames` on an `srev`).
+    Setting {
+        /// The setting's word, like `frames`.
+        word: &'static str,
+        /// The surface's keyword, like `srev`.
+        keyword: &'static str,
+    },
+    /// A surface's `tolerance` is not a number > 0, or its `angle-tolerance` not in (0, 180].
+    Tolerance {
+        /// `tolerance` or `angle-tolerance`.
+        word: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// The slices of a lathe are not in `3..=MAX_STEPS`.
     Slices {
         /// The slices.
@@ -399,6 +416,11 @@ impl fmt::Display for SwpInvalidKind {
             Self::Steps { found } => {
                 write!(f, "the number of steps must be from 1 to {MAX_STEPS}; this one has {found}")
             }
+            Self::Setting { word, keyword } => write!(f, "{word} does not apply to {keyword} surfaces"),
+            Self::Tolerance { word: "angle-tolerance", value } => {
+                write!(f, "its angle-tolerance must be more than 0 and at most 180 degrees; it is {value}")
+            }
+            Self::Tolerance { word, value } => write!(f, "its {word} must be a number more than 0; it is {value}"),
             Self::Slices { found } => {
                 write!(f, "the number of slices must be from 3 to {MAX_STEPS}; this one has {found}")
             }
@@ -633,6 +655,29 @@ fn check_surface(curves: &[SwpCurve], surface: &SwpSurface) -> Result<(), SwpInv
                 v > 0.0 && std::f64::consts::TAU / v <= f64::from(MAX_STEPS)
             })?;
             check_number(SwpNumber::Scale, scale, |v| v > 0.0)?;
+        }
+        _ => {}
+    }
+    let settings = &surface.settings;
+    let keyword = surface.kind.keyword();
+    let given = [
+        ("tolerance", settings.tessellation.is_some()),
+        ("layout", settings.layout.is_some()),
+        ("frames", settings.frames.is_some()),
+        ("caps", settings.caps.is_some()),
+    ];
+    for (word, is_given) in given {
+        let applies = SETTING_WORDS.iter().any(|(w, kinds)| *w == word && kinds.contains(&keyword));
+        if is_given && !applies {
+            return Err(SwpInvalidKind::Setting { word, keyword });
+        }
+    }
+    match settings.tessellation {
+        Some(SwpTessellation::Distance(value)) if !(value > 0.0 && value.is_finite()) => {
+            return Err(SwpInvalidKind::Tolerance { word: "tolerance", value });
+        }
+        Some(SwpTessellation::AngleDegrees(value)) if !(value > 0.0 && value <= 180.0) => {
+            return Err(SwpInvalidKind::Tolerance { word: "angle-tolerance", value });
         }
         _ => {}
     }
@@ -1015,6 +1060,7 @@ mod tests {
             surfaces: vec![SwpSurface {
                 name: None,
                 kind: SwpSurfaceKind::Revolution { steps: 4, profile: 0 },
+                settings: Default::default(),
                 pos: SourcePos::default(),
             }],
         };

@@ -4,11 +4,12 @@ use std::collections::HashSet;
 use std::fmt::Write as _;
 
 use glam::DVec3;
+use splinekit::sweep::MeshLayout;
 
 use super::validate::name_problem;
 use super::{
-    DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry,
-    SwpSurfaceKind,
+    DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, SwpCurve, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry,
+    SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation,
 };
 
 /// Whether `name` can be written as a NAME token that reads back as itself (the rule that
@@ -75,7 +76,7 @@ pub(crate) fn write(doc: &SwpDocument) -> String {
         // `fmt::Write` for `String` never fails.
         let _ = match surface.kind {
             SwpSurfaceKind::Revolution { steps, profile } => {
-                writeln!(out, "srev {name} {steps} {}", reference(profile))
+                write!(out, "srev {name} {steps} {}", reference(profile))
             }
             SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale, twist } => {
                 let _ = write!(out, "gcyl {name} {} {}", reference(profile), reference(sweep));
@@ -85,7 +86,7 @@ pub(crate) fn write(doc: &SwpDocument) -> String {
                 if let Some(twist) = twist {
                     let _ = write!(out, " twist {}", reference(twist));
                 }
-                writeln!(out)
+                Ok(())
             }
             SwpSurfaceKind::RevolutionZ { profile, epsilon, slice_tolerance, scale } => {
                 let _ = write!(out, "zrev {name} {}", reference(profile));
@@ -98,14 +99,45 @@ pub(crate) fn write(doc: &SwpDocument) -> String {
                 if scale != 1.0 {
                     let _ = write!(out, " scale {scale}");
                 }
-                writeln!(out)
+                Ok(())
             }
             SwpSurfaceKind::Lathe { stacks, slices, radius, height } => {
-                writeln!(out, "lathe {name} {stacks} {slices} {} {}", reference(radius), reference(height))
+                write!(out, "lathe {name} {stacks} {slices} {} {}", reference(radius), reference(height))
             }
         };
+        write_settings(&mut out, &surface.settings);
+        out.push('\n');
     }
     out
+}
+
+/// Writes a surface's settings, each after a space, in a fixed order.
+fn write_settings(out: &mut String, settings: &SwpSurfaceSettings) {
+    // `fmt::Write` for `String` never fails.
+    match settings.tessellation {
+        Some(SwpTessellation::Distance(d)) => {
+            let _ = write!(out, " tolerance {d}");
+        }
+        Some(SwpTessellation::AngleDegrees(a)) => {
+            let _ = write!(out, " angle-tolerance {a}");
+        }
+        None => {}
+    }
+    match settings.layout {
+        Some(MeshLayout::Welded) => out.push_str(" layout welded"),
+        Some(MeshLayout::Compat) => out.push_str(" layout compat"),
+        None => {}
+    }
+    match settings.frames {
+        Some(SwpFrames::Sequential) => out.push_str(" frames sequential"),
+        Some(SwpFrames::RotationMinimizing) => out.push_str(" frames rmf"),
+        None => {}
+    }
+    match settings.caps {
+        Some(true) => out.push_str(" caps"),
+        Some(false) => out.push_str(" no-caps"),
+        None => {}
+    }
 }
 
 fn write_curve(out: &mut String, curve: &SwpCurve, name: &str) {
@@ -220,6 +252,7 @@ mod tests {
             surfaces: vec![SwpSurface {
                 name: None,
                 kind: SwpSurfaceKind::GeneralizedCylinder { profile: 0, sweep: 1, scale: None, twist: None },
+                settings: Default::default(),
                 pos: SourcePos::default(),
             }],
         };
@@ -239,6 +272,7 @@ mod tests {
             surfaces: vec![SwpSurface {
                 name: Some("_c1_1".into()),
                 kind: SwpSurfaceKind::GeneralizedCylinder { profile: 1, sweep: 7, scale: Some(2), twist: None },
+                settings: Default::default(),
                 pos: SourcePos::default(),
             }],
         };
@@ -261,6 +295,7 @@ mod tests {
             surfaces: vec![SwpSurface {
                 name: None,
                 kind: SwpSurfaceKind::GeneralizedCylinder { profile: 0, sweep: 1, scale: Some(3), twist: Some(0) },
+                settings: Default::default(),
                 pos: SourcePos::default(),
             }],
         };

@@ -7,6 +7,7 @@ use proptest::sample::{Index, select};
 use proptest::test_runner::Config;
 use splinekit_io::{
     MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpError, SwpGeometry, SwpSurface, SwpSurfaceKind,
+    SwpSurfaceSettings,
 };
 
 use super::common::without_positions;
@@ -165,13 +166,46 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
         })
 }
 
+/// Raw draws of surface settings: which tessellation (none, distance, angle) with a distance
+/// and an angle, then layout (compat?), frames (rmf?) and caps.
+type RawSettings = ((u8, f64, f64), Option<bool>, Option<bool>, Option<bool>);
+
+/// Valid settings for a surface of `kind` from raw draws: only those that apply to it.
+fn settings_for(
+    kind: SwpSurfaceKind,
+    ((t, distance, degrees), layout, frames, caps): RawSettings,
+) -> SwpSurfaceSettings {
+    use splinekit::sweep::MeshLayout;
+    use splinekit_io::swp::{SwpFrames, SwpTessellation};
+    let gcyl = matches!(kind, SwpSurfaceKind::GeneralizedCylinder { .. });
+    let laid_out = gcyl || matches!(kind, SwpSurfaceKind::Revolution { .. });
+    SwpSurfaceSettings {
+        tessellation: match t {
+            0 => None,
+            1 => Some(SwpTessellation::Distance(distance)),
+            _ => Some(SwpTessellation::AngleDegrees(degrees)),
+        },
+        layout: layout.filter(|_| laid_out).map(|c| if c { MeshLayout::Compat } else { MeshLayout::Welded }),
+        frames: frames.filter(|_| gcyl).map(|r| if r { SwpFrames::RotationMinimizing } else { SwpFrames::Sequential }),
+        caps: caps.filter(|_| gcyl),
+    }
+}
+
 /// A valid document: unique names, references to earlier curves only, 2D profiles, and a name
 /// on every referenced curve (so that the round trip is exact).
 fn document() -> impl Strategy<Value = SwpDocument> {
     let positive = || prop_oneof![Just(1.0), 1e-3f64..10.0, proptest::num::f64::POSITIVE | proptest::num::f64::NORMAL];
     // zrev numbers: epsilon, slice tolerance (at most MAX_STEPS slices), scale; lathe slices
     let extension = (positive(), (core::f64::consts::TAU / f64::from(MAX_STEPS))..10.0, positive(), 3..=MAX_STEPS);
-    let surface = ((0u8..4, extension), 1..=MAX_STEPS, any::<Index>(), any::<Index>(), prop::option::of("[a-z]{1,5}"));
+    // surface settings: a tessellation (none, distance, angle), layout, frames, caps
+    let settings = (
+        (0u8..3, positive(), 1e-3f64..=180.0),
+        prop::option::of(any::<bool>()),
+        prop::option::of(any::<bool>()),
+        prop::option::of(any::<bool>()),
+    );
+    let surface =
+        ((0u8..4, extension), 1..=MAX_STEPS, any::<Index>(), any::<Index>(), prop::option::of("[a-z]{1,5}"), settings);
     (prop::collection::vec(curve(), 0..6), prop::collection::vec(surface, 0..4)).prop_map(
         |(mut curves, raw_surfaces)| {
             for (i, c) in curves.iter_mut().enumerate() {
@@ -180,7 +214,7 @@ fn document() -> impl Strategy<Value = SwpDocument> {
             let flat: Vec<usize> = (0..curves.len()).filter(|&i| curves[i].dim == 2).collect();
             let mut surfaces = Vec::new();
             if !flat.is_empty() {
-                for (j, ((which, (epsilon, slice_tolerance, scale, slices)), steps, profile, sweep, name)) in
+                for (j, ((which, (epsilon, slice_tolerance, scale, slices)), steps, profile, sweep, name, settings)) in
                     raw_surfaces.into_iter().enumerate()
                 {
                     let other = flat[sweep.index(flat.len())];
@@ -195,6 +229,7 @@ fn document() -> impl Strategy<Value = SwpDocument> {
                     surfaces.push(SwpSurface {
                         name: name.map(|base| format!("{base}S{j}")),
                         kind,
+                        settings: settings_for(kind, settings),
                         pos: SourcePos::default(),
                     });
                 }

@@ -207,6 +207,7 @@ fn document() -> impl Strategy<Value = SwpDocument> {
                         twist: twist.map(pick_flat),
                     }
                 },
+                settings: Default::default(),
                 pos: SourcePos::default(),
             })
             .collect();
