@@ -11,7 +11,7 @@ mod poly;
 mod validate;
 
 pub use adjacency::{Adjacency, EdgeProblem, NONE};
-pub use curvature::{VertexCurvature, vertex_curvature};
+pub use curvature::{VertexCurvature, WELD_TOLERANCE, vertex_curvature};
 pub use poly::{FaceVarying, PolyMesh};
 pub use validate::{
     BoundaryLoop, Component, DEFAULT_DEGENERATE_TOLERANCE, DEFAULT_LISTED, Degeneracy, DegenerateFace, DuplicateFace,
