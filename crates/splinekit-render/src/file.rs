@@ -1,6 +1,6 @@
 //! Pictures of files: [`render_file`] reads an SWP or mesh file and chooses the picture.
 //!
-//! - **SWP with surfaces**: a 3D picture ([`render_scene`]): every surface swept with the
+//! - **SWP with surfaces**: a 3D picture ([`render_scene`](crate::render_scene)): every surface swept with the
 //!   default [`SurfaceOptions`] and shaded, and every curve of the file drawn in 3D with its
 //!   control polygon (hidden where a surface is in front of it).
 //! - **SWP with only curves**: a 2D plot ([`plot_curves`]), orthographic; the default view is

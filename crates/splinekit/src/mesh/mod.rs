@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 
 mod adjacency;
-mod curvature;
+pub mod curvature;
 mod poly;
 mod validate;
 
