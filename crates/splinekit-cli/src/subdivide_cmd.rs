@@ -2,7 +2,7 @@
 //! Catmull-Clark or Doo-Sabin of a polygon mesh file.
 
 use std::io::{IsTerminal, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, anyhow, bail};
@@ -15,7 +15,7 @@ use splinekit::subdiv::{
     LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, butterfly_subdivide, catmull_clark_limit_creased,
     catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
     catmull_clark_subdivide_creased, doo_sabin_subdivide, loop_limit_creased, loop_limit_normals, loop_limit_positions,
-    loop_subdivide_creased, sqrt3_subdivide,
+    loop_subdivide, loop_subdivide_creased, sqrt3_subdivide,
 };
 use splinekit_io::mesh::{MeshFormat, load_mesh, read_creases, save, save_poly, save_poly_creased};
 
@@ -167,7 +167,7 @@ pub enum Scheme {
 
 impl Scheme {
     /// The scheme's name in messages.
-    fn title(self) -> &'static str {
+    pub fn title(self) -> &'static str {
         match self {
             Self::Loop => "Loop",
             Self::CatmullClark => "Catmull-Clark",
@@ -224,12 +224,88 @@ fn check_options(args: &SubdivideArgs) -> anyhow::Result<()> {
         bail!("--creases and --creasing are for Loop and Catmull-Clark; {name} subdivision has no creases");
     }
     if scheme == Scheme::DooSabin && args.color_by_level {
-        bail!(
-            "--color-by-level: Doo-Sabin subdivision makes every vertex anew at every level, so there are no levels \
-             to colour by"
-        );
+        bail!("--color-by-level: {DOO_SABIN_HAS_NO_LEVELS}");
     }
     Ok(())
+}
+
+/// Why Doo-Sabin subdivision cannot colour by level.
+pub const DOO_SABIN_HAS_NO_LEVELS: &str =
+    "Doo-Sabin subdivision makes every vertex anew at every level, so there are no levels to colour by";
+
+/// The most triangles `splinekit render --levels` makes (the editor's limit too): about
+/// 2 GB of mesh and picture buffers.
+pub const RENDER_MAX_TRIANGLES: u64 = 20_000_000;
+
+/// A bound on the triangles (polygons fanned) of `levels` levels of `scheme` on `mesh`:
+/// `F·4ᴺ` for Loop and butterfly, `F·3ᴺ` for √3, `C·4ᴺ/2` for Catmull-Clark (`C·4ᴺ⁻¹` quads,
+/// `N ≥ 1`) and `C·4ᴺ` for Doo-Sabin (its corners at most quadruple per level, and a mesh of
+/// `C` corners has at most `C` triangles), `F` faces and `C` corners of `mesh`; without
+/// levels, the mesh's own. (`f64`, so that it cannot overflow.)
+fn triangle_bound(mesh: &PolyMesh, scheme: Scheme, levels: u32) -> f64 {
+    let (faces, corners) = (mesh.num_faces() as f64, mesh.face_vertices.len() as f64);
+    let n = i32::try_from(levels).unwrap_or(i32::MAX);
+    if levels == 0 {
+        return corners - 2.0 * faces;
+    }
+    match scheme {
+        Scheme::Loop | Scheme::Butterfly => faces * 4f64.powi(n),
+        Scheme::Sqrt3 => faces * 3f64.powi(n),
+        Scheme::CatmullClark => corners * 4f64.powi(n) / 2.0,
+        Scheme::DooSabin => corners * 4f64.powi(n),
+    }
+}
+
+/// `mesh` subdivided `levels` times by `scheme` with its default options (the mesh's
+/// `creases` for Loop and Catmull-Clark, Chaikin creasing), its vertices coloured by the level
+/// that made them when `color_by_level`: what `splinekit render --levels` draws. Refused,
+/// before anything is made, when the result could have more than [`RENDER_MAX_TRIANGLES`]
+/// triangles; `input` names the mesh in errors.
+pub fn subdivide_for_render(
+    mesh: &PolyMesh,
+    creases: &Creases,
+    scheme: Scheme,
+    levels: u32,
+    color_by_level: bool,
+    input: &Path,
+) -> anyhow::Result<PolyMesh> {
+    let name = scheme.title();
+    if scheme == Scheme::DooSabin && color_by_level {
+        bail!("--color level: {DOO_SABIN_HAS_NO_LEVELS}");
+    }
+    let bound = triangle_bound(mesh, scheme, levels);
+    if bound > RENDER_MAX_TRIANGLES as f64 {
+        bail!(
+            "{}: {levels} levels of {name} subdivision would make up to {bound:.0} triangles, more than the \
+             {RENDER_MAX_TRIANGLES} that render draws; use fewer --levels",
+            input.display()
+        );
+    }
+    let n = levels as usize;
+    let creased = !creases.is_empty() && matches!(scheme, Scheme::Loop | Scheme::CatmullClark);
+    let fail = |e: SubdivError| anyhow!("{}: {e}", input.display());
+    let fine = match scheme {
+        Scheme::Loop => {
+            let options = LoopOptions { color_by_level, ..LoopOptions::default() };
+            if creased {
+                loop_subdivide_creased(mesh, levels, &options, creases, CreasingMethod::Chaikin).map(|(m, _)| m)
+            } else {
+                loop_subdivide(mesh, levels, &options)
+            }
+        }
+        Scheme::CatmullClark => {
+            let options = CatmullClarkOptions { color_by_level, ..CatmullClarkOptions::default() };
+            if creased {
+                catmull_clark_subdivide_creased(mesh, n, &options, creases, CreasingMethod::Chaikin).map(|(m, _)| m)
+            } else {
+                catmull_clark_subdivide(mesh, n, &options)
+            }
+        }
+        Scheme::Sqrt3 => sqrt3_subdivide(mesh, n, &Sqrt3Options { color_by_level }),
+        Scheme::DooSabin => doo_sabin_subdivide(mesh, n, &DooSabinOptions::default()),
+        Scheme::Butterfly => butterfly_subdivide(mesh, n, &ButterflyOptions { color_by_level }),
+    };
+    fine.map_err(fail)
 }
 
 pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {

@@ -134,3 +134,125 @@ fn gallery_writes_its_page_and_files() {
     let bad = splinekit(&["gallery", "--levels", "9"]);
     assert!(bad.fails().contains("--levels"), "{}", bad.stderr);
 }
+
+/// The number after `key` in `line` (as the summary writes it, e.g. `-1.33e0`).
+fn number_after(line: &str, key: &str) -> f64 {
+    let rest = &line[line.find(key).unwrap_or_else(|| panic!("{key:?} in {line}")) + key.len()..];
+    let text: String = rest.chars().take_while(|c| !c.is_whitespace() && *c != ')' && *c != ';').collect();
+    text.parse().unwrap_or_else(|e| panic!("{text:?} in {line}: {e}"))
+}
+
+/// The `values from A to B` of a curvature summary.
+fn values_from(line: &str) -> (f64, f64) {
+    let rest = &line[line.find("values from ").unwrap_or_else(|| panic!("no values in {line}"))..];
+    (number_after(rest, "values from "), number_after(rest, " to "))
+}
+
+#[test]
+fn every_colouring_writes_its_picture_and_says_its_scale() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.png");
+    let o = out.to_string_lossy().into_owned();
+    let tor = swp("gcyl/tor.swp").to_string_lossy().into_owned();
+    let glass = swp("srev/wineglass.swp").to_string_lossy().into_owned();
+    let ico = course_mesh("icosahedron.obj").to_string_lossy().into_owned();
+    let run = |parts: &[&str]| {
+        let _ = std::fs::remove_file(&out);
+        let stdout = splinekit(&args(parts)).ok().to_owned();
+        assert_eq!(png_size(&out), (320, 240), "{parts:?}");
+        assert!(stdout.starts_with(&format!("{o}: 320x240, ")), "{stdout}");
+        stdout
+    };
+
+    let shade = run(&["render", &glass, "-o", &o, "--size", "320x240", "--color", "shade"]);
+    assert!(shade.ends_with("1 surfaces (32940 triangles) and 1 curves, iso view\n"), "{shade}");
+    let plain = std::fs::read(&out).unwrap();
+    run(&["render", &glass, "-o", &o, "--size", "320x240"]);
+    assert!(std::fs::read(&out).unwrap() == plain, "shade is the default");
+
+    // The torus of tor.swp (R = 2, r = 0.5): K from −1/(r(R − r)) = −4/3 to 1/(r(R + r)) = 0.8.
+    let gauss = run(&["render", &tor, "-o", &o, "--size", "320x240", "--color", "curvature-gauss", "--view", "front"]);
+    assert!(gauss.contains(", front view, Gaussian curvature from -"), "{gauss}");
+    assert!(gauss.contains(" (95th percentile of |K|; values from "), "{gauss}");
+    let (low, high) = values_from(&gauss);
+    assert!((low + 4.0 / 3.0).abs() < 0.02 && (high - 0.8).abs() < 0.02, "{gauss}");
+    let scale = number_after(&gauss, "curvature from ");
+    assert!(scale < 0.0 && -scale <= -low && -scale > 1.0, "{gauss}");
+    let first = std::fs::read(&out).unwrap();
+    run(&["render", &tor, "-o", &o, "--size", "320x240", "--color", "curvature-gauss", "--view", "front"]);
+    assert!(std::fs::read(&out).unwrap() == first, "two runs differ");
+
+    // The torus's H runs from (R − 2r)/(2r(R − r)) = 2/3 inside to (R + 2r)/(2r(R + r)) = 1.2 outside.
+    let mean = run(&["render", &tor, "-o", &o, "--size", "320x240", "--color", "curvature-mean"]);
+    assert!(mean.contains(", iso view, mean curvature from -"), "{mean}");
+    let (low, high) = values_from(&mean);
+    assert!((low - 2.0 / 3.0).abs() < 0.02 && (high - 1.2).abs() < 0.02, "{mean}");
+    let glass_mean = run(&["render", &glass, "-o", &o, "--size", "320x240", "--color", "curvature-mean"]);
+    assert!(glass_mean.contains("mean curvature from -1.26e1 to +1.26e1 (95th percentile of |H|"), "{glass_mean}");
+
+    let checker = run(&["render", &tor, "-o", &o, "--size", "320x240", "--color", "uv-checker"]);
+    assert!(checker.ends_with("2 curves, iso view, UV checker (8×8 squares per unit)\n"), "{checker}");
+
+    let level = run(&["render", &ico, "-o", &o, "--size", "320x240", "--color", "level", "--levels", "2"]);
+    assert!(
+        level.ends_with(
+            "mesh of 320 triangles after 2 levels of Loop subdivision, iso view, coloured by levels 0 to 2\n"
+        ),
+        "{level}"
+    );
+    let cc = run(&[
+        "render",
+        &ico,
+        "-o",
+        &o,
+        "--size",
+        "320x240",
+        "--color",
+        "level",
+        "--levels",
+        "2",
+        "--scheme",
+        "catmull-clark",
+    ]);
+    assert!(cc.contains("mesh of 480 triangles after 2 levels of Catmull-Clark subdivision"), "{cc}");
+    let base = run(&["render", &ico, "-o", &o, "--size", "320x240", "--color", "level"]);
+    assert!(base.ends_with("mesh of 20 triangles, iso view, coloured by level 0\n"), "{base}");
+    let sqrt3 = run(&["render", &ico, "-o", &o, "--size", "320x240", "--levels", "1", "--scheme", "sqrt3"]);
+    assert!(sqrt3.ends_with("mesh of 60 triangles after 1 level of √3 subdivision, iso view\n"), "{sqrt3}");
+}
+
+#[test]
+fn colouring_errors_name_the_problem_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.png");
+    let o = out.to_string_lossy().into_owned();
+    let ico = course_mesh("icosahedron.obj").to_string_lossy().into_owned();
+    let tor = swp("gcyl/tor.swp").to_string_lossy().into_owned();
+    let check = |parts: &[&str], needle: &str, usage: bool| {
+        let run = splinekit(&args(parts));
+        let stderr = if usage { run.fails() } else { run.fails_with_error() };
+        assert!(stderr.contains(needle), "{parts:?}: {stderr}");
+        assert!(!out.exists(), "{parts:?}: an output file was written");
+    };
+    check(
+        &["render", &ico, "-o", &o, "--color", "uv-checker"],
+        &format!("error: --color uv-checker: {ico} has no texture coordinates\n"),
+        false,
+    );
+    check(
+        &["render", &ico, "-o", &o, "--color", "uv-checker", "--levels", "1"],
+        &format!("error: --color uv-checker: {ico} has no texture coordinates\n"),
+        false,
+    );
+    check(&["render", &ico, "-o", &o, "--levels", "12"], "use fewer --levels", false);
+    check(&["render", &ico, "-o", &o, "--levels", "4000000000"], "more than the 20000000 that render draws", false);
+    check(&["render", &tor, "-o", &o, "--levels", "1"], "--levels subdivides mesh files", false);
+    check(
+        &["render", &ico, "-o", &o, "--levels", "1", "--scheme", "doo-sabin", "--color", "level"],
+        "--color level: Doo-Sabin subdivision makes every vertex anew",
+        false,
+    );
+    check(&["render", &ico, "-o", &o.replace(".png", ".svg"), "--levels", "1"], "SVG output draws curves only", false);
+    check(&["render", &ico, "-o", &o, "--scheme", "loop"], "--levels", true);
+    check(&["render", &ico, "-o", &o, "--color", "rainbow"], "curvature-gauss", true);
+}

@@ -62,6 +62,12 @@ pub enum RenderError {
         /// What is missing, e.g. `no curves or surfaces`.
         what: &'static str,
     },
+    /// The UV checker was asked for a file or mesh without texture coordinates.
+    #[error("{path} has no texture coordinates")]
+    NoTextureCoordinates {
+        /// The input file.
+        path: String,
+    },
     /// A marker spacing that is not a positive number.
     #[error("marker spacing must be a positive number, found {0}")]
     BadMarkerSpacing(f64),

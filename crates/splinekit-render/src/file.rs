@@ -1,26 +1,35 @@
 //! Pictures of files: [`render_file`] reads an SWP or mesh file and chooses the picture.
 //!
-//! - **SWP with surfaces**: a 3D picture ([`render_scene`]): every surface swept with the
+//! - **SWP with surfaces**: a 3D picture ([`render_scene`](crate::render_scene)): every surface swept with the
 //!   default [`SurfaceOptions`] and shaded, and every curve of the file drawn in 3D with its
 //!   control polygon (hidden where a surface is in front of it).
 //! - **SWP with only curves**: a 2D plot ([`plot_curves`]), orthographic; the default view is
 //!   `front` (the xy-plane) when every curve is 2D and `iso` otherwise.
-//! - **Mesh** (`.obj`, `.ply`, `.stl`): a 3D picture of the mesh ([`render_mesh`]).
+//! - **Mesh** (`.obj`, `.ply`, `.stl`): a 3D picture of the mesh ([`render_mesh`](crate::render_mesh)).
 //!
 //! The output is PNG, or SVG for a 2D plot.
+//!
+//! [`FileOptions::colour`] colours 3D pictures by curvature, UV checker or subdivision level
+//! ([`SurfaceColour`]). For the UV checker, SWP surfaces are swept with arc-length UVs (their
+//! seams split) and a mesh keeps its face-varying UVs (a vertex on a seam split in two,
+//! [`PolyMesh::to_tri_mesh_with_seams`](splinekit::PolyMesh::to_tri_mesh_with_seams)); a
+//! picture with no UVs at all is an error, [`RenderError::NoTextureCoordinates`].
 
 use std::path::Path;
 
 use splinekit::TriMesh;
+use splinekit::sweep::SweepOptions;
 use splinekit_io::surface::SurfaceOptions;
 use splinekit_io::{MeshFormat, SwpDocument};
 
+use crate::RenderError;
 use crate::camera::{View, bounding_radius};
+use crate::colour::SurfaceColour;
 use crate::image::{Image, ImageSize};
+use crate::legend::Legend;
 use crate::marks::{CurveOptions, Mark, PlotCurve, Theme, curve_marks};
 use crate::plot::{PlotOptions, plot_curves, plot_curves_svg};
 use crate::raster::{RenderOptions, Renderer};
-use crate::{RenderError, render_mesh};
 
 /// A picture format, chosen by the output's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -93,6 +102,8 @@ pub struct Rendered {
     pub num_curves: usize,
     /// Triangles drawn.
     pub num_triangles: usize,
+    /// What the colours stand for (curvature and level colourings), as drawn in the picture.
+    pub legend: Option<Legend>,
 }
 
 /// Options of [`render_file`].
@@ -107,12 +118,19 @@ pub struct FileOptions {
     pub wireframe: bool,
     /// What to draw with curves.
     pub curves: CurveOptions,
+    /// What colours surfaces and meshes (3D pictures).
+    pub colour: SurfaceColour,
 }
 
 impl FileOptions {
-    /// 800×600, the chosen view, no wireframe, control polygons.
-    pub const DEFAULT: Self =
-        Self { size: ImageSize::DEFAULT, view: None, wireframe: false, curves: CurveOptions::DEFAULT };
+    /// 800×600, the chosen view, no wireframe, control polygons, shaded surfaces.
+    pub const DEFAULT: Self = Self {
+        size: ImageSize::DEFAULT,
+        view: None,
+        wireframe: false,
+        curves: CurveOptions::DEFAULT,
+        colour: SurfaceColour::Shade,
+    };
 
     /// With this size.
     #[must_use]
@@ -141,6 +159,13 @@ impl FileOptions {
         self.curves = curves;
         self
     }
+
+    /// With this colouring of surfaces and meshes.
+    #[must_use]
+    pub fn with_colour(mut self, colour: SurfaceColour) -> Self {
+        self.colour = colour;
+        self
+    }
 }
 
 impl Default for FileOptions {
@@ -153,8 +178,8 @@ impl Default for FileOptions {
 ///
 /// # Errors
 /// An unknown input extension, a file that cannot be read or parsed, a curve or surface that
-/// cannot be built, a file with nothing to draw, a bad marker spacing, or SVG asked for a 3D
-/// picture.
+/// cannot be built, a file with nothing to draw, a bad marker spacing, SVG asked for a 3D
+/// picture, or the UV checker asked for a file without texture coordinates.
 pub fn render_file(input: &Path, format: PictureFormat, options: &FileOptions) -> Result<Rendered, RenderError> {
     if let Some(spacing) = options.curves.marker_spacing
         && !(spacing > 0.0 && spacing.is_finite())
@@ -173,12 +198,30 @@ pub fn render_file(input: &Path, format: PictureFormat, options: &FileOptions) -
         return Err(RenderError::SvgOf3d { path, what: "a mesh" });
     }
     let loaded = splinekit_io::load_mesh(input)?;
-    let mesh = loaded.mesh.to_tri_mesh();
+    let mesh = if options.colour == SurfaceColour::UvChecker {
+        loaded.mesh.to_tri_mesh_with_seams()
+    } else {
+        loaded.mesh.to_tri_mesh()
+    };
+    render_tri_mesh(&mesh, &path, options)
+}
+
+/// Draws a mesh already in memory as [`render_file`] draws a mesh file (a PNG picture);
+/// `path` names it in errors. For the UV checker, give it per-vertex UVs (a mesh read from a
+/// file: [`PolyMesh::to_tri_mesh_with_seams`](splinekit::PolyMesh::to_tri_mesh_with_seams)).
+///
+/// # Errors
+/// [`RenderError::Empty`] for a mesh without triangles, [`RenderError::NoTextureCoordinates`]
+/// for the UV checker on a mesh without UVs.
+pub fn render_tri_mesh(mesh: &TriMesh, path: &str, options: &FileOptions) -> Result<Rendered, RenderError> {
     if mesh.triangles.is_empty() {
-        return Err(RenderError::Empty { path, what: "the mesh has no faces" });
+        return Err(RenderError::Empty { path: path.to_string(), what: "the mesh has no faces" });
+    }
+    if options.colour == SurfaceColour::UvChecker && mesh.uvs.len() != mesh.positions.len() {
+        return Err(RenderError::NoTextureCoordinates { path: path.to_string() });
     }
     let view = options.view.unwrap_or_default();
-    let image = render_mesh(&mesh, &render_options(options, view));
+    let (image, legend) = Renderer::new().render_with_legend(&[mesh], &[], &render_options(options, view));
     Ok(Rendered {
         picture: Picture::Image(image),
         kind: PictureKind::Mesh,
@@ -186,16 +229,29 @@ pub fn render_file(input: &Path, format: PictureFormat, options: &FileOptions) -
         num_surfaces: 1,
         num_curves: 0,
         num_triangles: mesh.triangles.len(),
+        legend,
     })
 }
 
 fn render_options(options: &FileOptions, view: View) -> RenderOptions {
-    RenderOptions::DEFAULT.with_size(options.size).with_view(view).with_wireframe(options.wireframe)
+    RenderOptions::DEFAULT
+        .with_size(options.size)
+        .with_view(view)
+        .with_wireframe(options.wireframe)
+        .with_colour(options.colour)
 }
 
 fn render_swp(input: &Path, path: &str, format: PictureFormat, options: &FileOptions) -> Result<Rendered, RenderError> {
     let doc = SwpDocument::read(input)?;
-    let meshes = sweep_surfaces(&doc, path)?;
+    let meshes = if options.colour == SurfaceColour::UvChecker {
+        let uvs = SurfaceOptions {
+            sweep: SweepOptions { uvs: true, ..SweepOptions::default() },
+            ..SurfaceOptions::default()
+        };
+        sweep_surfaces_with(&doc, path, &uvs)?
+    } else {
+        sweep_surfaces(&doc, path)?
+    };
     render_swp_document(&doc, &meshes, path, format, options)
 }
 
@@ -205,11 +261,21 @@ fn render_swp(input: &Path, path: &str, format: PictureFormat, options: &FileOpt
 /// # Errors
 /// [`RenderError::Surface`] for the first surface that cannot be swept.
 pub fn sweep_surfaces(doc: &SwpDocument, path: &str) -> Result<Vec<TriMesh>, RenderError> {
+    sweep_surfaces_with(doc, path, &SurfaceOptions::default())
+}
+
+/// Every surface of `doc` swept with `options` (for example with UVs, for the UV checker),
+/// in file order; `path` names the file in errors.
+///
+/// # Errors
+/// [`RenderError::Surface`] for the first surface that cannot be swept.
+pub fn sweep_surfaces_with(
+    doc: &SwpDocument,
+    path: &str,
+    options: &SurfaceOptions,
+) -> Result<Vec<TriMesh>, RenderError> {
     (0..doc.surfaces.len())
-        .map(|i| {
-            doc.surface_mesh(i, &SurfaceOptions::default())
-                .map_err(|source| RenderError::Surface { path: path.to_string(), source })
-        })
+        .map(|i| doc.surface_mesh(i, options).map_err(|source| RenderError::Surface { path: path.to_string(), source }))
         .collect()
 }
 
@@ -261,10 +327,14 @@ pub fn render_swp_document(
             num_surfaces: 0,
             num_curves: curves.len(),
             num_triangles: 0,
+            legend: None,
         });
     }
     if format == PictureFormat::Svg {
         return Err(RenderError::SvgOf3d { path: path.to_string(), what: "surfaces" });
+    }
+    if options.colour == SurfaceColour::UvChecker && meshes.iter().all(|m| m.uvs.len() != m.positions.len()) {
+        return Err(RenderError::NoTextureCoordinates { path: path.to_string() });
     }
     let view = options.view.unwrap_or_default();
     let radius = bounding_radius(
@@ -272,7 +342,7 @@ pub fn render_swp_document(
     );
     let marks: Vec<Mark> = curve_marks(&curves, &options.curves, Theme::Dark, radius);
     let refs: Vec<&TriMesh> = meshes.iter().collect();
-    let image = Renderer::new().render(&refs, &marks, &render_options(options, view));
+    let (image, legend) = Renderer::new().render_with_legend(&refs, &marks, &render_options(options, view));
     Ok(Rendered {
         picture: Picture::Image(image),
         kind: PictureKind::Surfaces,
@@ -280,6 +350,7 @@ pub fn render_swp_document(
         num_surfaces: meshes.len(),
         num_curves: curves.len(),
         num_triangles: meshes.iter().map(|m| m.triangles.len()).sum(),
+        legend,
     })
 }
 

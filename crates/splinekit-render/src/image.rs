@@ -112,6 +112,22 @@ impl Image {
         write_bytes(path.as_ref(), &bytes)
     }
 
+    /// Fills the `w × h` rectangle with its top left corner at `(x, y)` with an opaque
+    /// colour; the part outside the image is cut off.
+    pub(crate) fn fill_rect(&mut self, x: i64, y: i64, w: u32, h: u32, colour: Rgb) {
+        let (iw, ih) = (i64::from(self.width), i64::from(self.height));
+        let (x0, x1) = (x.clamp(0, iw), (x + i64::from(w)).clamp(0, iw));
+        let (y0, y1) = (y.clamp(0, ih), (y + i64::from(h)).clamp(0, ih));
+        let [r, g, b] = colour;
+        for row in y0..y1 {
+            let start = 4 * (row * iw + x0) as usize;
+            let end = 4 * (row * iw + x1) as usize;
+            for p in self.data[start..end].chunks_exact_mut(4) {
+                p.copy_from_slice(&[r, g, b, 255]);
+            }
+        }
+    }
+
     /// The image as a tiny-skia pixmap (premultiplied; the same bytes for opaque images).
     pub(crate) fn to_pixmap(&self) -> Result<tiny_skia::Pixmap, RenderError> {
         let size = tiny_skia::IntSize::from_wh(self.width, self.height)

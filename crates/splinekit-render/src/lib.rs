@@ -5,7 +5,9 @@
 //!   depth buffer, 2×2 supersampling, per-pixel lighting, front and back faces in different
 //!   colours and an optional wireframe with hidden lines removed ([module `raster`](raster)).
 //!   Curves, control polygons, frames and markers are [`Mark`]s drawn in the same depth
-//!   buffer.
+//!   buffer. Surfaces can be coloured by mean or Gaussian curvature, a UV checker or
+//!   subdivision level instead of one colour ([`SurfaceColour`]), with a [`Legend`] drawn
+//!   into the picture in a small built-in bitmap font.
 //! - **2D** ([`plot_curves`], [`plot_curves_svg`]): curves coloured by segment with control
 //!   polygons, frames and arc-length markers, drawn with tiny-skia or written as SVG.
 //! - **Files** ([`render_file`]): reads SWP or mesh files and picks the picture (3D when the
@@ -56,21 +58,27 @@
 //!   The pictures are the same with or without it.
 
 pub mod camera;
+pub mod colour;
 mod error;
 pub mod file;
+mod font;
 pub mod gallery;
 pub mod image;
+pub mod legend;
 pub mod marks;
 pub mod plot;
 pub mod raster;
 
 pub use camera::{Camera, DEFAULT_MARGIN, Projection, View, ViewError};
+pub use colour::{Curvature, SurfaceColour, checker_colour, diverging_colour, level_colour, symmetric_scale};
 pub use error::RenderError;
 pub use file::{
-    FileOptions, Picture, PictureFormat, PictureKind, Rendered, render_file, render_swp_document, sweep_surfaces,
+    FileOptions, Picture, PictureFormat, PictureKind, Rendered, render_file, render_swp_document, render_tri_mesh,
+    sweep_surfaces, sweep_surfaces_with,
 };
 pub use gallery::{Gallery, GalleryOptions, write_gallery};
 pub use image::{Image, ImageSize, MAX_SIDE, Rgb, SizeError};
+pub use legend::Legend;
 pub use marks::{CurveOptions, Mark, PlotCurve, SEGMENT_COLOURS, Theme, curve_marks};
 pub use plot::{PlotOptions, draw_marks, marks_svg, plot_curves, plot_curves_svg};
 pub use raster::{

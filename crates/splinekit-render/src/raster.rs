@@ -25,6 +25,11 @@
 //!    see [`TriMesh`]) take the front colour or the mesh's vertex colours, back faces the
 //!    back colour. The wireframe overlay darkens pixels within half a line width of a
 //!    triangle's own edges, so hidden lines stay hidden.
+//! 4. **Colours** ([`RenderOptions::colour`], [`SurfaceColour`]): curvature and level
+//!    colours replace the front colour per vertex (interpolated like the mesh's own vertex
+//!    colours); the UV checker is evaluated per sample from perspective-correct UVs (each
+//!    sample shaded on its own, so the squares' edges are anti-aliased too). Curvature and
+//!    level pictures get a [`Legend`] in their bottom left corner.
 //!
 //! The picture is made in bands of 16 pixel rows: the triangles are first binned by band
 //! (in parallel chunks, in drawing order), then each band is rasterized into a thread's own
@@ -37,11 +42,18 @@
 //! one) and 14 ms with one sample per pixel (28 ms on one); per-pixel shading takes about
 //! half of it, rasterization a third.
 
-use glam::{DVec3, Vec3A};
+use glam::{DVec2, DVec3, Vec3A};
 use splinekit::TriMesh;
+use splinekit::mesh::vertex_curvature;
+use splinekit::subdiv::LEVEL_COLORS;
 
 use crate::camera::{Camera, DEFAULT_MARGIN, EMPTY_BOX, Extent, Projection, View, bounds, box_radius, grow_box};
+use crate::colour::{
+    CHECKER_COLOURS, Curvature, MIN_RELATIVE_SCALE, SCALE_PERCENTILE, SurfaceColour, checker_parity, diverging_colour,
+    symmetric_scale, to_unit,
+};
 use crate::image::{Image, ImageSize, Rgb};
+use crate::legend::Legend;
 use crate::marks::Mark;
 
 /// Front faces (light grey-blue, as the editor).
@@ -118,10 +130,15 @@ pub struct RenderOptions {
     pub back: Rgb,
     /// Wireframe lines.
     pub wire: Rgb,
+    /// What colours the front of surfaces.
+    pub colour: SurfaceColour,
+    /// Draw the [`Legend`] of a curvature or level colouring into the picture.
+    pub legend: bool,
 }
 
 impl RenderOptions {
-    /// 800×600, iso view, perspective, no wireframe, 2×2 samples, the editor's colours.
+    /// 800×600, iso view, perspective, no wireframe, 2×2 samples, the editor's colours,
+    /// shaded surfaces ([`SurfaceColour::Shade`]), legends drawn.
     pub const DEFAULT: Self = Self {
         size: ImageSize::DEFAULT,
         view: View::Iso,
@@ -134,6 +151,8 @@ impl RenderOptions {
         front: FRONT_COLOUR,
         back: BACK_COLOUR,
         wire: WIRE_COLOUR,
+        colour: SurfaceColour::Shade,
+        legend: true,
     };
 
     /// With this size.
@@ -182,6 +201,20 @@ impl RenderOptions {
     #[must_use]
     pub fn with_background(mut self, colour: Rgb) -> Self {
         self.background = colour;
+        self
+    }
+
+    /// With this surface colouring.
+    #[must_use]
+    pub fn with_colour(mut self, colour: SurfaceColour) -> Self {
+        self.colour = colour;
+        self
+    }
+
+    /// With or without the legend of a colouring.
+    #[must_use]
+    pub fn with_legend(mut self, legend: bool) -> Self {
+        self.legend = legend;
         self
     }
 
@@ -243,7 +276,7 @@ struct Vert {
     inv_w: f32,
     view: Vec3A,
     normal: Vec3A,
-    /// Linear RGB front colour.
+    /// Linear RGB front colour; for a mesh drawn with the UV checker, its UV `(u, v, 0)`.
     colour: Vec3A,
 }
 
@@ -269,6 +302,12 @@ struct Frame<'a> {
     verts: &'a [Vert],
     mark_tris: &'a [MarkTri],
     smooth: Vec<bool>,
+    /// Per mesh: drawn with the UV checker (its vertices carry UVs).
+    checker: Vec<bool>,
+    /// Shade every sample on its own (the UV checker).
+    per_sample: bool,
+    /// The checker's two colours, linear.
+    checker_colours: [Vec3A; 2],
     perspective: bool,
     /// The Blinn–Phong half vector for the parallel projection's eye direction `+z`.
     half_ortho: Vec3A,
@@ -289,6 +328,19 @@ impl Renderer {
     /// Renders `meshes` and `marks`. See the [module docs](self).
     #[must_use]
     pub fn render(&mut self, meshes: &[&TriMesh], marks: &[Mark], options: &RenderOptions) -> Image {
+        self.render_with_legend(meshes, marks, options).0
+    }
+
+    /// Renders `meshes` and `marks` as [`Self::render`] does, and says what the colours
+    /// stand for: the [`Legend`] of a curvature or level colouring (drawn into the picture
+    /// when [`RenderOptions::legend`] is set), `None` for the others.
+    #[must_use]
+    pub fn render_with_legend(
+        &mut self,
+        meshes: &[&TriMesh],
+        marks: &[Mark],
+        options: &RenderOptions,
+    ) -> (Image, Option<Legend>) {
         let size = options.size;
         let ss = options.samples_per_side();
         let (sw, sh) = (size.width as usize * ss as usize, size.height as usize * ss as usize);
@@ -309,11 +361,13 @@ impl Renderer {
         let radius = box_radius(lo, hi);
 
         // Vertices.
+        let (coloured, legend) = surface_colours(meshes, options.colour, radius);
         let mut vert_offsets = Vec::with_capacity(meshes.len());
         let mut smooth = Vec::with_capacity(meshes.len());
+        let mut checker = Vec::with_capacity(meshes.len());
         self.verts.clear();
         let front = linear_rgb(options.front);
-        for mesh in meshes {
+        for (mesh, coloured) in meshes.iter().zip(&coloured) {
             vert_offsets.push(self.verts.len());
             let has_normals = mesh.normals.len() == mesh.positions.len();
             let use_smooth = match options.shading {
@@ -331,8 +385,15 @@ impl Renderer {
             } else {
                 &[]
             };
-            let colours = mesh.colors.len() == mesh.positions.len();
-            project_vertices(&camera, ss, mesh, normals, colours.then_some(&mesh.colors[..]), front, &mut self.verts);
+            let n = mesh.positions.len();
+            let attribute = match coloured {
+                _ if options.colour == SurfaceColour::UvChecker && mesh.uvs.len() == n => Attribute::Uvs(&mesh.uvs),
+                Some(colours) => Attribute::Colours(colours),
+                None if mesh.colors.len() == n => Attribute::Colours(&mesh.colors),
+                None => Attribute::Front(front),
+            };
+            checker.push(matches!(attribute, Attribute::Uvs(_)));
+            project_vertices(&camera, ss, mesh, normals, attribute, &mut self.verts);
         }
         let mut offsets = Vec::with_capacity(meshes.len() + 1);
         let mut total = 0u64;
@@ -364,6 +425,9 @@ impl Renderer {
             verts: &self.verts,
             mark_tris: &self.mark_tris,
             smooth,
+            per_sample: checker.contains(&true),
+            checker,
+            checker_colours: CHECKER_COLOURS.map(linear_rgb),
             perspective: options.projection == Projection::Perspective,
             half_ortho: (LIGHT + Vec3A::Z).normalize(),
             ss,
@@ -427,8 +491,64 @@ impl Renderer {
             let mut scratch = BandBuffers::default();
             bands.for_each(|b| band(&mut scratch, b));
         }
-        Image::from_rgba(size.width, size.height, data).expect("the buffer has the image's size")
+        let mut image = Image::from_rgba(size.width, size.height, data).expect("the buffer has the image's size");
+        if let (Some(legend), true) = (&legend, options.legend) {
+            legend.draw(&mut image);
+        }
+        (image, legend)
     }
+}
+
+/// Per mesh, the vertex colours (sRGB in `[0, 1]`) that `colour` gives it instead of its
+/// own (`None`: its own, or the front colour), and the legend; `radius` is the scene's.
+fn surface_colours(
+    meshes: &[&TriMesh],
+    colour: SurfaceColour,
+    radius: f64,
+) -> (Vec<Option<Vec<DVec3>>>, Option<Legend>) {
+    match colour {
+        SurfaceColour::Curvature(curvature) => {
+            let values: Vec<Vec<f64>> = meshes
+                .iter()
+                .map(|m| {
+                    let c = vertex_curvature(m);
+                    match curvature {
+                        Curvature::Mean => c.mean,
+                        Curvature::Gaussian => c.gauss,
+                    }
+                })
+                .collect();
+            let floor = MIN_RELATIVE_SCALE / radius.powi(curvature.inverse_length_power());
+            let scale = symmetric_scale(values.iter().flatten().copied(), SCALE_PERCENTILE, floor);
+            let t = |x: f64| if scale > 0.0 { x / scale } else { 0.0 };
+            let colours = values.iter().map(|v| Some(v.iter().map(|&x| to_unit(diverging_colour(t(x)))).collect()));
+            let (min, max) = values
+                .iter()
+                .flatten()
+                .filter(|v| v.is_finite())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+            let (min, max) = if min <= max { (min, max) } else { (0.0, 0.0) };
+            (colours.collect(), Some(Legend::Curvature { curvature, scale, min, max }))
+        }
+        SurfaceColour::Level { levels } => {
+            // At level 0 every vertex is level 0, whatever colours the mesh has.
+            let n = |m: &TriMesh| m.positions.len();
+            let base = |m: &TriMesh| (levels == 0 || m.colors.len() != n(m)).then(|| vec![LEVEL_COLORS[0]; n(m)]);
+            (meshes.iter().map(|m| base(m)).collect(), Some(Legend::Levels { levels }))
+        }
+        SurfaceColour::Shade | SurfaceColour::UvChecker => (vec![None; meshes.len()], None),
+    }
+}
+
+/// What a mesh's projected vertices carry in [`Vert::colour`].
+#[derive(Clone, Copy)]
+enum Attribute<'a> {
+    /// One colour for all (linear).
+    Front(Vec3A),
+    /// A colour per vertex (sRGB in `[0, 1]`).
+    Colours(&'a [DVec3]),
+    /// A UV per vertex (the UV checker).
+    Uvs(&'a [DVec2]),
 }
 
 /// `items` folded with `fold` from `init` (in parallel chunks for large inputs, the
@@ -458,8 +578,7 @@ fn project_vertices(
     ss: u32,
     mesh: &TriMesh,
     normals: &[DVec3],
-    colours: Option<&[DVec3]>,
-    front: Vec3A,
+    attribute: Attribute<'_>,
     out: &mut Vec<Vert>,
 ) {
     let ss = f64::from(ss);
@@ -472,10 +591,14 @@ fn project_vertices(
             Projection::Orthographic => (-q.depth, 1.0),
         };
         let normal = normals.get(i).map_or(Vec3A::ZERO, |&n| camera.dir_to_view(n).as_vec3a().normalize_or_zero());
-        let colour = colours.map_or(front, |c| {
-            let c = c[i];
-            Vec3A::new(srgb_to_linear(c.x as f32), srgb_to_linear(c.y as f32), srgb_to_linear(c.z as f32))
-        });
+        let colour = match attribute {
+            Attribute::Front(front) => front,
+            Attribute::Colours(c) => {
+                let c = c[i];
+                Vec3A::new(srgb_to_linear(c.x as f32), srgb_to_linear(c.y as f32), srgb_to_linear(c.z as f32))
+            }
+            Attribute::Uvs(uv) => Vec3A::new(uv[i].x as f32, uv[i].y as f32, 0.0),
+        };
         Vert {
             x: if valid { (q.x * ss) as f32 } else { f32::NAN },
             y: (q.y * ss) as f32,
@@ -819,6 +942,19 @@ impl Frame<'_> {
             }
             let samples = grid.as_flattened();
             let first = samples[0];
+            if self.per_sample {
+                // Every sample on its own, at its centre.
+                let weight = 1.0 / (SS * SS) as f32;
+                for (j, &id) in samples.iter().enumerate() {
+                    if let Some(c) = self.plain_colour(id) {
+                        *colour += c * weight;
+                    } else {
+                        let (x, y) = ((px * SS + j % SS) as f32 + 0.5, (py * SS + j / SS) as f32 + 0.5);
+                        requests.push(Request { id, x, y, weight, pixel: px as u32 });
+                    }
+                }
+                continue;
+            }
             if samples.iter().all(|&s| s == first) || self.one_smooth_surface::<SS>(samples, depth, (px, r)) {
                 if let Some(c) = self.plain_colour(first) {
                     *colour = c;
@@ -944,7 +1080,14 @@ impl Frame<'_> {
             Some(s) => s,
             None => ng.normalize_or(to_eye),
         };
-        let base = if front_facing { v[0].colour * m[0] + v[1].colour * m[1] + v[2].colour * m[2] } else { self.back };
+        let base = if !front_facing {
+            self.back
+        } else if self.per_sample && self.checker[mi] {
+            let uv = v[0].colour * m[0] + v[1].colour * m[1] + v[2].colour * m[2];
+            self.checker_colours[checker_parity(uv.x, uv.y)]
+        } else {
+            v[0].colour * m[0] + v[1].colour * m[1] + v[2].colour * m[2]
+        };
         let diffuse = n.dot(LIGHT).max(0.0);
         let h = if self.perspective { (LIGHT + to_eye).normalize_or(Vec3A::Z) } else { self.half_ortho };
         let x = n.dot(h).max(0.0);

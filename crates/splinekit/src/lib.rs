@@ -51,5 +51,5 @@ pub use curve::{
     Aabb, AnyCurve, BEZIER_BASIS, BSPLINE_BASIS, BSpline, BezierSpline, CATMULL_ROM_BASIS, CatmullRom, Circle,
     CubicBezier, Helix, Hermite, ParamCurve, PiecewiseCubic, SplineError, Trefoil,
 };
-pub use mesh::{Adjacency, FaceVarying, MeshError, PolyMesh, TriMesh};
+pub use mesh::{Adjacency, FaceVarying, MeshError, PolyMesh, TriMesh, VertexCurvature, vertex_curvature};
 pub use vector::Vector;

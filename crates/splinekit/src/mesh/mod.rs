@@ -1,14 +1,17 @@
 //! Meshes. [`TriMesh`] is the indexed triangle mesh that sweeps produce and the mesh
 //! writers consume; [`PolyMesh`] is the polygon mesh that readers produce and subdivision
-//! works on, with its half-edge [`Adjacency`].
+//! works on, with its half-edge [`Adjacency`]. [`vertex_curvature`] measures the mean and
+//! Gaussian curvature of a triangle mesh at its vertices.
 
 use std::collections::HashMap;
 
 mod adjacency;
+pub mod curvature;
 mod poly;
 mod validate;
 
 pub use adjacency::{Adjacency, EdgeProblem, NONE};
+pub use curvature::{VertexCurvature, WELD_TOLERANCE, vertex_curvature};
 pub use poly::{FaceVarying, PolyMesh};
 pub use validate::{
     BoundaryLoop, Component, DEFAULT_DEGENERATE_TOLERANCE, DEFAULT_LISTED, Degeneracy, DegenerateFace, DuplicateFace,

@@ -87,16 +87,17 @@ pub struct LoopOptions {
 }
 
 /// The colours of [`LoopOptions::color_by_level`]: level `k` uses entry `k % 8` (base mesh
-/// grey, then red, orange, yellow, green, cyan, blue, magenta).
+/// grey, then blue, green, yellow, magenta, cyan, pink, violet). None is near the renderers'
+/// orange-red of back faces, so a level never reads as a surface seen from behind.
 pub const LEVEL_COLORS: [DVec3; 8] = [
     DVec3::new(0.6, 0.6, 0.6),
-    DVec3::new(0.9, 0.2, 0.2),
-    DVec3::new(0.95, 0.6, 0.1),
-    DVec3::new(0.9, 0.85, 0.1),
-    DVec3::new(0.2, 0.75, 0.3),
-    DVec3::new(0.1, 0.75, 0.85),
-    DVec3::new(0.2, 0.35, 0.9),
-    DVec3::new(0.8, 0.3, 0.85),
+    DVec3::new(0.25, 0.45, 0.95),
+    DVec3::new(0.25, 0.8, 0.35),
+    DVec3::new(0.95, 0.85, 0.15),
+    DVec3::new(0.85, 0.3, 0.85),
+    DVec3::new(0.15, 0.8, 0.85),
+    DVec3::new(0.95, 0.6, 0.75),
+    DVec3::new(0.6, 0.4, 0.95),
 ];
 
 /// Why a mesh cannot be subdivided.
