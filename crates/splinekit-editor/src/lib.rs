@@ -47,6 +47,8 @@ use splinekit::{PolyMesh, TriMesh};
 use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
 use splinekit_io::surface::{SurfaceError, SurfaceOptions};
 use splinekit_io::{SwpDocument, SwpFrames, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation};
+use splinekit_render::legend::format_value;
+use splinekit_render::{Curvature, Legend, SurfaceColour, diverging_colour, level_colour};
 
 pub use doc::{DocKind, Document, ViewedMesh};
 use files::{FileDialog, Outcome, Purpose, RecentFiles};
@@ -422,6 +424,10 @@ enum Shown {
 /// The document's surfaces swept in the background, with their vertex data for the 3D view.
 type SweepResult = (SweptSurfaces, view3d::PreparedMesh);
 
+/// The most triangles the 3D view colours by curvature or UVs (the colours are made on the
+/// UI thread: about a second at this size).
+pub const COLOUR_MAX_TRIANGLES: usize = 2_000_000;
+
 /// Mesh files larger than this (bytes) are read on a worker thread.
 pub const BACKGROUND_BYTES: u64 = 4_000_000;
 
@@ -488,6 +494,13 @@ pub struct EditorApp {
     pub color_by_level: bool,
     /// The axis `Revolve` turns the active curve about.
     pub revolve_axis: RevolveAxis,
+    /// How the 3D view colours the surfaces or the mesh (`Colour`): shaded, by mean or
+    /// Gaussian curvature, or a UV checker (the level colours are `Colour by level`).
+    pub colouring: SurfaceColour,
+    /// The legend of the colours shown in the 3D view (curvature scale, or levels).
+    legend: Option<Legend>,
+    /// The colouring the 3D view's data was made with.
+    shown_colouring: Option<(SurfaceColour, bool)>,
     /// The 3D view (its settings: wireframe, normals, …).
     pub view3d: View3d,
     /// The last message (errors start with "Error").
@@ -548,6 +561,9 @@ impl Default for EditorApp {
             mesh: None,
             color_by_level: false,
             revolve_axis: RevolveAxis::Y,
+            colouring: SurfaceColour::Shade,
+            legend: None,
+            shown_colouring: None,
             view3d: View3d::new(),
             status: "Shift+click to add points; press h for help".to_owned(),
             show_help: false,
@@ -1225,10 +1241,32 @@ impl EditorApp {
             (None, Some((revision, full))) => Shown::Document { revision, full },
             (None, None) => return,
         };
-        if self.shown == Some(shown) {
+        let colouring = (self.colouring, self.color_by_level);
+        if self.shown == Some(shown) && self.shown_colouring == Some(colouring) {
             return;
         }
         self.shown = Some(shown);
+        self.shown_colouring = Some(colouring);
+        self.view3d.settings.checker = false;
+        self.legend = match &self.mesh {
+            Some(m) if self.color_by_level && self.colouring == SurfaceColour::Shade => {
+                Some(Legend::Levels { levels: u32::try_from(m.level).unwrap_or(u32::MAX) })
+            }
+            _ => None,
+        };
+        if self.colouring != SurfaceColour::Shade {
+            match self.coloured_mesh() {
+                Ok((mesh, legend)) => {
+                    self.prepared = None;
+                    self.prepared_mesh = None;
+                    self.view3d.settings.checker = self.colouring == SurfaceColour::UvChecker;
+                    self.view3d.set_mesh(&mesh);
+                    self.legend = legend;
+                    return;
+                }
+                Err(why) => self.status = format!("Error: {why}; shown shaded"),
+            }
+        }
         match &self.mesh {
             Some(m) => match self.prepared_mesh.take() {
                 Some((key, prepared)) if key == mesh_key(m) => self.view3d.set_prepared(prepared),
@@ -1238,6 +1276,60 @@ impl EditorApp {
                 Some(prepared) => self.view3d.set_prepared(prepared),
                 None => self.view3d.set_mesh(&self.surfaces.mesh),
             },
+        }
+    }
+
+    /// The mesh shown (the mesh's level, or the document's surfaces) coloured by
+    /// [`colouring`](Self::colouring), and its legend: vertex colours from the curvature with
+    /// the render crate's map and scale, or the UVs (in the red and green of the vertex
+    /// colours) for the checker. The surfaces are swept again with UVs for the checker.
+    ///
+    /// # Errors
+    /// A mesh of more than [`COLOUR_MAX_TRIANGLES`] triangles, or no UVs for the checker.
+    fn coloured_mesh(&self) -> Result<(TriMesh, Option<Legend>), String> {
+        let triangles = match &self.mesh {
+            Some(m) => m.faces(),
+            None => self.surfaces.mesh.num_triangles(),
+        };
+        if triangles > COLOUR_MAX_TRIANGLES {
+            return Err(format!(
+                "colouring by {} takes at most {COLOUR_MAX_TRIANGLES} triangles; this has {triangles}",
+                self.colouring.name()
+            ));
+        }
+        let mut mesh = match (&self.mesh, self.colouring) {
+            (Some(m), _) => m.shown(),
+            (None, SurfaceColour::UvChecker) => {
+                let mut options = editor_sweep_options();
+                options.sweep.uvs = true;
+                SweptSurfaces::sweep_with(&self.doc.swp, &options).mesh
+            }
+            (None, _) => self.surfaces.mesh.clone(),
+        };
+        if mesh.triangles.is_empty() {
+            return Ok((mesh, None));
+        }
+        match self.colouring {
+            SurfaceColour::UvChecker => {
+                if mesh.uvs.len() != mesh.positions.len() {
+                    return Err("the UV checker needs texture coordinates, and this mesh has none".to_owned());
+                }
+                mesh.colors = mesh
+                    .uvs
+                    .iter()
+                    .map(|uv| glam::DVec3::new(uv.x.rem_euclid(1.0), uv.y.rem_euclid(1.0), 0.0))
+                    .collect();
+                Ok((mesh, None))
+            }
+            SurfaceColour::Curvature(_) => {
+                let radius = splinekit_render::camera::bounding_radius(mesh.positions.iter().copied());
+                let (mut colours, legend) = splinekit_render::surface_colours(&[&mesh], self.colouring, radius);
+                if let Some(Some(c)) = colours.pop() {
+                    mesh.colors = c;
+                }
+                Ok((mesh, legend))
+            }
+            SurfaceColour::Shade | SurfaceColour::Level { .. } => Ok((mesh, None)),
         }
     }
 
@@ -1632,6 +1724,18 @@ impl EditorApp {
         }
         egui::CollapsingHeader::new("3D display").default_open(true).show(ui, |ui| {
             ui.horizontal_wrapped(|ui| self.view3d.settings.ui(ui));
+            let choices = [
+                (SurfaceColour::Shade, "shaded"),
+                (SurfaceColour::Curvature(Curvature::Mean), "mean curvature"),
+                (SurfaceColour::Curvature(Curvature::Gaussian), "Gaussian curvature"),
+                (SurfaceColour::UvChecker, "UV checker"),
+            ];
+            let current = choices.iter().find(|(c, _)| *c == self.colouring).map_or("shaded", |(_, n)| n);
+            egui::ComboBox::from_label("Colour").selected_text(current).show_ui(ui, |ui| {
+                for (c, name) in choices {
+                    ui.selectable_value(&mut self.colouring, c, name);
+                }
+            });
         });
         ui.separator();
         self.update_view3d(Some(ui.ctx()));
@@ -1639,7 +1743,10 @@ impl EditorApp {
         let handles = if self.mesh.is_none() && !self.doc.is_2d() { self.doc.points().to_vec() } else { Vec::new() };
         let mut overlay = if self.mesh.is_none() { self.scene_overlay() } else { view3d::Overlay::default() };
         overlay.selected = self.view.selected;
-        let (_, drag) = self.view3d.ui_with_overlay(ui, frame, &handles, &overlay);
+        let (response, drag) = self.view3d.ui_with_overlay(ui, frame, &handles, &overlay);
+        if let Some(legend) = &self.legend {
+            paint_legend(ui, response.rect, legend);
+        }
         if let Some(i) = self.view3d.take_clicked_handle() {
             self.view.selected = Some(i);
         }
@@ -2217,6 +2324,74 @@ fn settings_controls(
         }
     }
     edited
+}
+
+/// Draws `legend` in the bottom left corner of the 3D view `rect`: the curvature's colour bar
+/// with `−m`, `0` and `+m` (pointed ends: values beyond show the end colours), or a swatch
+/// per subdivision level.
+fn paint_legend(ui: &egui::Ui, rect: egui::Rect, legend: &Legend) {
+    use egui::{Align2, Color32, FontId, Rect, pos2, vec2};
+    let painter = ui.painter_at(rect);
+    let colour = |c: [u8; 3]| Color32::from_rgb(c[0], c[1], c[2]);
+    let font = FontId::proportional(12.0);
+    match *legend {
+        Legend::Curvature { curvature, scale, .. } => {
+            let (w, h) = (180.0, 10.0);
+            // room for the end labels, centred under the ends
+            let bar = Rect::from_min_size(rect.left_bottom() + vec2(40.0, -34.0), vec2(w, h));
+            painter.rect_filled(
+                Rect::from_min_max(bar.min - vec2(32.0, 22.0), bar.max + vec2(32.0, 22.0)),
+                4.0,
+                Color32::from_black_alpha(170),
+            );
+            painter.text(
+                bar.left_top() - vec2(0.0, 4.0),
+                Align2::LEFT_BOTTOM,
+                curvature.title(),
+                font.clone(),
+                Color32::WHITE,
+            );
+            let steps = 60;
+            for i in 0..steps {
+                let t = -1.0 + (2.0 * i as f64 + 1.0) / f64::from(steps);
+                let x0 = bar.left() + w * i as f32 / steps as f32;
+                let cell = Rect::from_min_max(pos2(x0, bar.top()), pos2(x0 + w / steps as f32 + 0.5, bar.bottom()));
+                painter.rect_filled(cell, 0.0, colour(diverging_colour(t)));
+            }
+            for (x, text) in [
+                (bar.left(), format_value(-scale)),
+                (bar.center().x, "0".to_owned()),
+                (bar.right(), format_value(scale)),
+            ] {
+                painter.text(pos2(x, bar.bottom() + 2.0), Align2::CENTER_TOP, text, font.clone(), Color32::WHITE);
+            }
+        }
+        Legend::Levels { levels } => {
+            let shown = levels.min(7);
+            let height = 16.0 * (shown as f32 + 1.0);
+            let top = rect.left_bottom() + vec2(14.0, -12.0 - height);
+            painter.rect_filled(
+                Rect::from_min_size(top - vec2(8.0, 6.0), vec2(90.0, height + 12.0)),
+                4.0,
+                Color32::from_black_alpha(170),
+            );
+            for k in 0..=shown {
+                let y = top.y + 16.0 * k as f32;
+                painter.rect_filled(
+                    Rect::from_min_size(pos2(top.x, y + 2.0), vec2(12.0, 12.0)),
+                    2.0,
+                    colour(level_colour(k)),
+                );
+                painter.text(
+                    pos2(top.x + 18.0, y + 8.0),
+                    Align2::LEFT_CENTER,
+                    format!("level {k}"),
+                    font.clone(),
+                    Color32::WHITE,
+                );
+            }
+        }
+    }
 }
 
 /// A labelled integer to drag or type; the response when it changed.

@@ -77,6 +77,10 @@ pub struct View3dSettings {
     /// Front faces in the mesh's per-vertex colours, when it has them (e.g. Loop
     /// colour-by-level); otherwise in [`FRONT_COLOUR`].
     pub vertex_colours: bool,
+    /// Front faces as a UV checker: the mesh's vertex colours hold its UVs (red u, green v,
+    /// fractional parts), and 8 squares per unit are drawn from them per pixel. Set by the
+    /// editor's `Colour` choice, not shown among the checkboxes.
+    pub checker: bool,
     /// 4× multisampling (smoother silhouettes; slower on a software rasterizer). Ignored
     /// where the adapter cannot do it.
     pub msaa: bool,
@@ -93,6 +97,7 @@ impl Default for View3dSettings {
             smooth: true,
             show_backfaces_colour: true,
             vertex_colours: true,
+            checker: false,
             msaa: false,
             background: BACKGROUND,
         }
@@ -1157,7 +1162,11 @@ impl Gpu {
             flag(settings.wireframe),
             flag(settings.smooth),
             flag(settings.show_backfaces_colour),
-            flag(settings.vertex_colours && data.has_colours),
+            match (data.has_colours, settings.checker, settings.vertex_colours) {
+                (true, true, _) => 2.0,
+                (true, false, true) => 1.0,
+                _ => 0.0,
+            },
         ] {
             u.extend_from_slice(&x.to_le_bytes());
         }

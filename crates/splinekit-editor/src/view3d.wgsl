@@ -16,7 +16,8 @@ struct Uniforms {
     // rgb: wireframe colour; a: half the line width in pixels.
     wire: vec4<f32>,
     normal_line: vec4<f32>,
-    // x: wireframe, y: smooth, z: back-face colour, w: vertex colours (1 = on).
+    // x: wireframe, y: smooth, z: back-face colour, w: vertex colours (1 = on; 2 = a UV
+    // checker, the vertex colours' red and green being the UVs, their fractional parts).
     flags: vec4<f32>,
 };
 
@@ -92,7 +93,12 @@ fn fs_surface(in: SurfaceOut, @builtin(front_facing) front_facing: bool) -> @loc
     }
 
     var base = u.front.rgb;
-    if u.flags.w > 0.5 {
+    if u.flags.w > 1.5 {
+        // 8 squares per unit of u and of v (the render crate's CHECKER_SQUARES and colours)
+        let cell = floor(in.color.rg * 8.0);
+        let odd = (i32(cell.x) + i32(cell.y)) % 2 != 0;
+        base = select(linear_from_srgb(vec3<f32>(225.0) / 255.0), linear_from_srgb(vec3<f32>(70.0, 105.0, 165.0) / 255.0), odd);
+    } else if u.flags.w > 0.5 {
         base = linear_from_srgb(in.color.rgb);
     }
     if !front_facing && u.flags.z > 0.5 {

@@ -244,7 +244,8 @@ impl Camera {
 }
 
 /// Radius of the bounding sphere about the box centre of the finite points (1 if none).
-pub(crate) fn bounding_radius(points: impl Iterator<Item = DVec3>) -> f64 {
+#[must_use]
+pub fn bounding_radius(points: impl Iterator<Item = DVec3>) -> f64 {
     let (lo, hi) = bounds(points);
     box_radius(lo, hi)
 }

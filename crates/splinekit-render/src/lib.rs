@@ -70,7 +70,10 @@ pub mod plot;
 pub mod raster;
 
 pub use camera::{Camera, DEFAULT_MARGIN, Projection, View, ViewError};
-pub use colour::{Curvature, SurfaceColour, checker_colour, diverging_colour, level_colour, symmetric_scale};
+pub use colour::{
+    CHECKER_COLOURS, CHECKER_SQUARES, Curvature, SurfaceColour, checker_colour, diverging_colour, level_colour,
+    symmetric_scale,
+};
 pub use error::RenderError;
 pub use file::{
     FileOptions, Picture, PictureFormat, PictureKind, Rendered, render_file, render_swp_document, render_tri_mesh,
@@ -83,5 +86,5 @@ pub use marks::{CurveOptions, Mark, PlotCurve, SEGMENT_COLOURS, Theme, curve_mar
 pub use plot::{PlotOptions, draw_marks, marks_svg, plot_curves, plot_curves_svg};
 pub use raster::{
     BACK_COLOUR, BACKGROUND, FRONT_COLOUR, RenderOptions, Renderer, Scene, Shading, WIRE_COLOUR, render_mesh,
-    render_scene,
+    render_scene, surface_colours,
 };

@@ -500,8 +500,10 @@ impl Renderer {
 }
 
 /// Per mesh, the vertex colours (sRGB in `[0, 1]`) that `colour` gives it instead of its
-/// own (`None`: its own, or the front colour), and the legend; `radius` is the scene's.
-fn surface_colours(
+/// own (`None`: its own, or the front colour), and the legend; `radius` is the scene's. The
+/// editor colours its 3D view with the same map and scale.
+#[must_use]
+pub fn surface_colours(
     meshes: &[&TriMesh],
     colour: SurfaceColour,
     radius: f64,

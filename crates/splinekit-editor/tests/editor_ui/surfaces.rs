@@ -195,3 +195,84 @@ fn surface_settings_from_the_panel() {
     assert!(std::fs::read_to_string(&path).unwrap().contains("gcyl tube ring path tolerance 0.001 frames rmf no-caps"));
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Counts the 3D view's pixels (outside the legend's corner) that `keep` accepts.
+fn count_pixels(h: &mut Harness<'static, EditorApp>, keep: impl Fn([u8; 3]) -> bool) -> usize {
+    let view = h.get_by_label("3D view").rect();
+    let image = h.render().unwrap();
+    let mut n = 0;
+    for y in view.top() as u32..view.bottom() as u32 {
+        for x in view.left() as u32..view.right() as u32 {
+            let in_legend = x < view.left() as u32 + 230 && y > view.bottom() as u32 - 120;
+            let p = image.get_pixel(x, y).0;
+            if !in_legend && keep([p[0], p[1], p[2]]) {
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+fn bluish(p: [u8; 3]) -> bool {
+    i32::from(p[2]) > i32::from(p[0]) + 40
+}
+
+fn crimson(p: [u8; 3]) -> bool {
+    i32::from(p[0]) > i32::from(p[1]) + 40 && i32::from(p[0]) > i32::from(p[2]) + 10
+}
+
+/// `Colour`: a torus about z shows negative Gaussian curvature (blue) inside and positive
+/// (crimson) outside; a sphere is one colour under both curvatures; the UV checker shows its
+/// two colours; back to shaded, neither.
+#[test]
+fn surfaces_coloured_by_curvature_and_a_uv_checker() {
+    let dir = tempfile_dir("colour");
+    let k = 0.552_284_75;
+    let files = [
+        (
+            "torus.swp",
+            "cr2 ring 8 4 closed [1 0] [1.5 -0.5] [2 0] [1.5 0.5]\nzrev torus ring slice-tolerance 0.1\n".to_owned(),
+        ),
+        (
+            "ball.swp",
+            format!(
+                "bez2 half 10 7 [0 -1] [{k} -1] [1 -{k}] [1 0] [1 {k}] [{k} 1] [0 1]\nzrev ball half epsilon 0.05 slice-tolerance 0.1\n"
+            ),
+        ),
+    ];
+    for (name, text) in &files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let mut torus = harness(EditorApp::new(Some(&dir.join("torus.swp"))));
+    let shaded_blue = count_pixels(&mut torus, bluish);
+    torus.state_mut().colouring = splinekit_render::SurfaceColour::Curvature(splinekit_render::Curvature::Gaussian);
+    torus.run();
+    let (blue, red) = (count_pixels(&mut torus, bluish), count_pixels(&mut torus, crimson));
+    assert!(blue > 1000 && red > 1000, "inside blue {blue}, outside crimson {red} (shaded: {shaded_blue} blue)");
+
+    let mut ball = harness(EditorApp::new(Some(&dir.join("ball.swp"))));
+    let mut least_red = usize::MAX;
+    for curvature in [splinekit_render::Curvature::Mean, splinekit_render::Curvature::Gaussian] {
+        ball.state_mut().colouring = splinekit_render::SurfaceColour::Curvature(curvature);
+        ball.run();
+        let (blue, red) = (count_pixels(&mut ball, bluish), count_pixels(&mut ball, crimson));
+        assert!(red > 5000 && blue == 0, "{curvature:?}: a sphere is all positive: {red} crimson, {blue} blue");
+        least_red = least_red.min(red);
+    }
+    ball.state_mut().colouring = splinekit_render::SurfaceColour::UvChecker;
+    ball.run();
+    let blue = count_pixels(&mut ball, bluish);
+    let light = count_pixels(&mut ball, |p| p[0] > 150 && p[0].abs_diff(p[2]) < 20);
+    assert!(blue > 2000 && light > 2000, "checker: {blue} steel blue, {light} light grey");
+    // shaded: only the profile curve's red segments are crimson-ish
+    ball.state_mut().colouring = splinekit_render::SurfaceColour::Shade;
+    ball.run();
+    let shaded = count_pixels(&mut ball, crimson);
+    assert!(shaded * 10 < least_red, "shaded {shaded}, coloured {least_red}");
+    torus.state_mut().colouring = splinekit_render::SurfaceColour::Curvature(splinekit_render::Curvature::Gaussian);
+    // (the status line would name the temporary folder)
+    torus.state_mut().status = "Colour: Gaussian curvature".to_owned();
+    torus.run();
+    torus.snapshot("torus_gaussian_curvature");
+    let _ = std::fs::remove_dir_all(dir);
+}
