@@ -28,6 +28,7 @@
 //! `?` help, Delete the selected point, Ctrl+Z undo, Ctrl+Shift+Z (or Ctrl+Y) redo, Ctrl+S save,
 //! Ctrl+Shift+S save as, Ctrl+O open, Ctrl+N new.
 
+pub mod compare;
 pub mod doc;
 pub mod files;
 pub mod view2d;
@@ -181,7 +182,7 @@ impl Scheme {
     /// schemes other than Loop without creases (whose levels are a [`LoopPyramid`]). With
     /// `creases` (on `base`), Loop and Catmull-Clark make it from `base` with them (Chaikin's
     /// creasing, as OpenSubdiv's default in the command line).
-    fn polygon_level(
+    pub(crate) fn polygon_level(
         self,
         base: &PolyMesh,
         coarse: &PolyMesh,
@@ -499,6 +500,8 @@ pub struct EditorApp {
     pub colouring: SurfaceColour,
     /// The legend of the colours shown in the 3D view (curvature scale, or levels).
     legend: Option<Legend>,
+    /// The loaded mesh refined by two to four schemes side by side (`compare SCHEME`).
+    pub compare: compare::Comparison,
     /// The colouring the 3D view's data was made with.
     shown_colouring: Option<(SurfaceColour, bool)>,
     /// The 3D view (its settings: wireframe, normals, …).
@@ -563,6 +566,7 @@ impl Default for EditorApp {
             revolve_axis: RevolveAxis::Y,
             colouring: SurfaceColour::Shade,
             legend: None,
+            compare: compare::Comparison::default(),
             shown_colouring: None,
             view3d: View3d::new(),
             status: "Shift+click to add points; press h for help".to_owned(),
@@ -1686,9 +1690,28 @@ impl EditorApp {
                 if ui.add_enabled(can_refine && !refining, egui::Button::new("Refine subdivision")).clicked() {
                     self.refine();
                 }
-                if ui.button("Coarsen subdivision").clicked() {
+                let coarser = self.mesh.as_ref().is_some_and(|m| m.level > 0);
+                if ui
+                    .add_enabled(coarser, egui::Button::new("Coarsen subdivision"))
+                    .on_disabled_hover_text("level 0 is the mesh as loaded")
+                    .clicked()
+                {
                     self.coarsen();
                 }
+            });
+            egui::CollapsingHeader::new("Compare schemes").default_open(false).show(ui, |ui| {
+                ui.label("two to four schemes side by side, one camera");
+                ui.horizontal_wrapped(|ui| {
+                    let chosen = self.compare.schemes();
+                    for s in Scheme::ALL {
+                        let mut on = chosen.contains(&s);
+                        let room = on || chosen.len() < compare::MAX_COMPARED;
+                        if ui.add_enabled(room, egui::Checkbox::new(&mut on, format!("compare {}", s.name()))).changed()
+                        {
+                            self.compare.set(s, on);
+                        }
+                    }
+                });
             });
             if let Some((_, task)) = &self.refine_task
                 && task.ui(ui)
@@ -1743,6 +1766,14 @@ impl EditorApp {
         let handles = if self.mesh.is_none() && !self.doc.is_2d() { self.doc.points().to_vec() } else { Vec::new() };
         let mut overlay = if self.mesh.is_none() { self.scene_overlay() } else { view3d::Overlay::default() };
         overlay.selected = self.view.selected;
+        if let Some(m) = &self.mesh
+            && self.compare.is_active()
+        {
+            let (source, level) = (Arc::clone(&m.source), m.level);
+            self.compare.update(&source, self.mesh_generation, level, self.color_by_level, self.view3d.settings);
+            self.compare.ui(ui, frame, level);
+            return;
+        }
         let (response, drag) = self.view3d.ui_with_overlay(ui, frame, &handles, &overlay);
         if let Some(legend) = &self.legend {
             paint_legend(ui, response.rect, legend);

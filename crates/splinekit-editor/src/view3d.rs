@@ -339,6 +339,9 @@ struct RenderKey {
 pub struct View3d {
     /// What is drawn and how.
     pub settings: View3dSettings,
+    /// The view's accessible name (`3D view`; the scheme comparison's views are named after
+    /// their schemes).
+    pub label: String,
     camera: Camera,
     data: MeshData,
     scratch: Scratch,
@@ -386,6 +389,7 @@ impl View3d {
     pub fn new() -> Self {
         Self {
             settings: View3dSettings::default(),
+            label: "3D view".to_owned(),
             camera: Camera::default(),
             data: MeshData::default(),
             scratch: Scratch::default(),
@@ -575,7 +579,7 @@ impl View3d {
         if self.fit_pending && self.data.surface.is_empty() && self.overlay_bounds.is_some() {
             self.fit();
         }
-        let label = if frame.wgpu_render_state().is_some() { "3D view" } else { NO_WGPU };
+        let label = if frame.wgpu_render_state().is_some() { self.label.as_str() } else { NO_WGPU };
         response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, label));
         let (moved, dots) = self.handles(ui, rect, handles);
         self.handle_input(ui, &response, rect);

@@ -276,3 +276,53 @@ fn surfaces_coloured_by_curvature_and_a_uv_checker() {
     torus.snapshot("torus_gaussian_curvature");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Schemes side by side: the icosahedron at level 2 by Loop and by butterfly (the same
+/// counts: 162 vertices, 320 faces) and by √3 (180 faces), each view named after its scheme;
+/// one camera (a drag in one view turns them all); Coarsen is disabled at level 0.
+#[test]
+fn schemes_compared_side_by_side() {
+    use egui_kittest::kittest::NodeT as _;
+    use splinekit_editor::Scheme;
+    let mut h = harness(EditorApp::new(Some(&data("obj/icosahedron.obj"))));
+    assert!(h.get_by_label("Coarsen subdivision").accesskit_node().is_disabled());
+    for _ in 0..2 {
+        h.get_by_label("Refine subdivision").click();
+        h.run();
+    }
+    assert!(!h.get_by_label("Coarsen subdivision").accesskit_node().is_disabled());
+    h.get_by_label("Compare schemes").click();
+    h.run();
+    h.get_by_label("compare Loop").click();
+    h.run();
+    // one scheme: still the single view
+    h.get_by_label("3D view");
+    h.get_by_label("compare Butterfly").click();
+    h.get_by_label("compare √3").click();
+    h.run();
+    assert!(h.query_by_label("3D view").is_none());
+    let counts = h.state().compare.counts();
+    assert_eq!(counts[0], (Scheme::Loop, Ok((162, 320))));
+    assert_eq!(counts[1], (Scheme::Butterfly, Ok((162, 320))));
+    assert_eq!(counts[2].1.as_ref().map(|c| c.1), Ok(180));
+    // a drag in the Loop view turns the butterfly view too
+    let before = h.render().unwrap();
+    let loop_view = h.get_by_label("Loop view").rect();
+    let butterfly = h.get_by_label("Butterfly view").rect();
+    h.drag_at(loop_view.center());
+    h.run();
+    h.hover_at(loop_view.center() + Vec2::new(60.0, 0.0));
+    h.run();
+    h.drop_at(loop_view.center() + Vec2::new(60.0, 0.0));
+    h.run();
+    let after = h.render().unwrap();
+    let changed = |r: egui::Rect| {
+        (r.top() as u32..r.bottom() as u32)
+            .step_by(3)
+            .flat_map(|y| (r.left() as u32..r.right() as u32).step_by(3).map(move |x| (x, y)))
+            .filter(|&(x, y)| before.get_pixel(x, y) != after.get_pixel(x, y))
+            .count()
+    };
+    assert!(changed(loop_view) > 100 && changed(butterfly) > 100, "{} {}", changed(loop_view), changed(butterfly));
+    h.snapshot("compare_schemes");
+}
