@@ -93,11 +93,11 @@ pub struct SweepArgs {
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_TRIANGLES)]
     pub max_triangles: usize,
 
-    /// Write each surface as the CS 4620 revolution tool's annotated OBJ (its spline and
-    /// settings in the leading comments, then the mesh), which `splinekit sweep FILE.obj` and
-    /// `splinekit edit` open again. Needs --format obj and zrev surfaces whose profile is a
-    /// bsp2 or uniform cr2 curve; the header fixes the tessellation, so --tolerance and
-    /// --angle-tolerance are refused
+    /// Write each surface as a CS 4620 tool's annotated OBJ (its splines and settings in the
+    /// leading comments, then the mesh), which `splinekit sweep FILE.obj` and `splinekit edit`
+    /// open again. Needs --format obj, and zrev surfaces of a bsp2 or uniform cr2 profile (the
+    /// revolution tool) or xsweep surfaces of two bsp2 curves (the sweep tool); the header
+    /// fixes the tessellation, so --tolerance and --angle-tolerance are refused
     #[arg(long)]
     pub annotated: bool,
 }
@@ -237,7 +237,7 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
         }
         // every surface must fit the header before anything is written
         for k in 0..doc.surfaces.len() {
-            doc.revolution_header(k).map_err(|e| anyhow!("{}: {e}", args.file.display()))?;
+            doc.annotated_header(k).map_err(|e| anyhow!("{}: {e}", args.file.display()))?;
         }
     }
     if doc.surfaces.is_empty() {
@@ -292,8 +292,8 @@ fn sweep_surfaces(
         let path: PathBuf = args.output.join(format!("{stem}.{}", args.format.extension()));
         step(meshes.len() + k, format!("writing {}", path.display()));
         if args.annotated {
-            let header = doc.revolution_header(k).map_err(|e| anyhow!("{}: {e}", args.file.display()))?;
-            splinekit_io::mesh::save_revolution_obj(&header, mesh, &path)
+            let header = doc.annotated_header(k).map_err(|e| anyhow!("{}: {e}", args.file.display()))?;
+            splinekit_io::mesh::save_annotated_obj(&header, mesh, &path)
                 .with_context(|| format!("cannot write {}", path.display()))?;
         } else {
             save_mesh(args, mesh, &path)?;
@@ -375,16 +375,10 @@ fn run_obj(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create output directory {}", args.output.display()))?;
     if args.annotated {
-        let SplineHeader::Revolution(header) = &header else {
-            bail!(
-                "--annotated: {} has a sweep tool's header; only revolution-tool files are written annotated",
-                file.display()
-            );
-        };
         if args.format != Format::Obj {
             bail!("--annotated writes OBJ files; use it with --format obj");
         }
-        splinekit_io::mesh::save_revolution_obj(header, &mesh, &path)
+        splinekit_io::mesh::save_annotated_obj(&header, &mesh, &path)
             .with_context(|| format!("cannot write {}", path.display()))?;
         return report(&mesh, &path, out);
     }

@@ -351,6 +351,10 @@ impl SweptSurfaces {
                         *epsilon = (*epsilon * factor).min(std::f64::consts::PI);
                         *slice_tolerance = (*slice_tolerance * factor).min(std::f64::consts::TAU / 3.0);
                     }
+                    SwpSurfaceKind::ToolSweep { epsilon, path_epsilon, .. } => {
+                        *epsilon = (*epsilon * factor).min(std::f64::consts::PI);
+                        *path_epsilon = (*path_epsilon * factor).min(std::f64::consts::PI);
+                    }
                     SwpSurfaceKind::GeneralizedCylinder { .. } => {}
                 }
                 // the samples of a distance tolerance go as 1/√d
@@ -812,7 +816,8 @@ impl EditorApp {
             dialog.forbidden = self.doc.path().map(Path::to_path_buf);
         }
         if purpose == Purpose::SaveAs {
-            dialog.obj_refused = self.annotated_refusal();
+            dialog.obj_refused =
+                self.annotated_refusal().map(|why| format!("Save as writes SWP files (.swp) here: {why}"));
         }
         if purpose == Purpose::Open {
             dialog.recent = self.recent.list.clone();
@@ -1046,15 +1051,21 @@ impl EditorApp {
     /// Why the document cannot be saved as an annotated OBJ, if it cannot.
     fn annotated_refusal(&self) -> Option<String> {
         let swp = &self.doc.swp;
-        if swp.surfaces.len() != 1 || swp.curves.len() != 1 {
+        let used = swp.surfaces.first().map_or(0, |s| {
+            let mut curves: Vec<usize> = s.kind.references().iter().map(|&(_, c)| c).collect();
+            curves.sort_unstable();
+            curves.dedup();
+            curves.len()
+        });
+        if swp.surfaces.len() != 1 || swp.curves.len() != used {
             return Some(format!(
-                "Save as writes SWP files (.swp), or an annotated OBJ of one curve and its revolution about +z; \
-                 this document has {} curves and {} surfaces (use Export mesh for a mesh)",
+                "an annotated OBJ holds one surface (a zrev or an xsweep) and the curves it uses; this document \
+                 has {} curves and {} surfaces (Save as .swp keeps them all, Export mesh writes the mesh)",
                 swp.curves.len(),
                 swp.surfaces.len()
             ));
         }
-        swp.revolution_header(0).err().map(|e| format!("Save as writes SWP files (.swp) here: {e}"))
+        swp.annotated_header(0).err().map(|e| e.to_string())
     }
 
     /// Writes the document's one surface, a `zrev` of a `bsp2` or uniform `cr2` profile, as
@@ -1064,13 +1075,8 @@ impl EditorApp {
     pub fn save_annotated(&mut self, path: &Path) -> bool {
         let swp = &self.doc.swp;
         let refuse = |why: String| format!("Error: not saved as {}: {why}", path.display());
-        if swp.surfaces.len() != 1 || swp.curves.len() != 1 {
-            self.status = refuse(format!(
-                "an annotated OBJ holds one curve and its revolution about +z; this document has {} curves and {} \
-                 surfaces (Save as .swp keeps them all, Export mesh writes the mesh)",
-                swp.curves.len(),
-                swp.surfaces.len()
-            ));
+        if let Some(why) = self.annotated_refusal() {
+            self.status = refuse(why);
             return false;
         }
         let options = SurfaceOptions { max_triangles: Some(EDITOR_MAX_TRIANGLES), ..SurfaceOptions::default() };
@@ -1883,6 +1889,15 @@ impl EditorApp {
                         edited = edited.or(optional_curve_choice(ui, &format!("{name} twist curve"), &curve_names, twist));
                         self.curve_steps_value(ui, &name, *sweep);
                     }
+                    SwpSurfaceKind::ToolSweep { profile, path, epsilon, path_epsilon, scale } => {
+                        edited = edited.or(curve_choice(ui, &format!("{name} profile"), &curve_names, profile));
+                        edited = edited.or(curve_choice(ui, &format!("{name} path"), &curve_names, path));
+                        let hint = "the cross-section's angle tolerance, radians (the sweep tool's epsilon)";
+                        edited = edited.or(float_value(ui, &format!("{name} epsilon"), epsilon, 1e-4..=3.0, hint));
+                        let hint = "the swept-along curve's angle tolerance, radians";
+                        edited = edited.or(float_value(ui, &format!("{name} path epsilon"), path_epsilon, 1e-4..=3.0, hint));
+                        edited = edited.or(float_value(ui, &format!("{name} scale"), scale, 1e-6..=1e6, "the cross-section's scale"));
+                    }
                     SwpSurfaceKind::Lathe { stacks, slices, radius, height } => {
                         edited = edited.or(int_value(ui, &format!("{name} stacks"), stacks, 1..=4096, "intervals along v"));
                         edited = edited.or(int_value(ui, &format!("{name} slices"), slices, 3..=4096, "slices about the z axis"));
@@ -2314,7 +2329,7 @@ fn settings_controls(
         None => {}
     }
     let keyword = kind.keyword();
-    if matches!(keyword, "srev" | "gcyl") {
+    if matches!(keyword, "srev" | "gcyl" | "xsweep") {
         let compat = settings.layout == Some(splinekit::sweep::MeshLayout::Compat);
         let mut c = compat;
         let r = egui::ComboBox::from_label(format!("{name} layout"))
@@ -2598,8 +2613,7 @@ fn recolored(
 /// profile curve and `zrev` surface), `None` for an OBJ without one or with the sweep tool's
 /// header (which opens as its rebuilt mesh).
 fn annotated_document(path: &Path) -> Result<Option<Document>, String> {
-    let header = SplineHeader::read(path).map_err(|e| e.to_string())?;
-    let Some(header @ SplineHeader::Revolution(_)) = header else { return Ok(None) };
+    let Some(header) = SplineHeader::read(path).map_err(|e| e.to_string())? else { return Ok(None) };
     let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     let swp = header.to_document(&stem).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(Some(Document::from_annotated(swp, path.to_path_buf())))

@@ -1,12 +1,13 @@
-//! SWP documents and the spline-annotated OBJ of the CS 4620 revolution tool, both ways:
-//! [`SwpDocument::revolution_header`] and [`SwpDocument::save_annotated_obj`] write a `zrev`
-//! surface as the tool's file, and [`SplineHeader::to_document`] opens such a file as an
-//! editable document.
+//! SWP documents and the spline-annotated OBJ of the CS 4620 revolution and sweep tools,
+//! both ways: [`SwpDocument::annotated_header`] and [`SwpDocument::save_annotated_obj`] write a
+//! `zrev` or `xsweep` surface as the tool's file, and [`SplineHeader::to_document`] opens such
+//! a file as an editable document.
 //!
-//! The tool's header can describe exactly one thing: a B-spline or uniform Catmull-Rom
-//! profile, open or closed, tessellated by control-polygon angle `epsilon`, scaled and
-//! revolved about +z in `ceil(2π / sliceTolerance)` slices — a `zrev` surface whose profile is
-//! a `bsp2` or a uniform `cr2`. Other surfaces are refused with the reason, never written
+//! The revolution tool's header describes a B-spline or uniform Catmull-Rom profile, open or
+//! closed, tessellated by control-polygon angle `epsilon`, scaled and revolved about +z in
+//! `ceil(2π / sliceTolerance)` slices — a `zrev` surface whose profile is a `bsp2` or a uniform
+//! `cr2`. The sweep tool's describes two B-splines with their epsilons and a scale — an
+//! `xsweep` of two `bsp2` curves. Other surfaces are refused with the reason, never written
 //! approximately. The mesh written after the header is the surface swept with the given
 //! options, so a file written with the defaults rebuilds (`splinekit sweep FILE.obj`) to the
 //! very same mesh.
@@ -30,7 +31,7 @@ use std::path::Path;
 use glam::{DVec2, DVec3};
 use splinekit::TriMesh;
 
-use crate::mesh::{MeshIoError, RevolutionHeader, SplineHeader, save_revolution_obj};
+use crate::mesh::{HeaderSpline, MeshIoError, RevolutionHeader, SplineHeader, SweepHeader, save_annotated_obj};
 use crate::surface::{SurfaceError, SurfaceOptions};
 use crate::swp::{
     SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind, SwpSurfaceSettings,
@@ -52,12 +53,6 @@ pub enum AnnotatedError {
         /// Why, and what would do.
         why: String,
     },
-    /// The header is a sweep tool's, which opens as a mesh only.
-    #[error(
-        "the sweep tool's header (a cross-section swept along a spline) has no editable form; \
-         it opens as a mesh rebuilt from its splines"
-    )]
-    SweepHeader,
     /// The surface could not be swept.
     #[error(transparent)]
     Surface(#[from] SurfaceError),
@@ -121,8 +116,68 @@ impl SwpDocument {
         })
     }
 
-    /// Writes surface `index` to `path` as the revolution tool's annotated OBJ: its
-    /// [header](Self::revolution_header), then the surface swept with `options`. The file is
+    /// The header of either tool for surface `index`: the revolution tool's for a `zrev`
+    /// ([`revolution_header`](Self::revolution_header)), the sweep tool's for an `xsweep`
+    /// whose two curves are 2D `bsp2` curves (its epsilons and scale).
+    ///
+    /// # Errors
+    /// [`AnnotatedError::Unsupported`] for another surface, another kind of curve, or an index
+    /// out of range.
+    pub fn annotated_header(&self, index: usize) -> Result<SplineHeader, AnnotatedError> {
+        let Some(SwpSurface {
+            kind: SwpSurfaceKind::ToolSweep { profile, path, epsilon, path_epsilon, scale }, ..
+        }) = self.surfaces.get(index)
+        else {
+            return self.revolution_header(index).map(SplineHeader::Revolution).map_err(|e| match e {
+                AnnotatedError::Unsupported { surface, why } => AnnotatedError::Unsupported {
+                    surface,
+                    why: why
+                        .replace("holds only a revolution about +z (zrev)", "holds a zrev or an xsweep surface only"),
+                },
+                e => e,
+            });
+        };
+        let spline = |i: usize, epsilon: f64| -> Result<HeaderSpline, AnnotatedError> {
+            match self.curves.get(i) {
+                Some(c) if c.kind == SwpCurveKind::BSpline && c.dim == 2 => match &c.geometry {
+                    SwpGeometry::Points(points) => Ok(HeaderSpline {
+                        closed: c.closed,
+                        epsilon,
+                        control_points: points.iter().map(|p| p.truncate()).collect(),
+                    }),
+                    _ => Err(self.unsupported(index, "its curves have no control points".into())),
+                },
+                Some(c) => Err(self.unsupported(
+                    index,
+                    format!(
+                        "its curve {} is a {} curve; the sweep tool's file holds 2D B-splines (bsp2)",
+                        c.display_name(i),
+                        c.keyword()
+                    ),
+                )),
+                None => Err(self.unsupported(index, "a curve it uses does not exist".into())),
+            }
+        };
+        let settings = &self.surfaces[index].settings;
+        if settings.tessellation.is_some() {
+            return Err(
+                self.unsupported(index, "it has its own tolerance, which the sweep tool's file cannot hold".into())
+            );
+        }
+        Ok(SplineHeader::Sweep(SweepHeader {
+            cross_section: spline(*profile, *epsilon)?,
+            swept_along: spline(*path, *path_epsilon)?,
+            scale: *scale,
+        }))
+    }
+
+    fn unsupported(&self, index: usize, why: String) -> AnnotatedError {
+        let surface = self.surfaces.get(index).map_or_else(|| format!("#{index}"), |s| s.display_name(index));
+        AnnotatedError::Unsupported { surface, why }
+    }
+
+    /// Writes surface `index` to `path` as an annotated OBJ of either tool: its
+    /// [header](Self::annotated_header), then the surface swept with `options`. The file is
     /// written atomically; nothing is written on an error. Returns the mesh written.
     ///
     /// # Errors
@@ -133,24 +188,33 @@ impl SwpDocument {
         options: &SurfaceOptions,
         path: &Path,
     ) -> Result<TriMesh, AnnotatedError> {
-        let header = self.revolution_header(index)?;
+        let header = self.annotated_header(index)?;
         let mesh = self.surface_mesh(index, options)?;
-        save_revolution_obj(&header, &mesh, path)?;
+        save_annotated_obj(&header, &mesh, path)?;
         Ok(mesh)
     }
 }
 
 impl SplineHeader {
-    /// The editable document of a revolution tool's header: its profile as a `bsp2` or `cr2`
-    /// curve named `profile` (drawn with [`OPENED_PROFILE_STEPS`] steps) and a `zrev` surface
-    /// named `surface_name` (or `surface` when that is not a usable name) with the header's
-    /// `epsilon`, slice tolerance and scale, whose mesh is the header's
-    /// [rebuild](SplineHeader::rebuild).
+    /// The editable document of a header, whose surface's mesh is the header's
+    /// [rebuild](SplineHeader::rebuild): for the revolution tool, its profile as a `bsp2` or
+    /// `cr2` curve named `profile` and a `zrev` surface with the header's `epsilon`, slice
+    /// tolerance and scale; for the sweep tool, `bsp2` curves `profile` and `path` and an
+    /// `xsweep` surface with its epsilons and scale. The surface is named `surface_name` (or
+    /// `surface` when that is not a usable name); curves are drawn with
+    /// [`OPENED_PROFILE_STEPS`] steps.
     ///
     /// # Errors
-    /// [`AnnotatedError::SweepHeader`] for a sweep tool's header.
+    /// None today (the result keeps room for headers that have no editable form).
     pub fn to_document(&self, surface_name: &str) -> Result<SwpDocument, AnnotatedError> {
-        let Self::Revolution(h) = self else { return Err(AnnotatedError::SweepHeader) };
+        let usable = !surface_name.is_empty()
+            && !["profile", "path", "."].contains(&surface_name)
+            && !surface_name.chars().any(|c| c.is_whitespace() || "[]#".contains(c));
+        let name = if usable { surface_name.to_owned() } else { "surface".to_owned() };
+        let h = match self {
+            Self::Revolution(h) => h,
+            Self::Sweep(h) => return Ok(sweep_document(h, name)),
+        };
         let kind = if h.is_bspline { SwpCurveKind::BSpline } else { SwpCurveKind::CatmullRom { alpha: 0.0 } };
         let points = h.control_points.iter().map(|&DVec2 { x, y }| DVec3::new(x, y, 0.0)).collect();
         let profile = SwpCurve {
@@ -162,12 +226,8 @@ impl SplineHeader {
             geometry: SwpGeometry::Points(points),
             pos: SourcePos::default(),
         };
-        let usable = !surface_name.is_empty()
-            && surface_name != "profile"
-            && surface_name != "."
-            && !surface_name.chars().any(|c| c.is_whitespace() || "[]#".contains(c));
         let surface = SwpSurface {
-            name: Some(if usable { surface_name.to_owned() } else { "surface".to_owned() }),
+            name: Some(name),
             kind: SwpSurfaceKind::RevolutionZ {
                 profile: 0,
                 epsilon: h.epsilon,
@@ -178,5 +238,35 @@ impl SplineHeader {
             pos: SourcePos::default(),
         };
         Ok(SwpDocument { curves: vec![profile], surfaces: vec![surface] })
+    }
+}
+
+/// The editable document of a sweep tool's header: its cross-section and swept-along splines
+/// as `bsp2` curves `profile` and `path`, and an `xsweep` surface called `name`.
+fn sweep_document(h: &SweepHeader, name: String) -> SwpDocument {
+    let curve = |name: &str, s: &HeaderSpline| SwpCurve {
+        name: Some(name.to_owned()),
+        kind: SwpCurveKind::BSpline,
+        dim: 2,
+        steps: OPENED_PROFILE_STEPS,
+        closed: s.closed,
+        geometry: SwpGeometry::Points(s.control_points.iter().map(|p| p.extend(0.0)).collect()),
+        pos: SourcePos::default(),
+    };
+    let surface = SwpSurface {
+        name: Some(name),
+        kind: SwpSurfaceKind::ToolSweep {
+            profile: 0,
+            path: 1,
+            epsilon: h.cross_section.epsilon,
+            path_epsilon: h.swept_along.epsilon,
+            scale: h.scale,
+        },
+        settings: SwpSurfaceSettings::default(),
+        pos: SourcePos::default(),
+    };
+    SwpDocument {
+        curves: vec![curve("profile", &h.cross_section), curve("path", &h.swept_along)],
+        surfaces: vec![surface],
     }
 }

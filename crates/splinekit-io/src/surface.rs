@@ -39,8 +39,10 @@ use splinekit::sweep::{self, MeshLayout, Profile, SweepOptions, SweepPath};
 use splinekit::{AnyCurve, CubicBezier, ParamCurve, PiecewiseCubic, TriMesh};
 
 use crate::mesh::rebuild::revolve_spline_z;
-use crate::mesh::{RebuildError, RebuildOptions};
-use crate::swp::{SwpClause, SwpDocument, SwpFrames, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation};
+use crate::mesh::{HeaderSpline, RebuildError, RebuildOptions, SweepHeader};
+use crate::swp::{
+    SwpClause, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation,
+};
 
 /// Joins whose tangents turn by more than this (radians, 1°) are creases.
 pub const CREASE_ANGLE: f64 = std::f64::consts::PI / 180.0;
@@ -298,6 +300,40 @@ impl SwpDocument {
                 let rebuild =
                     RebuildOptions::DEFAULT.with_uvs(options.sweep.uvs).with_max_triangles(options.max_triangles);
                 revolve_spline_z(&spline, mode, &revolve, &rebuild).map_err(|e| match e {
+                    RebuildError::TooLarge { triangles, why, limit } => {
+                        SurfaceError::TooLarge { surface: surface_name.clone(), triangles, why, limit }
+                    }
+                    e => SurfaceError::Revolution { surface: surface_name.clone(), message: e.to_string() },
+                })
+            }
+            SwpSurfaceKind::ToolSweep { profile, path, epsilon, path_epsilon, scale } => {
+                let spline = |i: usize, epsilon: f64| -> Result<HeaderSpline, SurfaceError> {
+                    let c = &self.curves[i];
+                    match (&c.kind, &c.geometry) {
+                        (SwpCurveKind::BSpline, SwpGeometry::Points(points)) if c.dim == 2 => Ok(HeaderSpline {
+                            closed: c.closed,
+                            epsilon,
+                            control_points: points.iter().map(|p| p.truncate()).collect(),
+                        }),
+                        _ => Err(SurfaceError::Revolution {
+                            surface: surface_name.clone(),
+                            message: format!(
+                                "curve {} must be a 2D B-spline (bsp2): the sweep tool's curves are",
+                                c.display_name(i)
+                            ),
+                        }),
+                    }
+                };
+                let header = SweepHeader {
+                    cross_section: spline(profile, epsilon)?,
+                    swept_along: spline(path, path_epsilon)?,
+                    scale,
+                };
+                let rebuild = RebuildOptions::DEFAULT
+                    .with_layout(options.sweep.layout)
+                    .with_uvs(options.sweep.uvs)
+                    .with_max_triangles(options.max_triangles);
+                header.rebuild(&rebuild).map_err(|e| match e {
                     RebuildError::TooLarge { triangles, why, limit } => {
                         SurfaceError::TooLarge { surface: surface_name.clone(), triangles, why, limit }
                     }

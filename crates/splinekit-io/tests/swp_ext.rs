@@ -303,7 +303,9 @@ fn sample_files_round_trip_and_sweep() {
 /// Whether surface `k` sweeps along a closed curve.
 fn sweeps_closed(doc: &SwpDocument, k: usize) -> bool {
     match doc.surfaces[k].kind {
-        SwpSurfaceKind::GeneralizedCylinder { sweep, .. } => doc.curves[sweep].closed,
+        SwpSurfaceKind::GeneralizedCylinder { sweep, .. } | SwpSurfaceKind::ToolSweep { path: sweep, .. } => {
+            doc.curves[sweep].closed
+        }
         SwpSurfaceKind::Revolution { .. } | SwpSurfaceKind::RevolutionZ { .. } | SwpSurfaceKind::Lathe { .. } => true,
     }
 }

@@ -240,7 +240,7 @@ fn settings_are_read_written_back_and_checked() {
 
     let cases = [
         (format!("{BSP}srev s 10 p frames rmf\n"), "t.swp:2:13", "frames applies to gcyl only"),
-        (format!("{BSP}zrev s p layout welded\n"), "t.swp:2:10", "layout applies to srev, gcyl only"),
+        (format!("{BSP}zrev s p layout welded\n"), "t.swp:2:10", "layout applies to srev, gcyl, xsweep only"),
         (format!("{TUBE}gcyl s ring path tolerance 0.1 angle-tolerance 4\n"), "t.swp:3:32", "at most one of tolerance"),
         (format!("{TUBE}gcyl s ring path angle-tolerance 200\n"), "t.swp:3:34", "at most 180"),
         (format!("{TUBE}gcyl s ring path frames frenet\n"), "t.swp:3:25", "sequential or rmf"),
@@ -279,4 +279,64 @@ fn settings_replace_the_sweep_options() {
     let zrev = parse(&format!("{BSP}zrev a p tolerance 0.01\n"));
     let err = zrev.revolution_header(0).unwrap_err().to_string();
     assert!(err.contains("its own tolerance"), "{err}");
+}
+
+// ---------------------------------------------------------------------------------------
+// The sweep tool's surface
+
+/// The bundled sweep-tool files, as documents: each header opens as two bsp2 curves and an
+/// xsweep whose mesh is the header's rebuild (welded and compat), and the document writes
+/// the same header back; the SWP text reads back to the same document.
+#[test]
+fn sweep_tool_files_open_as_xsweep_documents_and_write_back() {
+    use splinekit_io::mesh::SplineHeader;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/obj/cs4620-splines");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let Some(header @ SplineHeader::Sweep(_)) = SplineHeader::read(&path).unwrap() else { continue };
+        seen += 1;
+        let doc = header.to_document("tube").unwrap();
+        assert!(matches!(doc.surfaces[0].kind, SwpSurfaceKind::ToolSweep { profile: 0, path: 1, .. }));
+        for layout in [MeshLayout::Welded, MeshLayout::Compat] {
+            let options =
+                SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps: false }, ..SurfaceOptions::default() };
+            let rebuilt = header.rebuild(&RebuildOptions::DEFAULT.with_layout(layout)).unwrap();
+            assert_eq!(doc.surface_mesh(0, &options).unwrap(), rebuilt, "{}", path.display());
+        }
+        assert_eq!(doc.annotated_header(0).unwrap(), header);
+        let text = doc.to_swp_string();
+        let again = SwpDocument::parse(&text, "again.swp").unwrap();
+        assert_eq!(again.surfaces[0].kind, doc.surfaces[0].kind, "{text}");
+        // written back as an annotated OBJ: the same header, read by the tool's layout
+        let out = std::env::temp_dir().join(format!("splinekit-xsweep-{}-{seen}.obj", std::process::id()));
+        doc.save_annotated_obj(0, &SurfaceOptions::default(), &out).unwrap();
+        assert_eq!(SplineHeader::read(&out).unwrap(), Some(header));
+        let head: Vec<String> = std::fs::read_to_string(&out).unwrap().lines().take(7).map(str::to_owned).collect();
+        let original: Vec<String> =
+            std::fs::read_to_string(&path).unwrap().lines().take(7).map(str::to_owned).collect();
+        assert_eq!((&head[..4], &head[5..]), (&original[..4], &original[5..]), "the tool's layout");
+        let _ = std::fs::remove_file(out);
+    }
+    assert_eq!(seen, 4);
+}
+
+#[test]
+fn xsweep_parses_and_refuses_what_the_tool_cannot_hold() {
+    let doc = parse(
+        "bsp2 c 10 4 closed [1 0] [0 1] [-1 0] [0 -1]\nbsp2 p 10 4 closed [3 0] [0 3] [-3 0] [0 -3]\nxsweep t c p epsilon 0.1 scale 0.5 layout compat\n",
+    );
+    assert_eq!(
+        doc.surfaces[0].kind,
+        SwpSurfaceKind::ToolSweep { profile: 0, path: 1, epsilon: 0.1, path_epsilon: 0.05, scale: 0.5 }
+    );
+    assert!(doc.to_swp_string().ends_with("xsweep t c p epsilon 0.1 scale 0.5 layout compat\n"));
+    assert!(doc.surface_mesh(0, &SurfaceOptions::default()).unwrap().num_triangles() > 0);
+    let message = parse_err("bsp2 c 10 4 [1 0] [0 1] [-1 0] [0 -1]\nxsweep t c c frames rmf\n");
+    assert!(message.starts_with("t.swp:2:14") && message.contains("frames applies to gcyl only"), "{message}");
+    let cr = parse("cr2 c 10 4 closed [1 0] [0 1] [-1 0] [0 -1]\nxsweep t c c\n");
+    let err = cr.annotated_header(0).unwrap_err().to_string();
+    assert!(err.contains("2D B-splines (bsp2)"), "{err}");
+    let err = cr.surface_mesh(0, &SurfaceOptions::default()).map(|_| ()).unwrap_err().to_string();
+    assert!(err.contains("must be a 2D B-spline"), "{err}");
 }

@@ -84,7 +84,8 @@ pub use ply::write_ply;
 pub use ply_read::read_ply;
 pub use rebuild::{RebuildError, RebuildOptions};
 pub use revolution_obj::{
-    HeaderSpline, RevolutionHeader, SplineHeader, SweepHeader, save_revolution_obj, write_revolution_obj,
+    HeaderSpline, RevolutionHeader, SplineHeader, SweepHeader, save_annotated_obj, save_revolution_obj,
+    write_revolution_obj,
 };
 pub use stl::write_stl;
 pub use stl_read::read_stl;

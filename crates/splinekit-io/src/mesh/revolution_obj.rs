@@ -120,7 +120,7 @@ pub struct HeaderSpline {
 
 /// The settings of a "Sweep Spline" mesh of the older CS 4620 sweep tool: a cross-section
 /// swept along a second spline (see the [module docs](self) for the layout). The header does
-/// not record the spline kind. Read only: the writers produce [`RevolutionHeader`]s.
+/// not record the spline kind ([`SweepHeader::write`] writes it back).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SweepHeader {
     /// The cross-section (profile).
@@ -318,6 +318,99 @@ impl RevolutionHeader {
         }
         Ok(())
     }
+}
+
+impl SweepHeader {
+    /// Writes the header as the sweep tool did (the layout of the bundled files): the two
+    /// introductory lines, the settings line `# true, 0.05 >>+<< false, 0.1 >>+<< 0.5`, the
+    /// cross-section's points (after `# Cross-section Spline control points: `), a `# ` line,
+    /// and the swept-along points. Numbers use Rust's shortest round-trip form with at least
+    /// one decimal, so the header reads back to the same values.
+    ///
+    /// # Errors
+    /// A value that is not finite, a tolerance or scale that is not positive, or an I/O error.
+    pub fn write<W: Write + ?Sized>(&self, out: &mut W) -> Result<(), MeshIoError> {
+        self.check()?;
+        let mut text = String::from(
+            "# This mesh is a \"Sweep Spline\": the comments below describe a Spline (cross-section) swept along\n\
+             # another spline (swept-along) that generated this mesh.\n#\n",
+        );
+        text += "# Cross-section: closed, epsilon >>+<< Swept-along: closed, epsilon >>+<< Scale of Cross-section\n";
+        let (c, a) = (&self.cross_section, &self.swept_along);
+        text +=
+            &format!("# {}, {:?} >>+<< {}, {:?} >>+<< {:?}\n", c.closed, c.epsilon, a.closed, a.epsilon, self.scale);
+        text += "#\n# Cross-section Spline control points: \n";
+        for p in &c.control_points {
+            text += &format!("# {:?} {:?}\n", p.x, p.y);
+        }
+        text += "# \n# Swept-along Spline control points:\n";
+        for p in &a.control_points {
+            text += &format!("# {:?} {:?}\n", p.x, p.y);
+        }
+        out.write_all(text.as_bytes()).map_err(MeshIoError::write)
+    }
+
+    /// Checks that every value reads back: finite numbers, positive tolerances and scale.
+    fn check(&self) -> Result<(), MeshIoError> {
+        let invalid = |what: String, value: f64, expected| {
+            Err(MeshIoError::new(MeshIoErrorKind::InvalidHeaderValue { what, value, expected }))
+        };
+        let values = [
+            ("cross-section epsilon", self.cross_section.epsilon),
+            ("swept-along epsilon", self.swept_along.epsilon),
+            ("scale", self.scale),
+        ];
+        for (what, value) in values {
+            if !(value.is_finite() && value > 0.0) {
+                return invalid(what.to_owned(), value, "a positive finite number");
+            }
+        }
+        for (name, spline) in [("cross-section", &self.cross_section), ("swept-along", &self.swept_along)] {
+            for (i, p) in spline.control_points.iter().enumerate() {
+                for (axis, value) in [("x", p.x), ("y", p.y)] {
+                    if !value.is_finite() {
+                        return invalid(
+                            format!("{axis} coordinate of {name} control point {}", i + 1),
+                            value,
+                            "a finite number",
+                        );
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl SplineHeader {
+    /// Writes the header (see [`RevolutionHeader::write`] and [`SweepHeader::write`]).
+    ///
+    /// # Errors
+    /// As those.
+    pub fn write<W: Write + ?Sized>(&self, out: &mut W) -> Result<(), MeshIoError> {
+        match self {
+            Self::Revolution(h) => h.write(out),
+            Self::Sweep(h) => h.write(out),
+        }
+    }
+
+    fn check(&self) -> Result<(), MeshIoError> {
+        match self {
+            Self::Revolution(h) => h.check(),
+            Self::Sweep(h) => h.check(),
+        }
+    }
+}
+
+/// Writes `path` atomically as an annotated OBJ of either tool: `header`, then `mesh`
+/// ([`write_obj`]); everything is checked first and nothing is left behind on an error.
+///
+/// # Errors
+/// A [`MeshIoError`] whose origin is `path`: an invalid header value or mesh, or an I/O error.
+pub fn save_annotated_obj(header: &SplineHeader, mesh: &TriMesh, path: impl AsRef<Path>) -> Result<(), MeshIoError> {
+    let path = path.as_ref();
+    header.check().and_then(|()| super::check(mesh)).map_err(|e| e.with_origin(path))?;
+    atomic::write_file(path, |w| header.write(w).and_then(|()| write_obj(mesh, w)).map_err(|e| e.with_origin(path)))
 }
 
 /// Writes an OBJ file as the revolution tool did: `header` ([`RevolutionHeader::write`])

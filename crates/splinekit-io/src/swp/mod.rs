@@ -412,7 +412,7 @@ pub enum SwpFrames {
 pub(crate) const SETTING_WORDS: [(&str, &[&str]); 5] = [
     ("tolerance", &["srev", "gcyl", "zrev", "lathe"]),
     ("angle-tolerance", &["srev", "gcyl", "zrev", "lathe"]),
-    ("layout", &["srev", "gcyl"]),
+    ("layout", &["srev", "gcyl", "xsweep"]),
     ("frames", &["gcyl"]),
     ("caps", &["gcyl"]),
 ];
@@ -465,6 +465,22 @@ pub enum SwpSurfaceKind {
         /// Uniform scale `s` (`scale` option).
         scale: f64,
     },
+    /// The CS 4620 sweep tool's surface (`xsweep`, an extension): a cross-section B-spline
+    /// swept along a B-spline placed in the xz-plane, each cut by the tool's angle rule (a
+    /// piece halved while a control-polygon angle exceeds its epsilon), the cross-section
+    /// scaled; what the tool's annotated OBJ files hold.
+    ToolSweep {
+        /// The cross-section (a `bsp2` curve).
+        profile: usize,
+        /// The swept-along curve (a `bsp2` curve, its (x, y) placed at (x, 0, y)).
+        path: usize,
+        /// The cross-section's angle tolerance in radians (`epsilon` option).
+        epsilon: f64,
+        /// The swept-along curve's angle tolerance in radians (`path-epsilon` option).
+        path_epsilon: f64,
+        /// The cross-section's scale (`scale` option).
+        scale: f64,
+    },
     /// Lathe (`lathe`, an extension): separate radius and height curves,
     /// `P(u, v) = (r(v)·cos 2πu, r(v)·sin 2πu, z(v))` about +z. The keys of `r` and `z` are
     /// the y coordinates of the two curves' control points (their x only places the keys on
@@ -481,19 +497,23 @@ pub enum SwpSurfaceKind {
     },
 }
 
+/// The default angle tolerances of an `xsweep` surface, in radians (about 2.9°, as the
+/// bundled files of the sweep tool).
+pub const DEFAULT_XSWEEP_EPSILON: f64 = 0.05;
 /// The default angle tolerance ε of a `zrev` surface, in radians (about 5.7°).
 pub const DEFAULT_ZREV_EPSILON: f64 = 0.1;
 /// The default slice tolerance of a `zrev` surface, in radians: 32 slices.
 pub const DEFAULT_ZREV_SLICE_TOLERANCE: f64 = std::f64::consts::TAU / 32.0;
 
 impl SwpSurfaceKind {
-    /// The surface's keyword: `srev`, `gcyl`, `zrev` or `lathe`.
+    /// The surface's keyword: `srev`, `gcyl`, `zrev`, `xsweep` or `lathe`.
     #[must_use]
     pub fn keyword(&self) -> &'static str {
         match self {
             Self::Revolution { .. } => "srev",
             Self::GeneralizedCylinder { .. } => "gcyl",
             Self::RevolutionZ { .. } => "zrev",
+            Self::ToolSweep { .. } => "xsweep",
             Self::Lathe { .. } => "lathe",
         }
     }
@@ -510,6 +530,9 @@ impl SwpSurfaceKind {
                 refs.extend(scale.map(|c| (SwpCurveRole::Scale, c)));
                 refs.extend(twist.map(|c| (SwpCurveRole::Twist, c)));
                 refs
+            }
+            Self::ToolSweep { profile, path, .. } => {
+                vec![(SwpCurveRole::Profile, profile), (SwpCurveRole::Sweep, path)]
             }
             Self::Lathe { radius, height, .. } => vec![(SwpCurveRole::Radius, radius), (SwpCurveRole::Height, height)],
         }

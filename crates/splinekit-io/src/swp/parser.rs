@@ -10,15 +10,15 @@ use super::validate::SwpCurveRole;
 use splinekit::sweep::MeshLayout;
 
 use super::{
-    DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, MAX_HELIX_TURNS, MAX_STEPS, SETTING_WORDS, SourcePos,
-    SwpClause, SwpCurve, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry, SwpSurface, SwpSurfaceKind,
-    SwpSurfaceSettings, SwpTessellation,
+    DEFAULT_XSWEEP_EPSILON, DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, MAX_HELIX_TURNS, MAX_STEPS,
+    SETTING_WORDS, SourcePos, SwpClause, SwpCurve, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry, SwpSurface,
+    SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation,
 };
 
 /// Every keyword that starts an object.
-const KEYWORDS: [&str; 15] = [
+const KEYWORDS: [&str; 16] = [
     "bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "circ", "helix", "trefoil", "srev", "gcyl", "zrev",
-    "lathe",
+    "xsweep", "lathe",
 ];
 
 /// Whether `word` is an SWP keyword.
@@ -45,6 +45,7 @@ enum Keyword {
     Revolution,
     Cylinder,
     RevolutionZ,
+    ToolSweep,
     Lathe,
 }
 
@@ -65,6 +66,7 @@ fn keyword(word: &str) -> Option<Keyword> {
         "srev" => Some(Keyword::Revolution),
         "gcyl" => Some(Keyword::Cylinder),
         "zrev" => Some(Keyword::RevolutionZ),
+        "xsweep" => Some(Keyword::ToolSweep),
         "lathe" => Some(Keyword::Lathe),
         _ => None,
     }
@@ -201,6 +203,7 @@ impl<'a> Parser<'a> {
             Some(Keyword::Revolution) => self.revolution(token.pos),
             Some(Keyword::Cylinder) => self.cylinder(token.pos),
             Some(Keyword::RevolutionZ) => self.revolution_z(token.pos),
+            Some(Keyword::ToolSweep) => self.tool_sweep(token.pos),
             Some(Keyword::Lathe) => self.lathe(token.pos),
         }
     }
@@ -576,6 +579,49 @@ impl<'a> Parser<'a> {
                 profile,
                 epsilon: values[0].map_or(DEFAULT_ZREV_EPSILON, |(_, v)| v),
                 slice_tolerance: values[1].map_or(DEFAULT_ZREV_SLICE_TOLERANCE, |(_, v)| v),
+                scale: values[2].map_or(1.0, |(_, v)| v),
+            },
+            settings,
+            pos,
+        });
+        Ok(())
+    }
+
+    /// `xsweep NAME PROFILE PATH option*`, after the keyword; the options `epsilon E`,
+    /// `path-epsilon E` and `scale S` (each a number > 0, at most once, any order) and the
+    /// `layout` setting.
+    fn tool_sweep(&mut self, pos: SourcePos) -> Result<(), SwpError> {
+        let index = self.doc.surfaces.len();
+        let (name, name_pos) = self.name("xsweep surface")?;
+        let label = label("xsweep", "surface", name, index);
+        let profile = self.reference(&label, Role::Profile)?;
+        let path = self.reference(&label, Role::Sweep)?;
+        let mut values: [Option<(Token<'a>, f64)>; 3] = [None; 3];
+        const WORDS: [&str; 3] = ["epsilon", "path-epsilon", "scale"];
+        let mut settings = SwpSurfaceSettings::default();
+        let mut seen = Seen::default();
+        while let Some(token) = self.peek().filter(|t| t.kind == TokenKind::Word) {
+            let Some(k) = WORDS.iter().position(|&w| w == token.text) else {
+                if self.setting("xsweep", &label, &mut settings, &mut seen)? {
+                    continue;
+                }
+                break;
+            };
+            if let Some((first, _)) = values[k] {
+                return Err(self.bad_option(token, already(&label, first, token.text)));
+            }
+            self.next += 1;
+            let what = if k == 2 { "a scale (a number > 0)" } else { "an angle tolerance in radians (a number > 0)" };
+            values[k] = Some((token, self.value(what, &label, |v| v > 0.0)?));
+        }
+        self.register(name, name_pos, Named::Surface(index));
+        self.doc.surfaces.push(SwpSurface {
+            name: name.map(str::to_owned),
+            kind: SwpSurfaceKind::ToolSweep {
+                profile,
+                path,
+                epsilon: values[0].map_or(DEFAULT_XSWEEP_EPSILON, |(_, v)| v),
+                path_epsilon: values[1].map_or(DEFAULT_XSWEEP_EPSILON, |(_, v)| v),
                 scale: values[2].map_or(1.0, |(_, v)| v),
             },
             settings,

@@ -212,11 +212,13 @@ pub enum SwpNumber {
     Size,
     /// The alpha (parametrization) of a Catmull-Rom spline.
     Alpha,
-    /// The angle tolerance ε of a `zrev` surface.
+    /// The angle tolerance ε of a `zrev` surface (or of an `xsweep`'s cross-section).
     Epsilon,
     /// The slice tolerance of a `zrev` surface.
     SliceTolerance,
-    /// The scale of a `zrev` surface.
+    /// The swept-along curve's angle tolerance of an `xsweep` surface.
+    PathEpsilon,
+    /// The scale of a `zrev` or `xsweep` surface.
     Scale,
 }
 
@@ -237,6 +239,7 @@ impl fmt::Display for SwpNumber {
             Self::Alpha => f.write_str("the Catmull-Rom alpha"),
             Self::Epsilon => f.write_str("the angle tolerance epsilon"),
             Self::SliceTolerance => f.write_str("the slice tolerance"),
+            Self::PathEpsilon => f.write_str("the path's angle tolerance path-epsilon"),
             Self::Scale => f.write_str("the scale"),
         }
     }
@@ -445,7 +448,9 @@ impl fmt::Display for SwpInvalidKind {
                     f,
                     "{number} must be at least 2π/{MAX_STEPS} radians (at most {MAX_STEPS} slices); it is {value}"
                 ),
-                SwpNumber::Epsilon | SwpNumber::Scale => write!(f, "{number} must be more than 0; it is {value}"),
+                SwpNumber::Epsilon | SwpNumber::PathEpsilon | SwpNumber::Scale => {
+                    write!(f, "{number} must be more than 0; it is {value}")
+                }
                 _ => write!(f, "{number} must be 0 or more; it is {value}"),
             },
             Self::NonzeroZ { number, value } => write!(f, "{number} is {value}; in a 2D curve it must be 0"),
@@ -648,6 +653,11 @@ fn check_surface(curves: &[SwpCurve], surface: &SwpSurface) -> Result<(), SwpInv
         }
         SwpSurfaceKind::Lathe { slices, .. } if !(3..=MAX_STEPS).contains(&slices) => {
             return Err(SwpInvalidKind::Slices { found: slices });
+        }
+        SwpSurfaceKind::ToolSweep { epsilon, path_epsilon, scale, .. } => {
+            check_number(SwpNumber::Epsilon, epsilon, |v| v > 0.0)?;
+            check_number(SwpNumber::PathEpsilon, path_epsilon, |v| v > 0.0)?;
+            check_number(SwpNumber::Scale, scale, |v| v > 0.0)?;
         }
         SwpSurfaceKind::RevolutionZ { epsilon, slice_tolerance, scale, .. } => {
             check_number(SwpNumber::Epsilon, epsilon, |v| v > 0.0)?;

@@ -8,8 +8,8 @@ use splinekit::sweep::MeshLayout;
 
 use super::validate::name_problem;
 use super::{
-    DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, SwpCurve, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry,
-    SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation,
+    DEFAULT_XSWEEP_EPSILON, DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, SwpCurve, SwpCurveKind, SwpDocument,
+    SwpFrames, SwpGeometry, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation,
 };
 
 /// Whether `name` can be written as a NAME token that reads back as itself (the rule that
@@ -95,6 +95,19 @@ pub(crate) fn write(doc: &SwpDocument) -> String {
                 }
                 if slice_tolerance != DEFAULT_ZREV_SLICE_TOLERANCE {
                     let _ = write!(out, " slice-tolerance {slice_tolerance}");
+                }
+                if scale != 1.0 {
+                    let _ = write!(out, " scale {scale}");
+                }
+                Ok(())
+            }
+            SwpSurfaceKind::ToolSweep { profile, path, epsilon, path_epsilon, scale } => {
+                let _ = write!(out, "xsweep {name} {} {}", reference(profile), reference(path));
+                if epsilon != DEFAULT_XSWEEP_EPSILON {
+                    let _ = write!(out, " epsilon {epsilon}");
+                }
+                if path_epsilon != DEFAULT_XSWEEP_EPSILON {
+                    let _ = write!(out, " path-epsilon {path_epsilon}");
                 }
                 if scale != 1.0 {
                     let _ = write!(out, " scale {scale}");

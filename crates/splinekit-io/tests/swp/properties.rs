@@ -178,9 +178,10 @@ fn settings_for(
     use splinekit::sweep::MeshLayout;
     use splinekit_io::swp::{SwpFrames, SwpTessellation};
     let gcyl = matches!(kind, SwpSurfaceKind::GeneralizedCylinder { .. });
-    let laid_out = gcyl || matches!(kind, SwpSurfaceKind::Revolution { .. });
+    let laid_out = gcyl || matches!(kind, SwpSurfaceKind::Revolution { .. } | SwpSurfaceKind::ToolSweep { .. });
     SwpSurfaceSettings {
         tessellation: match t {
+            _ if matches!(kind, SwpSurfaceKind::ToolSweep { .. }) => None,
             0 => None,
             1 => Some(SwpTessellation::Distance(distance)),
             _ => Some(SwpTessellation::AngleDegrees(degrees)),
@@ -205,7 +206,7 @@ fn document() -> impl Strategy<Value = SwpDocument> {
         prop::option::of(any::<bool>()),
     );
     let surface =
-        ((0u8..4, extension), 1..=MAX_STEPS, any::<Index>(), any::<Index>(), prop::option::of("[a-z]{1,5}"), settings);
+        ((0u8..5, extension), 1..=MAX_STEPS, any::<Index>(), any::<Index>(), prop::option::of("[a-z]{1,5}"), settings);
     (prop::collection::vec(curve(), 0..6), prop::collection::vec(surface, 0..4)).prop_map(
         |(mut curves, raw_surfaces)| {
             for (i, c) in curves.iter_mut().enumerate() {
@@ -224,6 +225,13 @@ fn document() -> impl Strategy<Value = SwpDocument> {
                         0 => SwpSurfaceKind::Revolution { steps, profile },
                         1 => SwpSurfaceKind::GeneralizedCylinder { profile, sweep, scale: None, twist: None },
                         2 => SwpSurfaceKind::RevolutionZ { profile, epsilon, slice_tolerance, scale },
+                        3 => SwpSurfaceKind::ToolSweep {
+                            profile,
+                            path: other,
+                            epsilon,
+                            path_epsilon: slice_tolerance,
+                            scale,
+                        },
                         _ => SwpSurfaceKind::Lathe { stacks: steps, slices, radius: profile, height: other },
                     };
                     surfaces.push(SwpSurface {
