@@ -1668,6 +1668,7 @@ impl EditorApp {
         ui.add(egui::Slider::new(&mut show.marker_spacing, 0.001..=10.0).logarithmic(true).text("spacing"));
         ui.checkbox(&mut show.curves, "Draw curves").on_hover_text("every curve, in 2D and 3D");
         ui.checkbox(&mut show.normals, "Draw normals").on_hover_text("T, N, B in blue, red, green, in 2D and 3D");
+        ui.horizontal(|ui| show.normal_side_ui(ui));
         ui.checkbox(&mut show.frames, "Frames (T, N, B)");
         ui.checkbox(&mut show.comb, "Curvature comb");
         ui.add(egui::Slider::new(&mut show.comb_scale, 0.001..=10.0).logarithmic(true).text("comb scale"));
@@ -2017,7 +2018,7 @@ impl EditorApp {
             if show.normals {
                 let n = segments * 8;
                 let us: Vec<f64> = (0..=n).map(|k| segments as f64 * k as f64 / n as f64).collect();
-                let frames = splinekit::frame::frames(c, &us, &splinekit::frame::FrameOptions::default());
+                let frames = splinekit::frame::frames(c, &us, &show.frame_options(self.doc.swp.curves[*i].dim != 3));
                 for (&u, f) in us.iter().zip(&frames) {
                     let p = c.eval(u);
                     for (v, colour) in [

@@ -8,7 +8,7 @@ use eframe::egui::{self, Color32, Pos2, Rect, Sense, Shape, Stroke, Vec2, Widget
 use glam::{DVec2, DVec3};
 use splinekit::arclen::ArclenIndex;
 use splinekit::flatten::{Tessellation, flatten_any};
-use splinekit::frame::{self, FrameOptions};
+use splinekit::frame::{self, Frame, FrameMethod, FrameOptions, Side};
 use splinekit::{AnyCurve, ParamCurve};
 
 use crate::doc::Document;
@@ -93,6 +93,11 @@ pub struct Show {
     pub marker_spacing: f64,
     /// Tangents and normals (`n`): T blue, N red (and B green in the 3D view).
     pub normals: bool,
+    /// Which side of the direction of travel N points to on 2D curves, in the 2D and 3D
+    /// views ([`Self::frame_options`]): [`Side::Left`] `N = (−T.y, T.x)` (the default, the
+    /// course software's sequential frames) or [`Side::Right`] `N = (T.y, −T.x)` (a
+    /// counter-clockwise loop then has outward normals). B follows (`+z` or `−z`).
+    pub normal_side: Side,
     /// Every curve of the document, not only the active one (2D and 3D views).
     pub curves: bool,
     /// Whole frames: T, N, B in blue, red, green.
@@ -110,12 +115,44 @@ impl Default for Show {
             markers: false,
             marker_spacing: 0.1,
             normals: false,
+            normal_side: Side::Left,
             curves: true,
             frames: false,
             comb: false,
             comb_scale: 0.05,
         }
     }
+}
+
+impl Show {
+    /// The frames drawn along a curve (`Draw normals`, `Frames`): the sequential method,
+    /// with N on [`Self::normal_side`] of travel for a 2D curve (`planar`), on the left (the
+    /// method's default) for a 3D one, where left and right of travel mean nothing.
+    #[must_use]
+    pub fn frame_options(&self, planar: bool) -> FrameOptions {
+        let side = if planar { self.normal_side } else { Side::Left };
+        FrameOptions::DEFAULT.with_method(FrameMethod::Sequential(side))
+    }
+
+    /// Two selectable labels, `Normals left` and `Normals right`, for [`Self::normal_side`].
+    pub fn normal_side_ui(&mut self, ui: &mut egui::Ui) {
+        ui.selectable_value(&mut self.normal_side, Side::Left, "Normals left")
+            .on_hover_text("2D curves: N = (−T.y, T.x), left of the direction of travel");
+        ui.selectable_value(&mut self.normal_side, Side::Right, "Normals right")
+            .on_hover_text("2D curves: N = (T.y, −T.x), right of travel (outward on a counter-clockwise loop)");
+    }
+}
+
+/// Where the views draw frame arrows along `c`: 8 per segment, evenly in the parameter from
+/// start to end, each point of the curve with its frame by `options` (e.g.
+/// [`Show::frame_options`]). The normal arrows go from `p` to `p + length·frame.n`.
+#[must_use]
+pub fn frame_arrows(c: &AnyCurve<DVec3>, options: &FrameOptions) -> Vec<(DVec3, Frame)> {
+    let segments = c.num_segments().max(1);
+    let n = segments * 8;
+    let us: Vec<f64> = (0..=n).map(|i| segments as f64 * i as f64 / n as f64).collect();
+    let frames = frame::frames(c, &us, options);
+    us.iter().zip(frames).map(|(&u, f)| (c.eval(u), f)).collect()
 }
 
 /// An ongoing drag of a control point.
@@ -260,7 +297,7 @@ impl View2d {
         }
         let curve = doc.spline().ok();
         if let Some(c) = &curve {
-            self.draw_curve(&painter, c, plane);
+            self.draw_curve(&painter, c, plane, &self.show.frame_options(doc.is_2d()));
         }
         let points: Vec<Pos2> = doc.points().iter().map(|&p| self.to_screen(plane.project(p))).collect();
         if self.show.polygon && points.len() > 1 {
@@ -600,7 +637,8 @@ impl View2d {
         }
     }
 
-    fn draw_curve(&self, painter: &egui::Painter, c: &AnyCurve<DVec3>, plane: Plane) {
+    /// The curve, and what [`Show`] asks for along it (frames by `frame_options`).
+    fn draw_curve(&self, painter: &egui::Painter, c: &AnyCurve<DVec3>, plane: Plane, frame_options: &FrameOptions) {
         let tolerance = 0.2 / self.scale;
         let params = flatten_any(c, Tessellation::Distance { tolerance });
         let segments = c.num_segments().max(1);
@@ -619,11 +657,7 @@ impl View2d {
         }
         let len = 28.0 / self.scale;
         if self.show.normals || self.show.frames {
-            let n = segments * 8;
-            let us: Vec<f64> = (0..=n).map(|i| segments as f64 * i as f64 / n as f64).collect();
-            let frames = frame::frames(c, &us, &FrameOptions::default());
-            for (&u, f) in us.iter().zip(&frames) {
-                let p = c.eval(u);
+            for (p, f) in frame_arrows(c, frame_options) {
                 let mut arrows = vec![(f.t, Color32::from_rgb(40, 80, 230)), (f.n, Color32::from_rgb(220, 40, 40))];
                 if self.show.frames {
                     arrows.push((f.b, Color32::from_rgb(30, 160, 60)));
@@ -694,6 +728,39 @@ mod tests {
             // the third coordinate stays
             assert_eq!((moved - p).length_squared(), 500.0);
         }
+    }
+
+    /// Left normals of a counter-clockwise circle point inward, right ones outward: the
+    /// closed form `P(u) = r·(cos 2πu, sin 2πu)`, `N_left = −P/r`, `N_right = P/r`.
+    #[test]
+    fn normals_of_a_counter_clockwise_circle_by_side() {
+        let r = 2.5;
+        let circle = AnyCurve::Circle(splinekit::Circle::new(r));
+        let arrows = |side| frame_arrows(&circle, &Show { normal_side: side, ..Show::default() }.frame_options(true));
+        let (left, right) = (arrows(Side::Left), arrows(Side::Right));
+        assert_eq!(left.len(), 9, "8 per segment, both ends");
+        for (k, ((p, l), (q, rt))) in left.iter().zip(&right).enumerate() {
+            let angle = std::f64::consts::TAU * k as f64 / 8.0;
+            let expected = r * DVec3::new(angle.cos(), angle.sin(), 0.0);
+            assert!((*p - expected).length() < 1e-12 && p == q, "point {k}: {p} vs {expected}");
+            let inward = -expected / r;
+            assert!((l.n - inward).length() < 1e-9, "left normal {k}: {} vs {inward}", l.n);
+            assert!((rt.n + inward).length() < 1e-9, "right normal {k}: {} vs {}", rt.n, -inward);
+            // mirrored across the curve: same tangent, N and B reversed
+            assert!((l.t - rt.t).length() < 1e-12 && (l.b + rt.b).length() < 1e-12);
+            assert!((l.b - DVec3::Z).length() < 1e-9, "B = +z on the left side");
+        }
+    }
+
+    #[test]
+    fn normal_side_is_left_by_default_and_only_for_2d_curves() {
+        let show = Show::default();
+        assert_eq!(show.normal_side, Side::Left);
+        // today's frames: the core's default options
+        assert_eq!(show.frame_options(true), FrameOptions::DEFAULT);
+        let right = Show { normal_side: Side::Right, ..Show::default() };
+        assert_eq!(right.frame_options(true).method, FrameMethod::Sequential(Side::Right));
+        assert_eq!(right.frame_options(false), FrameOptions::DEFAULT, "3D curves keep their frames");
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! The 3D view: a [`TriMesh`] rendered with wgpu into an offscreen colour + depth texture that
-//! egui shows as an image.
+//! egui shows as an image (over the background, the axes and the grid).
 //!
 //! - **Camera**: an orbit [`Camera`] around a target point, Y up. Primary drag orbits,
 //!   secondary / middle drag or shift + primary drag pans, scroll or pinch zooms, a double
@@ -11,6 +11,13 @@
 //! - **Wireframe** with hidden lines removed: every triangle draws the part of its own edges
 //!   it shows (barycentric distance in the fragment shader), so the depth test hides the rest.
 //! - **Normals**: the vertex normals as short lines.
+//! - **Axes and grid** ([`Guides`]), drawn over the image under the curves: the x, y, z axes
+//!   from the origin in red, green and blue, labelled at their ends, and a faint grid in the
+//!   xy plane (the plane of the 2D curves and profiles; the revolution tool's z axis stands
+//!   up from it) with spacing 1, 2 or 5 times a power of ten ([`view2d::grid_step`]) from
+//!   the scene's size. They are painted under the rendered image, which is transparent where
+//!   there is no surface: the surface hides them wherever it covers them (also where they
+//!   pass in front of it), and the curves and points are drawn over everything.
 //!
 //! [`View3d::set_mesh`] is cheap enough to call every frame while a curve is dragged: it
 //! rebuilds the vertex data on the CPU, and the next [`View3d::ui`] uploads it into the
@@ -28,6 +35,8 @@ use eframe::wgpu;
 use glam::{DMat4, DVec3, DVec4, Vec3};
 use splinekit::TriMesh;
 
+use crate::view2d;
+
 /// Front faces, when the mesh has no per-vertex colours (light grey-blue, sRGB).
 pub const FRONT_COLOUR: Color32 = Color32::from_rgb(168, 186, 214);
 /// Back faces, with [`View3dSettings::show_backfaces_colour`] (orange-red, sRGB).
@@ -36,6 +45,11 @@ pub const BACK_COLOUR: Color32 = Color32::from_rgb(226, 92, 48);
 pub const WIRE_COLOUR: Color32 = Color32::from_rgb(24, 26, 34);
 /// The vertex-normal lines.
 pub const NORMAL_COLOUR: Color32 = Color32::from_rgb(96, 224, 120);
+/// The x, y and z axes ([`View3dSettings::axes`]).
+pub const AXIS_COLOURS: [Color32; 3] =
+    [Color32::from_rgb(230, 70, 70), Color32::from_rgb(80, 200, 90), Color32::from_rgb(90, 140, 255)];
+/// The grid lines ([`View3dSettings::grid`]): dim grey, translucent (premultiplied).
+pub const GRID_COLOUR: Color32 = Color32::from_rgba_premultiplied(35, 35, 35, 60);
 /// The default background ([`View3dSettings::background`]).
 pub const BACKGROUND: Color32 = Color32::from_rgb(44, 47, 54);
 
@@ -86,6 +100,10 @@ pub struct View3dSettings {
     pub msaa: bool,
     /// Background colour.
     pub background: Color32,
+    /// The x, y, z axes from the origin, labelled ([`Guides`]).
+    pub axes: bool,
+    /// A grid in the xy plane ([`Guides`]).
+    pub grid: bool,
 }
 
 impl Default for View3dSettings {
@@ -100,13 +118,15 @@ impl Default for View3dSettings {
             checker: false,
             msaa: false,
             background: BACKGROUND,
+            axes: true,
+            grid: true,
         }
     }
 }
 
 impl View3dSettings {
     /// Checkboxes for the settings, labelled "Draw surface", "Wireframe", "Normals", "Smooth",
-    /// "Back faces", "Vertex colours" and "MSAA".
+    /// "Back faces", "Vertex colours", "MSAA", "Axes" and "Grid".
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         ui.checkbox(&mut self.surface, "Draw surface");
         ui.checkbox(&mut self.wireframe, "Wireframe");
@@ -115,6 +135,8 @@ impl View3dSettings {
         ui.checkbox(&mut self.show_backfaces_colour, "Back faces");
         ui.checkbox(&mut self.vertex_colours, "Vertex colours");
         ui.checkbox(&mut self.msaa, "MSAA");
+        ui.checkbox(&mut self.axes, "Axes");
+        ui.checkbox(&mut self.grid, "Grid");
     }
 }
 
@@ -210,6 +232,28 @@ impl Camera {
         let d = p - self.eye();
         let c = rect.center();
         Some(pos2(c.x + (d.dot(right) / per_point) as f32, c.y - (d.dot(up) / per_point) as f32))
+    }
+
+    /// The part of the segment `ab` in front of the eye (deeper than a thousandth of the
+    /// camera's distance) projected into `rect` as [`Self::project`] does, or `None` when no
+    /// part is (or an end is not finite).
+    #[must_use]
+    pub fn project_segment(&self, a: DVec3, b: DVec3, rect: Rect) -> Option<[egui::Pos2; 2]> {
+        let near = 1e-3 * self.distance;
+        let (da, db) = (self.depth(a) - near, self.depth(b) - near);
+        if !(da >= 0.0 || db >= 0.0) {
+            return None;
+        }
+        // the end behind moved along the segment to the near depth
+        let cut = |p: DVec3, q: DVec3, dp: f64, dq: f64| p + (q - p) * (dp / (dp - dq));
+        let (a, b) = if da < 0.0 {
+            (cut(a, b, da, db), b)
+        } else if db < 0.0 {
+            (a, cut(b, a, db, da))
+        } else {
+            (a, b)
+        };
+        Some([self.project(a, rect)?, self.project(b, rect)?])
     }
 
     /// `p` moved in the plane through it parallel to the screen, so that it follows a drag
@@ -315,6 +359,52 @@ pub struct Overlay {
     pub dots: Vec<(DVec3, Color32)>,
     /// The selected handle (drawn in [`HANDLE_ACTIVE_COLOUR`], as the dragged one).
     pub selected: Option<usize>,
+}
+
+/// Grid lines per radius of the scene, at least ([`Guides::new`]).
+pub const GRID_LINES_PER_RADIUS: f64 = 5.0;
+/// The most grid lines in each direction, whatever the numbers.
+pub const MAX_GRID_LINES: f64 = 64.0;
+
+/// The axes and the grid of the 3D view ([`View3dSettings::axes`], [`View3dSettings::grid`])
+/// for a scene, in world coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Guides {
+    /// The grid spacing: 1, 2 or 5 times a power of ten ([`view2d::grid_step`]).
+    pub step: f64,
+    /// How far each axis reaches from the origin (its label is at the end).
+    pub axis_length: f64,
+    /// The grid lines in the xy plane (z = 0): first those of constant x, then those of
+    /// constant y, from low to high.
+    pub grid: Vec<[DVec3; 2]>,
+}
+
+impl Guides {
+    /// The guides of a scene within `radius` of `centre` (e.g. [`point_bounds`]): grid lines
+    /// [`GRID_LINES_PER_RADIUS`] or more per radius, over the square in xy that holds the
+    /// scene's bounding sphere (rounded out to whole steps); axes reaching 1.2 times as far
+    /// as the scene's farthest point from the origin, rounded up to a whole step. A radius
+    /// that is not positive and finite counts as 1, a centre that is not finite as the
+    /// origin.
+    #[must_use]
+    pub fn new(centre: DVec3, radius: f64) -> Self {
+        let centre = if centre.is_finite() { centre } else { DVec3::ZERO };
+        let radius = if radius.is_finite() && radius > 0.0 { radius } else { 1.0 };
+        let step = view2d::grid_step(radius / GRID_LINES_PER_RADIUS);
+        let range = |c: f64| {
+            let lo = ((c - radius) / step).floor();
+            (lo, ((c + radius) / step).ceil().clamp(lo, lo + MAX_GRID_LINES))
+        };
+        let ((x0, x1), (y0, y1)) = (range(centre.x), range(centre.y));
+        // counted in integers: far from the origin `k + 1.0` may equal `k`
+        let ks = |lo: f64, hi: f64| (0..=(hi - lo) as usize).map(move |i| (lo + i as f64) * step);
+        let mut grid: Vec<[DVec3; 2]> =
+            ks(x0, x1).map(|x| [DVec3::new(x, y0 * step, 0.0), DVec3::new(x, y1 * step, 0.0)]).collect();
+        grid.extend(ks(y0, y1).map(|y| [DVec3::new(x0 * step, y, 0.0), DVec3::new(x1 * step, y, 0.0)]));
+        let axis_length = (1.2 * (centre.length() + radius) / step).ceil() * step;
+        grid.retain(|[a, b]| a.is_finite() && b.is_finite());
+        Self { step, axis_length: if axis_length.is_finite() { axis_length } else { radius }, grid }
+    }
 }
 
 /// Radius of a handle's dot, and of the area that grabs it, in points.
@@ -511,10 +601,7 @@ impl View3d {
     /// With no mesh, it frames the handles and polyline of the last
     /// [`Self::ui_with_handles`] instead.
     pub fn fit(&mut self) {
-        let (centre, radius) = match self.overlay_bounds {
-            Some(b) if self.data.surface.is_empty() => b,
-            _ => self.data.centre_radius(),
-        };
+        let (centre, radius) = self.scene_bounds();
         let half_y = 0.5 * self.camera.fov_y;
         let half_x = (half_y.tan() * self.aspect.unwrap_or(1.0)).atan();
         let half = half_y.min(half_x).max(1e-3);
@@ -522,6 +609,54 @@ impl View3d {
         self.camera.distance = 1.05 * radius / half.sin();
         self.fit_pending = self.data.surface.is_empty() && self.overlay_bounds.is_none();
         self.refit_on_aspect = self.aspect.is_none();
+    }
+
+    /// The centre and radius of what the view shows: the mesh, or with no mesh the handles
+    /// and overlay of the last frame (radius 1 when there is no extent).
+    fn scene_bounds(&self) -> (DVec3, f64) {
+        match self.overlay_bounds {
+            Some(b) if self.data.surface.is_empty() => b,
+            _ => self.data.centre_radius(),
+        }
+    }
+
+    /// The axes and grid for what the view shows ([`Guides::new`] of the mesh's bounds, or
+    /// with no mesh those of the last frame's handles and overlay), drawn when
+    /// [`View3dSettings::axes`] and [`View3dSettings::grid`] are on.
+    #[must_use]
+    pub fn guides(&self) -> Guides {
+        let (centre, radius) = self.scene_bounds();
+        Guides::new(centre, radius)
+    }
+
+    /// Draws the grid, then the axes and their labels, with `painter` over the image in `rect`.
+    fn draw_guides(&self, painter: &egui::Painter, rect: Rect) {
+        if !(self.settings.axes || self.settings.grid) {
+            return;
+        }
+        let guides = self.guides();
+        if self.settings.grid {
+            for &[a, b] in &guides.grid {
+                if let Some(line) = self.camera.project_segment(a, b, rect) {
+                    painter.line_segment(line, (1.0, GRID_COLOUR));
+                }
+            }
+        }
+        if self.settings.axes {
+            for ((axis, colour), name) in
+                [DVec3::X, DVec3::Y, DVec3::Z].into_iter().zip(AXIS_COLOURS).zip(["x", "y", "z"])
+            {
+                let Some([a, b]) = self.camera.project_segment(DVec3::ZERO, guides.axis_length * axis, rect) else {
+                    continue;
+                };
+                painter.line_segment([a, b], (1.5, colour));
+                // the label just beyond the end, or where the axis leaves the view
+                let Some([a, b]) = clip_segment(a, b, rect.shrink(14.0)) else { continue };
+                let beyond = (b - a).normalized() * 7.0;
+                let at = if beyond.is_finite() { b + beyond } else { b };
+                painter.text(at, egui::Align2::CENTER_CENTER, name, egui::FontId::proportional(11.0), colour);
+            }
+        }
     }
 
     /// Allocates all the available space, handles the camera input, renders the mesh at the
@@ -619,11 +754,13 @@ impl View3d {
             gpu.render(&self.data, &self.camera, &self.settings, size);
             self.last_render = Some(key);
         }
-        if let Some(target) = &gpu.target {
-            let uv = Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
-            ui.painter().image(target.texture_id, rect, uv, Color32::WHITE);
-        }
         let painter = ui.painter().with_clip_rect(rect);
+        painter.rect_filled(rect, 0.0, self.settings.background);
+        self.draw_guides(&painter, rect);
+        if let Some(target) = self.gpu.as_ref().and_then(|g| g.target.as_ref()) {
+            let uv = Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
+            painter.image(target.texture_id, rect, uv, Color32::WHITE);
+        }
         for (polyline, colour, width) in &overlay.lines {
             let mut line = Vec::with_capacity(polyline.len());
             for &p in polyline {
@@ -1178,9 +1315,9 @@ impl Gpu {
         self.state.queue.write_buffer(&self.uniforms, 0, &u);
 
         let (Some(target), Some(pipelines)) = (&self.target, &self.pipelines) else { return };
-        // The texture holds gamma-encoded values: clear with the sRGB bytes as they are.
-        let [r, g, b, _] = settings.background.to_array();
-        let clear = wgpu::Color { r: f64::from(r) / 255.0, g: f64::from(g) / 255.0, b: f64::from(b) / 255.0, a: 1.0 };
+        // Transparent (premultiplied) where nothing is drawn: egui paints the background,
+        // the grid and the axes under the image.
+        let clear = wgpu::Color::TRANSPARENT;
         let mut encoder =
             self.state.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("view3d") });
         {
@@ -1225,6 +1362,25 @@ impl Gpu {
     }
 }
 
+/// The part of the segment `ab` inside `rect` (Liang–Barsky), or `None`.
+fn clip_segment(a: egui::Pos2, b: egui::Pos2, rect: Rect) -> Option<[egui::Pos2; 2]> {
+    let d = b - a;
+    let (mut t0, mut t1) = (0f32, 1f32);
+    for (p, q) in [(-d.x, a.x - rect.min.x), (d.x, rect.max.x - a.x), (-d.y, a.y - rect.min.y), (d.y, rect.max.y - a.y)]
+    {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else if p < 0.0 {
+            t0 = t0.max(q / p);
+        } else {
+            t1 = t1.min(q / p);
+        }
+    }
+    (t0 <= t1).then(|| [a + d * t0, a + d * t1])
+}
+
 /// `len` cut down to a multiple of `unit` bytes that fits in `max` bytes.
 fn clamp_len(len: usize, unit: u64, max: u64) -> usize {
     let len = (len as u64).min(max);
@@ -1249,5 +1405,67 @@ fn upload(state: &egui_wgpu::RenderState, slot: &mut Option<wgpu::Buffer>, bytes
     }
     if let Some(buffer) = slot {
         state.queue.write_buffer(buffer, 0, bytes);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn guides_cover_the_scene_in_whole_steps() {
+        let g = Guides::new(DVec3::new(2.0, 1.0, 0.5), 2.2);
+        // a fifth of the radius, 0.44, up to 1, 2 or 5 times a power of ten
+        assert!((g.step - 0.5).abs() < 1e-15, "{}", g.step);
+        // 1.2 · (|c| + r) = 1.2 · (2.291… + 2.2) = 5.39…, up to a whole step
+        assert!((g.axis_length - 5.5).abs() < 1e-12, "{}", g.axis_length);
+        // x from −0.5 to 4.5 and y from −1.5 to 3.5: 11 lines each way, in the xy plane
+        assert_eq!(g.grid.len(), 22);
+        let (first, last) = (g.grid[0], g.grid[10]);
+        assert!((first[0] - DVec3::new(-0.5, -1.5, 0.0)).length() < 1e-12, "{first:?}");
+        assert!((last[1] - DVec3::new(4.5, 3.5, 0.0)).length() < 1e-12, "{last:?}");
+        assert!(g.grid.iter().flatten().all(|p| p.z == 0.0));
+        // lines at whole multiples of the step
+        for [a, b] in &g.grid {
+            let k = if a.x == b.x { a.x / g.step } else { a.y / g.step };
+            assert!((k - k.round()).abs() < 1e-9, "{a} {b}");
+        }
+    }
+
+    #[test]
+    fn guides_of_degenerate_scenes_are_finite_and_few() {
+        for (centre, radius) in [
+            (DVec3::ZERO, 0.0),
+            (DVec3::NAN, f64::NAN),
+            (DVec3::splat(1e12), 1e-6),
+            (DVec3::ZERO, f64::INFINITY),
+            (DVec3::splat(1e300), 1e300),
+            (DVec3::ZERO, 1e-300),
+        ] {
+            let g = Guides::new(centre, radius);
+            assert!(g.step > 0.0 && g.step.is_finite() && g.axis_length.is_finite(), "{centre} {radius}: {g:?}");
+            assert!(g.grid.len() <= 2 * (MAX_GRID_LINES as usize + 1), "{centre} {radius}: {}", g.grid.len());
+            assert!(g.grid.iter().flatten().all(|p| p.is_finite()));
+        }
+    }
+
+    #[test]
+    fn segments_are_cut_at_the_near_plane_and_the_rect() {
+        let camera = Camera { target: DVec3::ZERO, yaw: 0.0, pitch: 0.0, distance: 4.0, ..Camera::default() };
+        let rect = Rect::from_min_size(pos2(0.0, 0.0), Vec2::new(200.0, 100.0));
+        // along x through the target: on the horizontal through the centre
+        let [a, b] = camera.project_segment(DVec3::new(-1.0, 0.0, 0.0), DVec3::X, rect).unwrap();
+        assert!((a.y - 50.0).abs() < 1e-4 && (b.y - 50.0).abs() < 1e-4 && a.x < 100.0 && b.x > 100.0);
+        // from the target to behind the eye (the eye is at z = 4): cut, not dropped
+        let [a, b] = camera.project_segment(DVec3::ZERO, DVec3::new(1.0, 0.0, 8.0), rect).unwrap();
+        assert_eq!(a, pos2(100.0, 50.0));
+        assert!(b.x.is_finite() && b.x > 100.0);
+        // all behind
+        assert!(camera.project_segment(DVec3::new(0.0, 0.0, 5.0), DVec3::new(1.0, 0.0, 9.0), rect).is_none());
+        assert!(camera.project_segment(DVec3::NAN, DVec3::ZERO, rect).is_none());
+
+        let [a, b] = clip_segment(pos2(100.0, 50.0), pos2(300.0, 150.0), rect).unwrap();
+        assert_eq!((a, b), (pos2(100.0, 50.0), pos2(200.0, 100.0)));
+        assert!(clip_segment(pos2(-10.0, -10.0), pos2(-1.0, 300.0), rect).is_none());
     }
 }

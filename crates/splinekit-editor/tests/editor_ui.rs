@@ -18,6 +18,8 @@ mod files;
 mod input;
 #[path = "editor_ui/surfaces.rs"]
 mod surfaces;
+#[path = "editor_ui/views.rs"]
+mod views;
 
 /// A test data file, relative to the package (the tests' working directory), so that the
 /// snapshots showing the path do not depend on where the repository is.

@@ -189,7 +189,13 @@ fn settings_checkboxes_switch_the_overlay() {
 #[test]
 fn empty_mesh_renders_background_only() {
     let mut harness = harness(&TriMesh::default(), false);
+    // the axes and grid (of a unit scene about the origin) are drawn over it
+    let with_guides = harness.render().unwrap();
+    let settings = &mut harness.state_mut().view.settings;
+    (settings.axes, settings.grid) = (false, false);
+    harness.run();
     let image = harness.render().unwrap();
+    assert_ne!(with_guides, image);
     let [r, g, b, _] = BACKGROUND.to_array();
     assert!(image.pixels().all(|p| p.0 == [r, g, b, 255]), "only the background");
     let camera = *harness.state().view.camera();
