@@ -705,7 +705,7 @@ impl EditorApp {
         } else if let Ok(Some(doc)) = annotated {
             self.doc.replace_with(doc);
             self.sync_mesh();
-            self.status = format!("Loaded {}: the revolution tool's spline and settings, editable", path.display());
+            self.status = format!("Loaded {}: the tool's splines and settings, editable", path.display());
             Ok(())
         } else {
             load_mesh(path).map(|(mesh, creases, kind)| {
@@ -2294,6 +2294,11 @@ fn settings_controls(
     settings: &mut SwpSurfaceSettings,
 ) -> Option<egui::Response> {
     let mut edited = None;
+    let keyword = kind.keyword();
+    if keyword == "xsweep" {
+        // the sweep tool's own angle rule: only the layout is a setting
+        return layout_control(ui, name, settings);
+    }
     let mode = match settings.tessellation {
         None => 0,
         Some(SwpTessellation::Distance(_)) => 1,
@@ -2329,23 +2334,8 @@ fn settings_controls(
         }
         None => {}
     }
-    let keyword = kind.keyword();
-    if matches!(keyword, "srev" | "gcyl" | "xsweep") {
-        let compat = settings.layout == Some(splinekit::sweep::MeshLayout::Compat);
-        let mut c = compat;
-        let r = egui::ComboBox::from_label(format!("{name} layout"))
-            .selected_text(if compat { "compat" } else { "welded" })
-            .show_ui(ui, |ui| {
-                ui.selectable_value(&mut c, false, "welded");
-                ui.selectable_value(&mut c, true, "compat");
-            })
-            .response
-            .on_hover_text("welded: seams and poles shared; compat: the course program's vertices");
-        if c != compat {
-            use splinekit::sweep::MeshLayout;
-            settings.layout = Some(if c { MeshLayout::Compat } else { MeshLayout::Welded });
-            edited = Some(r);
-        }
+    if matches!(keyword, "srev" | "gcyl") {
+        edited = layout_control(ui, name, settings).or(edited);
     }
     if keyword == "gcyl" {
         let rmf = settings.frames == Some(SwpFrames::RotationMinimizing);
@@ -2439,6 +2429,26 @@ fn paint_legend(ui: &egui::Ui, rect: egui::Rect, legend: &Legend) {
             }
         }
     }
+}
+
+/// `{name} layout`: welded or compat; the response when it changed.
+fn layout_control(ui: &mut egui::Ui, name: &str, settings: &mut SwpSurfaceSettings) -> Option<egui::Response> {
+    use splinekit::sweep::MeshLayout;
+    let compat = settings.layout == Some(MeshLayout::Compat);
+    let mut c = compat;
+    let r = egui::ComboBox::from_label(format!("{name} layout"))
+        .selected_text(if compat { "compat" } else { "welded" })
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut c, false, "welded");
+            ui.selectable_value(&mut c, true, "compat");
+        })
+        .response
+        .on_hover_text("welded: seams and poles shared; compat: the course program's vertices");
+    if c == compat {
+        return None;
+    }
+    settings.layout = Some(if c { MeshLayout::Compat } else { MeshLayout::Welded });
+    Some(r)
 }
 
 /// A labelled integer to drag or type; the response when it changed.
