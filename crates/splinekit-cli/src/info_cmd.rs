@@ -118,7 +118,9 @@ fn write_text(out: &mut impl Write, file: &str, curves: &[CurveRow], surfaces: &
     writeln!(out, "{file}: {}, {}", plural(curves.len(), "curve"), plural(surfaces.len(), "surface"))?;
     if !curves.is_empty() {
         writeln!(out, "curves:")?;
-        let width = curves.iter().map(|c| c.name.len()).max().unwrap_or(0);
+        // names align up to 40 characters; longer ones run on (a padding width taken from
+        // the input could be any size: format! refuses widths past u16::MAX)
+        let width = curves.iter().map(|c| c.name.chars().count()).max().unwrap_or(0).min(40);
         for (i, c) in curves.iter().enumerate() {
             let shape = match &c.shape {
                 Some(shape) => shape.clone(),
@@ -126,8 +128,9 @@ fn write_text(out: &mut impl Write, file: &str, curves: &[CurveRow], surfaces: &
             };
             writeln!(
                 out,
-                "  {i:>3}  {:<width$}  {:<4}  {shape}, steps {}, {}",
+                "  {i:>3}  {}{}  {:<4}  {shape}, steps {}, {}",
                 c.name,
+                " ".repeat(width.saturating_sub(c.name.chars().count())),
                 c.keyword,
                 c.steps,
                 if c.closed { "closed" } else { "open" }

@@ -282,7 +282,10 @@ fn sweep_surfaces(
         })?;
         meshes.push(mesh);
     }
+    // every file is written to its temporary name before any is renamed into place: an error
+    // on the last leaves none of them
     let mut used = std::collections::HashSet::new();
+    let mut staged = Vec::with_capacity(meshes.len());
     for (k, mesh) in meshes.iter().enumerate() {
         let mut stem = file_stem(doc, k);
         if !used.insert(stem.clone()) {
@@ -291,13 +294,17 @@ fn sweep_surfaces(
         }
         let path: PathBuf = args.output.join(format!("{stem}.{}", args.format.extension()));
         step(meshes.len() + k, format!("writing {}", path.display()));
-        if args.annotated {
+        // the errors name the path
+        let file = if args.annotated {
             let header = doc.annotated_header(k).map_err(|e| anyhow!("{}: {e}", args.file.display()))?;
-            splinekit_io::mesh::save_annotated_obj(&header, mesh, &path)
-                .with_context(|| format!("cannot write {}", path.display()))?;
+            splinekit_io::mesh::stage_annotated_obj(&header, mesh, &path)?
         } else {
-            save_mesh(args, mesh, &path)?;
-        }
+            splinekit_io::mesh::stage(mesh, &path, args.format.mesh_format())?
+        };
+        staged.push((file, mesh, path));
+    }
+    for (file, mesh, path) in staged {
+        file.commit()?;
         // the report goes to standard output, above the bar
         match bar {
             Some(bar) => bar.suspend(|| report(mesh, &path, out))?,
@@ -315,8 +322,8 @@ fn write_mesh(args: &SweepArgs, mesh: &TriMesh, path: &Path, out: &mut impl Writ
 
 /// Saves `mesh` to `path` in the chosen format.
 fn save_mesh(args: &SweepArgs, mesh: &TriMesh, path: &Path) -> anyhow::Result<()> {
-    splinekit_io::mesh::save(mesh, path, args.format.mesh_format())
-        .with_context(|| format!("cannot write {}", path.display()))
+    // the error names the path
+    Ok(splinekit_io::mesh::save(mesh, path, args.format.mesh_format())?)
 }
 
 /// The report line of a written mesh: its path, vertex count and triangle count.
@@ -378,8 +385,7 @@ fn run_obj(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
         if args.format != Format::Obj {
             bail!("--annotated writes OBJ files; use it with --format obj");
         }
-        splinekit_io::mesh::save_annotated_obj(&header, &mesh, &path)
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        splinekit_io::mesh::save_annotated_obj(&header, &mesh, &path)?;
         return report(&mesh, &path, out);
     }
     write_mesh(args, &mesh, &path, out)

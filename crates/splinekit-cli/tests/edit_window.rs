@@ -287,7 +287,8 @@ impl Image {
     /// buttons), if there is such a row: the first row of pixels, from the top, where three
     /// buttons (a fill of one colour, 20 to 200 pixels long, maybe framed by a pixel or two of
     /// other colours) stand on a background of one colour, 2 to 30 pixels between them, and no
-    /// fourth button that close before or after them (a toolbar). The button's height is where
+    /// fourth button that close before or after them (a toolbar), the first starting in the left
+    /// half of the screen (the question is centred). The button's height is where
     /// the fill's colour goes down its left end.
     fn middle_of_three_buttons(&self) -> Option<(usize, usize)> {
         /// A row of pixels as runs of one colour.
@@ -346,8 +347,10 @@ impl Image {
                         continue;
                     }
                 }
-                let Some((i, _)) = button(&runs, first + 1, background) else { continue };
-                if !gap(i, 2, 30) {
+                let Some((i, leftmost)) = button(&runs, first + 1, background) else { continue };
+                // the question is a window in the middle of the screen, its buttons from its
+                // left edge: a row of controls in the right-hand panel is not it
+                if !gap(i, 2, 30) || leftmost.start >= self.width / 2 {
                     continue;
                 }
                 let Some((i, middle)) = button(&runs, i + 1, background) else { continue };

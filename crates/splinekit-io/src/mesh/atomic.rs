@@ -88,6 +88,7 @@ impl From<WriteFileError> for io::Error {
 }
 
 /// Removes the temporary file when dropped, unless disarmed after the rename.
+#[derive(Debug)]
 struct TempGuard {
     path: PathBuf,
     armed: bool,
@@ -129,18 +130,72 @@ where
     F: FnOnce(&mut BufWriter<File>) -> Result<T, E>,
     E: From<WriteFileError>,
 {
+    let (staged, value) = stage_file(path, write)?;
+    staged.commit()?;
+    Ok(value)
+}
+
+/// A file written to its temporary name by [`stage_file`], waiting to replace its target:
+/// [`commit`](Self::commit) renames it into place; dropping it removes it.
+///
+/// Staging every file of a set before committing any writes all of them or none: an error
+/// while writing the third file of three leaves no file of the set.
+#[derive(Debug)]
+#[must_use = "a staged file is removed unless committed"]
+pub struct Staged {
+    guard: TempGuard,
+    target: PathBuf,
+    dir: PathBuf,
+}
+
+impl Staged {
+    /// The file the staged one will replace.
+    #[must_use]
+    pub fn target(&self) -> &Path {
+        &self.target
+    }
+
+    /// Renames the staged file over its target.
+    ///
+    /// # Errors
+    /// A [`WriteFileError`] naming the target when the rename is refused (the staged file is
+    /// then removed).
+    pub fn commit(mut self) -> Result<(), WriteFileError> {
+        fs::rename(&self.guard.path, &self.target)
+            .map_err(|e| WriteFileError::new(&self.target, "rename temporary file", e))?;
+        self.guard.armed = false;
+        sync_dir(&self.dir);
+        Ok(())
+    }
+}
+
+/// The first half of [`write_file`]: `write` fills a temporary file next to `path`, which is
+/// flushed and synced but not yet renamed; see [`Staged`]. A directory at `path` is refused
+/// at once (a rename could not replace it).
+///
+/// # Errors
+/// As [`write_file`], before the rename.
+pub fn stage_file<T, E, F>(path: impl AsRef<Path>, write: F) -> Result<(Staged, T), E>
+where
+    F: FnOnce(&mut BufWriter<File>) -> Result<T, E>,
+    E: From<WriteFileError>,
+{
     let path = path.as_ref();
     let fail = |action, error| E::from(WriteFileError::new(path, action, error));
     let Some(name) = path.file_name() else {
         let error = io::Error::new(io::ErrorKind::InvalidInput, "the path does not end in a file name");
         return Err(fail("write to a path without a file name", error));
     };
+    if path.is_dir() {
+        let error = io::Error::new(io::ErrorKind::IsADirectory, "a directory of that name is in the way");
+        return Err(fail("write", error));
+    }
     let dir = match path.parent() {
         Some(dir) if !dir.as_os_str().is_empty() => dir,
         _ => Path::new("."),
     };
 
-    let (file, mut guard) = create_temp(dir, &name.to_string_lossy()).map_err(|e| fail("create temporary file", e))?;
+    let (file, guard) = create_temp(dir, &name.to_string_lossy()).map_err(|e| fail("create temporary file", e))?;
     if let Ok(meta) = fs::metadata(path) {
         // Best effort: keep the permissions of the file being replaced.
         let _ = file.set_permissions(meta.permissions());
@@ -150,10 +205,8 @@ where
     let file = writer.into_inner().map_err(|e| fail("write", e.into_error()))?;
     file.sync_all().map_err(|e| fail("sync", e))?;
     drop(file);
-    fs::rename(&guard.path, path).map_err(|e| fail("rename temporary file", e))?;
-    guard.armed = false;
-    sync_dir(dir);
-    Ok(value)
+    let staged = Staged { guard, target: path.to_path_buf(), dir: dir.to_path_buf() };
+    Ok((staged, value))
 }
 
 /// Creates a new, uniquely named temporary file in `dir`.

@@ -172,6 +172,17 @@ pub enum MeshIoErrorKind {
         /// What was expected.
         expected: String,
     },
+    /// A vertex read from a file has a coordinate that is NaN or infinite (binary files; text
+    /// files report the token with its line and column instead).
+    #[error("vertex {} has {axis} = {value}, expected a finite number", vertex + 1)]
+    NonFiniteVertex {
+        /// The vertex, from 0 (messages count from 1).
+        vertex: usize,
+        /// `x`, `y` or `z`.
+        axis: &'static str,
+        /// The value read.
+        value: f64,
+    },
     /// The header is not valid UTF-8. Points at the line.
     #[error("found invalid UTF-8, expected UTF-8 text")]
     InvalidUtf8,

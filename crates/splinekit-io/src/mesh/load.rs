@@ -263,7 +263,8 @@ pub(crate) fn next_token<'a>(line: &'a [u8], pos: &mut usize) -> Option<(usize, 
 
 /// Parses a decimal number (anything `f64::from_str` accepts, including `inf` and `nan`).
 pub(crate) fn parse_f64(token: &[u8]) -> Option<f64> {
-    std::str::from_utf8(token).ok()?.parse().ok()
+    // `nan`, `inf` and numbers that overflow are not coordinates
+    std::str::from_utf8(token).ok()?.parse().ok().filter(|v: &f64| v.is_finite())
 }
 
 /// Parses an optionally signed decimal integer.
@@ -356,11 +357,20 @@ pub fn read_mesh<R: Read>(reader: R, format: MeshFormat, origin: &str) -> Result
 
 /// Parses `bytes` in `format`.
 fn parse_mesh(bytes: &[u8], format: MeshFormat, origin: &str) -> Result<LoadedMesh, MeshIoError> {
-    match format {
+    let loaded = match format {
         MeshFormat::Obj => super::obj_read::parse_obj(bytes, origin),
         MeshFormat::Ply => super::ply_read::parse_ply(bytes, origin),
         MeshFormat::Stl => super::stl_read::parse_stl(bytes, origin),
         MeshFormat::Glb => super::glb_read::parse_glb(bytes, origin),
+    }?;
+    // binary floats can be NaN or infinite; nothing downstream can use such a vertex
+    let bad = loaded.mesh.positions.iter().enumerate().find_map(|(vertex, p)| {
+        let axis = (0..3).find(|&k| !p[k].is_finite())?;
+        Some(MeshIoErrorKind::NonFiniteVertex { vertex, axis: ["x", "y", "z"][axis], value: p[axis] })
+    });
+    match bad {
+        Some(kind) => Err(error_in(origin, kind)),
+        None => Ok(loaded),
     }
 }
 

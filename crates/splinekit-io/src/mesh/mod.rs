@@ -85,7 +85,7 @@ pub use ply_read::read_ply;
 pub use rebuild::{RebuildError, RebuildOptions};
 pub use revolution_obj::{
     HeaderSpline, RevolutionHeader, SplineHeader, SweepHeader, save_annotated_obj, save_revolution_obj,
-    write_revolution_obj,
+    stage_annotated_obj, write_revolution_obj,
 };
 pub use stl::write_stl;
 pub use stl_read::read_stl;
@@ -176,6 +176,19 @@ pub fn save(mesh: &TriMesh, path: impl AsRef<Path>, format: MeshFormat) -> Resul
     let path = path.as_ref();
     check(mesh).map_err(|e| e.with_origin(path))?;
     atomic::write_file(path, |w| write_mesh(mesh, w, format).map_err(|e| e.with_origin(path)))
+}
+
+/// Writes `mesh` like [`save`] to a temporary file next to `path` without renaming it:
+/// commit the [`atomic::Staged`] file to put it in place, or drop it to remove it. Staging a
+/// set of files before committing any writes all or none.
+///
+/// # Errors
+///
+/// As [`save`].
+pub fn stage(mesh: &TriMesh, path: impl AsRef<Path>, format: MeshFormat) -> Result<atomic::Staged, MeshIoError> {
+    let path = path.as_ref();
+    check(mesh).map_err(|e| e.with_origin(path))?;
+    atomic::stage_file(path, |w| write_mesh(mesh, w, format).map_err(|e| e.with_origin(path))).map(|(s, ())| s)
 }
 
 /// Writes `mesh` like [`save`], stopping as soon as `cancelled()` says so (it is asked before

@@ -409,8 +409,23 @@ impl SplineHeader {
 /// A [`MeshIoError`] whose origin is `path`: an invalid header value or mesh, or an I/O error.
 pub fn save_annotated_obj(header: &SplineHeader, mesh: &TriMesh, path: impl AsRef<Path>) -> Result<(), MeshIoError> {
     let path = path.as_ref();
+    stage_annotated_obj(header, mesh, path)?.commit().map_err(|e| MeshIoError::from(e).with_origin(path))
+}
+
+/// [`save_annotated_obj`] to a temporary file, not yet renamed into place (see
+/// [`atomic::Staged`]).
+///
+/// # Errors
+/// As [`save_annotated_obj`].
+pub fn stage_annotated_obj(
+    header: &SplineHeader,
+    mesh: &TriMesh,
+    path: impl AsRef<Path>,
+) -> Result<atomic::Staged, MeshIoError> {
+    let path = path.as_ref();
     header.check().and_then(|()| super::check(mesh)).map_err(|e| e.with_origin(path))?;
-    atomic::write_file(path, |w| header.write(w).and_then(|()| write_obj(mesh, w)).map_err(|e| e.with_origin(path)))
+    atomic::stage_file(path, |w| header.write(w).and_then(|()| write_obj(mesh, w)).map_err(|e| e.with_origin(path)))
+        .map(|(staged, ())| staged)
 }
 
 /// Writes an OBJ file as the revolution tool did: `header` ([`RevolutionHeader::write`])
