@@ -150,6 +150,20 @@ pub fn run(args: &ArclenArgs, out: &mut impl Write) -> anyhow::Result<()> {
         Inverse::Table(table) => table.length(),
         Inverse::Exact(index) => index.length(),
     };
+    // the accuracy met, when it is not the one asked (said on standard error)
+    let met = match &inverse {
+        Inverse::Exact(index) if !index.meets_accuracy() => {
+            let error = 2.0 * index.error();
+            eprintln!(
+                "warning: curve {}: the length and positions are within about {error:.1e}, not the --accuracy {:?}: \
+                 f64 arithmetic cannot resolve more on this curve (about 1e-15 of its length, more where its \
+                 coordinates dwarf its detail)",
+                sel.name, args.accuracy
+            );
+            Some(error)
+        }
+        _ => None,
+    };
     let at_s: Vec<(f64, f64)> = args.at_s.iter().map(|&s| (s, inverse.u_at(curve, s))).collect();
     let spacing = match args.spacing {
         None => None,
@@ -218,7 +232,7 @@ pub fn run(args: &ArclenArgs, out: &mut impl Write) -> anyhow::Result<()> {
     if !at_s.is_empty() {
         let how = match table {
             Some(_) => "linear interpolation in the table".to_string(),
-            None => format!("exact to {:?}", args.accuracy),
+            None => format!("exact to {:?}", met.unwrap_or(args.accuracy)),
         };
         writeln!(out, "\nu at s ({how}):\n{:>14} {:>14}", "s", "u")?;
         for (s, u) in &at_s {

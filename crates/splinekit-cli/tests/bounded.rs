@@ -81,3 +81,73 @@ fn sweep_writes_all_files_or_none() {
     let stdout = splinekit(&["sweep".as_ref(), swp.as_os_str(), "-o".as_ref(), out.as_os_str()]).ok().to_owned();
     assert_eq!(stdout.lines().count(), 3);
 }
+
+/// Runs the binary with `args`, failing the test if it has not finished after a minute (these
+/// inputs once ran for hours; now they end in well under a second).
+fn within_a_minute(args: &[&std::ffi::OsStr]) -> common::Run {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_splinekit"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > Duration::from_secs(60) {
+            let _ = child.kill();
+            panic!("still running after a minute: {args:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    common::Run {
+        code: out.status.code(),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// The one-line inputs of #38 that bisected for hours: each ends, and where the accuracy asked
+/// cannot be met, standard error says so (the output keeps its shape).
+#[test]
+fn adaptive_loops_end_and_say_when_the_accuracy_cannot_be_met() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = |name: &str, text: &str| {
+        let p = dir.path().join(name);
+        fs::write(&p, text).unwrap();
+        p
+    };
+    let wiggle = file("wiggle.swp", "bez2 a 1 4 [0 0] [1 1] [2 0] [3 1]\n");
+    let spike = file("spike.swp", "bez3 a 1 4 [0 0 0] [0 1e8 0] [1 0 1] [2 0 0]\n");
+    let twist = file(
+        "twist.swp",
+        "circ ring 12 1\nbsp2 path 10 4 [0 0] [1e-300 0] [2e-300 1e-300] [3e-300 1e-300]\n\
+         bsp2 tw 10 4 [0 0] [10 0] [20 0] [30 0]\ngcyl g ring path twist tw\n",
+    );
+    let scale = file(
+        "scale.swp",
+        "circ ring 12 1\nbsp2 path 10 4 [0 0] [1 0] [2 1] [3 1]\n\
+         bsp2 tiny 10 4 [1e-9 1e-9] [2e-9 1e-9] [1e-9 2e-9] [1e-9 1e-9]\ngcyl g ring path scale tiny\n",
+    );
+    let os = |s: &'static str| std::ffi::OsStr::new(s);
+    let run = within_a_minute(&[
+        os("arclen"),
+        wiggle.as_os_str(),
+        os("--method"),
+        os("adaptive"),
+        os("--at-s"),
+        os("1e-300"),
+    ]);
+    run.ok();
+    let run = within_a_minute(&[os("arclen"), spike.as_os_str(), os("--method"), os("adaptive")]);
+    assert!(run.ok().contains("length: 8888888"), "{}", run.stdout);
+    assert!(run.stderr.contains("not the --accuracy 1e-9"), "{}", run.stderr);
+    let out = dir.path().join("out");
+    within_a_minute(&[os("sweep"), twist.as_os_str(), os("-o"), out.as_os_str()]).ok();
+    within_a_minute(&[os("info"), scale.as_os_str()]).ok();
+    within_a_minute(&[os("sweep"), scale.as_os_str(), os("-o"), out.as_os_str()]).ok();
+    let png = dir.path().join("m.png");
+    within_a_minute(&[os("render"), spike.as_os_str(), os("-o"), png.as_os_str(), os("--markers"), os("1e7")]).ok();
+}

@@ -112,6 +112,10 @@ fn screenshot(display: &str) -> Result<Vec<u8>, String> {
 }
 
 /// A virtual X server on a free display, and that display's name (`:N`).
+/// The tests run one at a time: two Xvfb servers started at once with `-displayfd` can pick
+/// the same free display number, and one of the editors then finds no server.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 fn start_xvfb() -> (Killed, String) {
     // Xvfb picks a free display and writes its number to the descriptor given (stdout)
     let mut xvfb = Command::new("Xvfb")
@@ -447,6 +451,7 @@ fn python_with_xlib() -> Option<String> {
 
 #[test]
 fn the_editor_window_opens_under_xvfb_and_shows_both_views() {
+    let _serial = ONE_AT_A_TIME.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     let missing: Vec<&str> =
         ["Xvfb", "xwd", "xwdtopnm", "pnmtopng"].into_iter().filter(|p| on_path(p).is_none()).collect();
     if !missing.is_empty() {
@@ -473,6 +478,7 @@ fn the_editor_window_opens_under_xvfb_and_shows_both_views() {
 
 #[test]
 fn closing_the_window_with_unsaved_changes_asks_first() {
+    let _serial = ONE_AT_A_TIME.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     let name = "closing_the_window_with_unsaved_changes_asks_first";
     let mut missing: Vec<&str> =
         ["Xvfb", "xwd", "xwdtopnm", "pnmtopng", "xdotool"].into_iter().filter(|p| on_path(p).is_none()).collect();

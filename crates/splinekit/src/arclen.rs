@@ -31,6 +31,18 @@ pub const DEFAULT_ACCURACY: f64 = 1e-9;
 /// Bisection depth limit for the adaptive integrator (intervals of width `2^-48`).
 const MAX_DEPTH: u32 = 48;
 
+/// The most Gauss–Kronrod intervals one integral is split into. Bisection stops there, so an
+/// integral takes at most about 250 000 speed evaluations whatever the curve and the accuracy
+/// asked; the error estimate then tells what was reached (more than asked). Smooth curves
+/// need a handful of intervals, a cusp a few hundred; only rounding noise in the speed (a
+/// curve with coordinates far larger than its detail, say `1e8` beside `1`) or an accuracy
+/// below the rounding level of the length meets the limit.
+pub const MAX_INTERVALS: usize = 1 << 14;
+
+/// The smallest accuracy an integral is refined for, relative to `∫|speed|`: an absolute
+/// accuracy below this cannot be met in `f64` arithmetic, so asking for less stops here.
+pub const RELATIVE_FLOOR: f64 = 1e-15;
+
 /// A length with an estimate of its absolute error.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ArclenEstimate {
@@ -106,13 +118,18 @@ pub fn integrate_speed<F: Fn(f64) -> f64>(speed: F, a: f64, b: f64, accuracy: f6
     if !(a != b) || !a.is_finite() || !b.is_finite() {
         return ArclenEstimate::default();
     }
-    let tol = if accuracy > 0.0 { accuracy } else { 0.0 };
     let (k, err, abs) = gk15(&speed, a, b);
+    let floor = RELATIVE_FLOOR * abs;
+    let tol = if accuracy > floor { accuracy } else { floor };
     let mut out = ArclenEstimate::default();
-    adapt(&speed, a, b, (k, err, abs), tol, 0, &mut out);
+    let mut left = MAX_INTERVALS;
+    adapt(&speed, a, b, (k, err, abs), tol, 0, &mut left, &mut out);
     out
 }
 
+/// Refines `[a, b]` depth first; `left` counts the intervals the integral may still be split
+/// into ([`MAX_INTERVALS`] in all).
+#[allow(clippy::too_many_arguments)]
 fn adapt<F: Fn(f64) -> f64>(
     f: &F,
     a: f64,
@@ -120,20 +137,22 @@ fn adapt<F: Fn(f64) -> f64>(
     (k, err, abs): (f64, f64, f64),
     tol: f64,
     depth: u32,
+    left: &mut usize,
     out: &mut ArclenEstimate,
 ) {
-    // Accept within budget, at the rounding floor, at the depth limit, or on non-finite
-    // values (which no bisection would fix).
-    if err <= tol || err <= 1e-14 * abs || depth >= MAX_DEPTH || !err.is_finite() {
+    // Accept within budget, at the rounding floor, at the depth or work limit, or on
+    // non-finite values (which no bisection would fix).
+    if err <= tol || err <= 1e-14 * abs || depth >= MAX_DEPTH || *left < 2 || !err.is_finite() {
         out.length += k;
         out.error += err;
         return;
     }
+    *left -= 2;
     let m = 0.5 * (a + b);
-    let left = gk15(f, a, m);
-    let right = gk15(f, m, b);
-    adapt(f, a, m, left, 0.5 * tol, depth + 1, out);
-    adapt(f, m, b, right, 0.5 * tol, depth + 1, out);
+    let lower = gk15(f, a, m);
+    let upper = gk15(f, m, b);
+    adapt(f, a, m, lower, 0.5 * tol, depth + 1, left, out);
+    adapt(f, m, b, upper, 0.5 * tol, depth + 1, left, out);
 }
 
 /// Finds `t ∈ [t_lo, t_hi]` with `|∫_{t_lo}^{t} speed − s| ≤ accuracy` (the integral taken
@@ -187,6 +206,11 @@ where
         err_sum += step.error.max(budget);
         budget *= 0.5;
         t = next;
+        // the integrals cannot meet the accuracy (rounding in the curve, or an accuracy below
+        // the length's rounding level): no later step can, so stop with the best `t`
+        if err_sum >= acc {
+            return t;
+        }
     }
     t
 }
@@ -357,6 +381,8 @@ impl ArclenTable {
 pub struct ArclenIndex {
     prefix: Vec<f64>,
     accuracy: f64,
+    /// The sum of the segments' error estimates.
+    error: f64,
 }
 
 impl ArclenIndex {
@@ -368,11 +394,29 @@ impl ArclenIndex {
         let mut prefix = Vec::with_capacity(m + 1);
         prefix.push(0.0);
         let mut total = 0.0;
+        let mut error = 0.0;
         for k in 0..m {
-            total += curve.arclen_range(k as f64, (k + 1) as f64, share).length;
+            let e = curve.arclen_range(k as f64, (k + 1) as f64, share);
+            total += e.length;
+            error += e.error;
             prefix.push(total);
         }
-        Self { prefix, accuracy }
+        Self { prefix, accuracy, error }
+    }
+
+    /// The estimated error of the total length: at most half the accuracy, unless the
+    /// accuracy cannot be met (below the length's rounding level, about `1e-15` of it, or
+    /// rounding noise in a curve whose coordinates dwarf its detail); then queries are as
+    /// close as the length allows, not within the accuracy.
+    #[must_use]
+    pub fn error(&self) -> f64 {
+        self.error
+    }
+
+    /// Whether the length (and so every query) meets the accuracy asked.
+    #[must_use]
+    pub fn meets_accuracy(&self) -> bool {
+        self.error <= 0.5 * self.accuracy
     }
 
     /// Total length (within half the accuracy).

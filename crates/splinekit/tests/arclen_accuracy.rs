@@ -328,3 +328,67 @@ fn regression_tight_turn_inverse() {
     let t = c.inv_arclen(s, 1e-9);
     assert!((reference_length(&c, 0.0, t) - s).abs() <= 1e-9);
 }
+
+// ---------------------------------------------------------------------------------------
+// #38: work bounded by the input, whatever the accuracy asked
+
+/// An integral whose speed carries rounding noise far above the accuracy asked stops after
+/// [`splinekit::arclen::MAX_INTERVALS`] intervals and says how far it got: its error estimate
+/// is larger than asked, and honest (the true length is within it).
+#[test]
+fn noisy_speed_stops_at_the_work_bound_and_reports_its_error() {
+    use std::cell::Cell;
+    let calls = Cell::new(0usize);
+    // a constant speed of 1 with noise of 1e-8 that no bisection averages away
+    let noisy = |t: f64| {
+        calls.set(calls.get() + 1);
+        1.0 + 1e-8 * ((t * 1e9).sin())
+    };
+    let e = splinekit::arclen::integrate_speed(noisy, 0.0, 1.0, 1e-300);
+    assert!(calls.get() <= 15 * (splinekit::arclen::MAX_INTERVALS + 1), "{} evaluations", calls.get());
+    assert!((e.length - 1.0).abs() <= 1e-7, "{}", e.length);
+    assert!(e.error > 1e-300, "the error says the accuracy was not met");
+}
+
+/// The curves of issue #38 that bisected to the depth limit: a Bézier curve with a control
+/// point at 1e8 beside others at 1 (its speed is rounding noise near the middle), queried
+/// for its length and inverse, and a length asked to 1e-300. Each ends with an error estimate
+/// that is honest: the reference (a fine composite rule on the same curve) is within it.
+#[test]
+fn hard_curves_end_with_an_honest_error() {
+    use splinekit::BezierSpline;
+    let c = BezierSpline::new(
+        &[DVec3::ZERO, DVec3::new(0.0, 1e8, 0.0), DVec3::new(1.0, 0.0, 1.0), DVec3::new(2.0, 0.0, 0.0)],
+        false,
+    )
+    .unwrap()
+    .to_piecewise();
+    let index = ArclenIndex::new(&c, 1e-9);
+    assert!(!index.meets_accuracy(), "1e-9 of a length near 9e7 is below its rounding");
+    // the reference: composite Simpson with 2 million panels
+    let n = 2_000_000;
+    let h = 1.0 / f64::from(n);
+    let speed = |t: f64| c.deriv(t).length();
+    let simpson: f64 = (0..n)
+        .map(|i| {
+            let a = f64::from(i) * h;
+            h / 6.0 * (speed(a) + 4.0 * speed(a + 0.5 * h) + speed(a + h))
+        })
+        .sum();
+    assert!(
+        (index.length() - simpson).abs() <= 2.0 * index.error() + 1e-6 * simpson,
+        "{} vs {simpson}",
+        index.length()
+    );
+    let u = index.u_at(&c, 1e-300);
+    assert!((0.0..1e-6).contains(&u), "{u}");
+    let q = BezierSpline::new(
+        &[DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0), DVec3::new(2.0, 0.0, 0.0), DVec3::new(3.0, 1.0, 0.0)],
+        false,
+    )
+    .unwrap()
+    .to_piecewise();
+    let tiny = ArclenIndex::new(&q, 1e-300);
+    assert!(!tiny.meets_accuracy() && tiny.error() < 1e-13, "{}", tiny.error());
+    assert!(tiny.u_at(&q, 1e-300) < 1e-290);
+}

@@ -53,6 +53,12 @@ use glam::DVec2;
 /// Deepest split before a piece is left to the general adaptive integrator.
 const MAX_DEPTH: u32 = 40;
 
+/// The most pieces one integral is split into. Past it every piece left takes one
+/// Gauss–Kronrod step and reports its own error, so an integral ends in bounded time whatever
+/// the accuracy asked (only an accuracy below the length's rounding level, or rounding noise
+/// in a curve whose coordinates dwarf its detail, gets there).
+const MAX_PIECES: usize = 1 << 12;
+
 /// Complex arithmetic on `DVec2` (`x` real part, `y` imaginary part).
 #[inline]
 fn cmul(a: DVec2, b: DVec2) -> DVec2 {
@@ -232,15 +238,17 @@ impl PlanarSpeed {
         let charge = (t1 - t0) * self.off_plane * reach * reach;
         let budget = (accuracy - charge).max(0.0);
         out.error = charge;
-        self.piece(t0, t1, budget, 0, &mut out);
+        let mut left = MAX_PIECES;
+        self.piece(t0, t1, budget, 0, &mut left, &mut out);
         out
     }
 
     /// Integrates `[lo, cut]` and `[cut, hi]`, sharing `budget` in proportion to width.
-    fn split(&self, lo: f64, cut: f64, hi: f64, budget: f64, depth: u32, out: &mut ArclenEstimate) {
+    #[allow(clippy::too_many_arguments)]
+    fn split(&self, lo: f64, cut: f64, hi: f64, budget: f64, depth: u32, pieces: &mut usize, out: &mut ArclenEstimate) {
         let left = budget * ((cut - lo) / (hi - lo));
-        self.piece(lo, cut, left, depth + 1, out);
-        self.piece(cut, hi, (budget - left).max(0.0), depth + 1, out);
+        self.piece(lo, cut, left, depth + 1, pieces, out);
+        self.piece(cut, hi, (budget - left).max(0.0), depth + 1, pieces, out);
     }
 
     /// Integrates one piece within `budget` (or the rounding floor, if larger).
@@ -248,7 +256,19 @@ impl PlanarSpeed {
     /// Everything is measured in units of `t` relative to the piece's centre (root offsets
     /// `Z = r − cen`, `E = h²·ε`, `G = h²·(ρ² − 1)`), so that no division by the half-width
     /// `h` is needed. Norms are L1 (`|x| + |y|`) where only an upper bound is needed.
-    fn piece(&self, lo: f64, hi: f64, budget: f64, depth: u32, out: &mut ArclenEstimate) {
+    fn piece(&self, lo: f64, hi: f64, budget: f64, depth: u32, pieces: &mut usize, out: &mut ArclenEstimate) {
+        if *pieces == 0 {
+            // out of pieces: one Gauss–Kronrod step, with its own error
+            let e = crate::arclen::integrate_speed(|t| self.speed(t), lo, hi, f64::INFINITY);
+            out.length += e.length;
+            out.error += e.error;
+            return;
+        }
+        *pieces -= 1;
+        if !(hi > lo) {
+            // a cut rounded onto an end (pieces near the smallest numbers): nothing between
+            return;
+        }
         let cen = 0.5 * (lo + hi);
         let h = 0.5 * (hi - lo);
         // q in the piece's own coordinate z ∈ [−1, 1]: t = cen + h·z
@@ -294,7 +314,7 @@ impl PlanarSpeed {
                     let cut = cen + x;
                     if cut > lo && cut < hi && depth < MAX_DEPTH {
                         // an (almost) exact cusp inside: cut there
-                        self.split(lo, cut, hi, budget, depth, out);
+                        self.split(lo, cut, hi, budget, depth, pieces, out);
                         return;
                     }
                     // too near an end to cut: snap it onto that end instead
@@ -357,7 +377,7 @@ impl PlanarSpeed {
             None if depth < MAX_DEPTH => {
                 // split towards the nearest unsnapped root
                 let cut = cen + x_near.clamp(-0.75 * h, 0.75 * h);
-                self.split(lo, cut, hi, budget, depth, out);
+                self.split(lo, cut, hi, budget, depth, pieces, out);
             }
             None => {
                 let e = crate::arclen::integrate_speed(|t| self.speed(t), lo, hi, budget);
