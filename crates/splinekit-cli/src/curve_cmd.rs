@@ -13,6 +13,9 @@ use splinekit_io::MAX_STEPS;
 use crate::output::{JsonNum, json_array, json_str};
 use crate::select;
 
+/// The default of `--max-points`: 50 million points (a few gigabytes of text).
+pub const DEFAULT_MAX_POINTS: u64 = 50_000_000;
+
 /// Print a curve's tessellated points with their parameter u and frame (T, N, B).
 ///
 /// Uniform steps by default: each segment gives steps+1 points at t = i/steps; joined
@@ -62,6 +65,11 @@ pub struct CurveArgs {
     /// Output format
     #[arg(long, value_enum, value_name = "FORMAT", default_value_t = Format::Csv)]
     pub format: Format,
+
+    /// The most points the tessellation may give; counted before any is made, so a helix of
+    /// many turns with a fine tolerance is refused at once instead of exhausting memory
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_POINTS)]
+    pub max_points: u64,
 }
 
 /// Output format of `curve`.
@@ -101,6 +109,18 @@ pub fn run(args: &CurveArgs, out: &mut impl Write) -> anyhow::Result<()> {
             (Tessellation::Uniform { steps: steps as usize }, Some(steps))
         }
     };
+    // counted before the points are made (a helix of many turns and a fine tolerance could
+    // ask for billions)
+    let count = flatten::flatten_count(curve, mode);
+    if count > args.max_points {
+        bail!(
+            "curve {}: this tessellation would give {} points, more than --max-points {}; use a coarser \
+             tolerance or fewer steps, or raise --max-points",
+            sel.name,
+            if count == u64::MAX { "too many".to_owned() } else { format!("up to {count}") },
+            args.max_points
+        );
+    }
     let params = flatten::flatten_any(curve, mode);
     let method = match args.frames {
         FrameChoice::Sequential => FrameMethod::Sequential(Side::Left),

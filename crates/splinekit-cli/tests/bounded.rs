@@ -151,3 +151,39 @@ fn adaptive_loops_end_and_say_when_the_accuracy_cannot_be_met() {
     let png = dir.path().join("m.png");
     within_a_minute(&[os("render"), spike.as_os_str(), os("-o"), png.as_os_str(), os("--markers"), os("1e7")]).ok();
 }
+
+/// A helix of 10 000 turns of radius 1e200: `curve --tolerance` refuses it from its point
+/// count (22 billion) before making any, `render` draws it with equal steps, and a sweep along
+/// it is refused from the count too. None allocates more than the limits allow.
+#[test]
+fn tessellations_are_counted_before_they_are_made() {
+    let dir = tempfile::tempdir().unwrap();
+    let helix = dir.path().join("helix.swp");
+    fs::write(&helix, "helix h 20 1e200 1 10000\ncirc ring 8 1\ngcyl tube ring h\n").unwrap();
+    let os = |s: &'static str| std::ffi::OsStr::new(s);
+    let stderr =
+        within_a_minute(&[os("curve"), helix.as_os_str(), os("--curve"), os("h"), os("--tolerance"), os("0.01")])
+            .fails_with_error()
+            .to_string();
+    assert!(stderr.contains("curve h: this tessellation would give up to 22326326821 points"), "{stderr}");
+    assert!(stderr.contains("--max-points 50000000"), "{stderr}");
+    let small = within_a_minute(&[
+        os("curve"),
+        helix.as_os_str(),
+        os("--curve"),
+        os("h"),
+        os("--angle-tolerance"),
+        os("10"),
+        os("--max-points"),
+        os("1000"),
+    ]);
+    assert!(small.fails_with_error().contains("--max-points 1000"));
+    let png = dir.path().join("h.png");
+    within_a_minute(&[os("render"), helix.as_os_str(), os("-o"), png.as_os_str()]).ok();
+    let out = dir.path().join("out");
+    let stderr =
+        within_a_minute(&[os("sweep"), helix.as_os_str(), os("-o"), out.as_os_str(), os("--tolerance"), os("0.01")])
+            .fails_with_error()
+            .to_string();
+    assert!(stderr.contains("would have about") && stderr.contains("points"), "{stderr}");
+}

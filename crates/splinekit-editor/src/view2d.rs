@@ -7,7 +7,7 @@
 use eframe::egui::{self, Color32, Pos2, Rect, Sense, Shape, Stroke, Vec2, WidgetInfo};
 use glam::{DVec2, DVec3};
 use splinekit::arclen::ArclenIndex;
-use splinekit::flatten::{Tessellation, flatten_any};
+use splinekit::flatten::{Tessellation, flatten_at_most};
 use splinekit::frame::{self, Frame, FrameMethod, FrameOptions, Side};
 use splinekit::{AnyCurve, ParamCurve};
 
@@ -15,6 +15,10 @@ use crate::doc::Document;
 
 /// Radius (points) within which a click or drag picks a control point or a polygon edge.
 pub const PICK_RADIUS: f32 = 7.0;
+
+/// The most points a curve is drawn with in the 2D view (finer curves, such as a helix of
+/// thousands of turns, are drawn with equal steps instead of to the pixel tolerance).
+pub const MAX_DRAWN: usize = 200_000;
 
 /// A press and release closer than this (points) are a click; farther apart, a drag.
 pub const CLICK_DISTANCE: f32 = 6.0;
@@ -289,7 +293,7 @@ impl View2d {
                     continue;
                 }
                 let Ok(c) = c.to_curve() else { continue };
-                let params = flatten_any(&c, Tessellation::Distance { tolerance: 0.5 / self.scale });
+                let params = flatten_at_most(&c, Tessellation::Distance { tolerance: 0.5 / self.scale }, MAX_DRAWN);
                 let line: Vec<Pos2> = params.iter().map(|&u| self.to_screen(plane.project(c.eval(u)))).collect();
                 painter.add(Shape::line(line.clone(), Stroke::new(1.5, Color32::from_gray(175))));
                 self.others.push((i, line));
@@ -640,7 +644,7 @@ impl View2d {
     /// The curve, and what [`Show`] asks for along it (frames by `frame_options`).
     fn draw_curve(&self, painter: &egui::Painter, c: &AnyCurve<DVec3>, plane: Plane, frame_options: &FrameOptions) {
         let tolerance = 0.2 / self.scale;
-        let params = flatten_any(c, Tessellation::Distance { tolerance });
+        let params = flatten_at_most(c, Tessellation::Distance { tolerance }, MAX_DRAWN);
         let segments = c.num_segments().max(1);
         // one polyline per segment, in that segment's colour
         let mut start = 0;

@@ -448,6 +448,12 @@ fn sample_curve(
         SurfaceTessellation::Distance(tolerance) => Tessellation::Distance { tolerance },
         SurfaceTessellation::Angle(tolerance) => Tessellation::Angle { tolerance },
     };
+    // counted before the points are made (a helix of many turns and a fine tolerance could
+    // ask for billions)
+    let bound = flatten::flatten_count(curve, mode);
+    limit.check(2u64.saturating_mul(bound.saturating_sub(1)), || {
+        format!("one of its curves alone would have up to {bound} points")
+    })?;
     let params = flatten::flatten_any(curve, mode);
     let n = params.len();
     limit.check(2 * (n as u64).saturating_sub(1), || {

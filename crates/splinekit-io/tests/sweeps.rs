@@ -346,8 +346,8 @@ fn the_triangle_limit_is_checked_before_the_mesh_is_built() {
     let e = doc.surface_mesh(0, &limited(opts(MeshLayout::Compat), 100)).unwrap_err();
     assert_eq!(
         e.to_string(),
-        "surface wineglass would have about 368 triangles (at least that many: one of its curves alone has \
-         185 points), more than the limit of 100"
+        "surface wineglass would have about 368 triangles (one of its curves alone would have up to 185 \
+         points), more than the limit of 100"
     );
     // caps count: an open sweep of a closed 13-point profile (12 distinct) along 4 points gets
     // 2·12·3 side triangles and two caps of 12 − 2; the check allows 12 a cap

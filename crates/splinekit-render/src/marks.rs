@@ -6,7 +6,7 @@
 //! list.
 
 use glam::DVec3;
-use splinekit::flatten::{Tessellation, flatten_any};
+use splinekit::flatten::{Tessellation, flatten_at_most};
 use splinekit::frame::{self, FrameOptions};
 use splinekit::{AnyCurve, ArclenIndex, ParamCurve};
 use splinekit_io::{SwpCurve, SwpGeometry};
@@ -242,9 +242,13 @@ pub fn curve_marks(curves: &[PlotCurve], options: &CurveOptions, theme: Theme, r
     marks
 }
 
+/// The most points a curve is drawn with (a curve finer than that, such as a helix of
+/// thousands of turns, is drawn with equal steps instead of to the picture's tolerance).
+pub const MAX_DRAWN_POINTS: usize = 1_000_000;
+
 /// One polyline per segment, in that segment's colour.
 fn segment_lines(c: &AnyCurve<DVec3>, tolerance: f64) -> Vec<Mark> {
-    let params = flatten_any(c, Tessellation::Distance { tolerance });
+    let params = flatten_at_most(c, Tessellation::Distance { tolerance }, MAX_DRAWN_POINTS);
     let segments = c.num_segments().max(1);
     let mut lines = Vec::new();
     let mut start = 0;

@@ -282,6 +282,53 @@ pub fn flatten_any<P: Vector>(curve: &AnyCurve<P>, mode: Tessellation) -> Vec<f6
     }
 }
 
+/// An upper bound of the number of points [`flatten_any`] gives `curve` in `mode`, found without making
+/// them (so a caller can refuse, or draw coarser, before allocating): exact for uniform steps,
+/// circles and helices and in the distance mode of chains of cubics (each segment's chord
+/// count is planned before its chords are placed); in the angle mode of cubics and for trefoil
+/// knots an upper bound (the halving depth and the curvature bound). `u64::MAX` when it does
+/// not fit.
+#[must_use]
+pub fn flatten_count<P: Vector>(curve: &AnyCurve<P>, mode: Tessellation) -> u64 {
+    let plus_one = |n: u64| n.saturating_add(1);
+    match curve {
+        AnyCurve::Piecewise(c) => {
+            let m = c.segments().len() as u64;
+            match mode {
+                Tessellation::Uniform { steps } => plus_one(m.saturating_mul(steps.clamp(1, MAX_STEPS) as u64)),
+                Tessellation::Angle { .. } => plus_one(m.saturating_mul(1 << MAX_ANGLE_DEPTH)),
+                Tessellation::Distance { tolerance } => {
+                    let tolerance = valid_or(tolerance, DEFAULT_TOLERANCE);
+                    plus_one(
+                        c.segments().iter().fold(0u64, |n, seg| n.saturating_add(ChordPlan::new(seg, tolerance).n)),
+                    )
+                }
+            }
+        }
+        AnyCurve::Circle(c) => plus_one(circle_chords(c, mode) as u64),
+        AnyCurve::Helix(h) => plus_one(h.chord_count::<P>(mode)),
+        AnyCurve::Trefoil(k) => k.point_bound::<P>(mode),
+    }
+}
+
+/// [`flatten_any`] in `mode` when that gives at most `max_points` points
+/// ([`flatten_count`]); otherwise equal parameter steps, as many as fit `max_points` (at
+/// least one per segment, at most [`MAX_STEPS`] each), and `mode`'s tolerance is not met.
+/// For drawing, where a curve far finer than the picture must still come out in bounded time
+/// and memory.
+#[must_use]
+pub fn flatten_at_most<P: Vector>(curve: &AnyCurve<P>, mode: Tessellation, max_points: usize) -> Vec<f64> {
+    if flatten_count(curve, mode) <= max_points as u64 {
+        return flatten_any(curve, mode);
+    }
+    let segments = match curve {
+        AnyCurve::Piecewise(c) => c.segments().len().max(1),
+        _ => 1,
+    };
+    let steps = (max_points.saturating_sub(1) / segments).clamp(1, MAX_STEPS);
+    flatten_any(curve, Tessellation::Uniform { steps })
+}
+
 /// Number of equal chords for a circle in the given mode.
 fn circle_chords(c: &Circle, mode: Tessellation) -> usize {
     match mode {

@@ -405,3 +405,57 @@ proptest! {
         prop_assert!((n as f64 - m as f64).abs() <= 0.05 * n as f64 + 1.0, "{n} vs {m}");
     }
 }
+
+/// #38: `flatten_count` tells the number of points before they are made: exactly for circles,
+/// helices, uniform steps and cubics in the distance mode, an upper bound in the angle mode
+/// and for trefoils; a helix that would take billions of points is counted, not made, and
+/// `flatten_at_most` draws it with equal steps instead.
+#[test]
+fn point_counts_are_known_before_the_points_are_made() {
+    use splinekit::flatten::{flatten_any, flatten_at_most, flatten_count};
+    use splinekit::{BSpline, Helix, Trefoil};
+    let spline = AnyCurve::Piecewise(
+        BSpline::new(
+            &[
+                DVec3::ZERO,
+                DVec3::new(1.0, 2.0, 0.0),
+                DVec3::new(3.0, -1.0, 1.0),
+                DVec3::new(4.0, 0.0, 0.0),
+                DVec3::new(6.0, 3.0, 2.0),
+            ],
+            false,
+        )
+        .unwrap()
+        .to_piecewise(),
+    );
+    let curves = [
+        spline,
+        AnyCurve::Circle(Circle::new(2.0)),
+        AnyCurve::Helix(Helix::new(1.5, 0.3, 7.5)),
+        AnyCurve::Trefoil(Trefoil::new(1.0)),
+    ];
+    for (k, curve) in curves.iter().enumerate() {
+        for mode in [
+            Tessellation::Uniform { steps: 7 },
+            Tessellation::Distance { tolerance: 1e-3 },
+            Tessellation::Distance { tolerance: 1e-6 },
+            Tessellation::Angle { tolerance: 0.05 },
+        ] {
+            let made = flatten_any(curve, mode).len() as u64;
+            let counted = flatten_count(curve, mode);
+            let exact = k != 3 && !matches!(mode, Tessellation::Angle { .. }) || k == 1 || k == 2;
+            if exact {
+                assert_eq!(counted, made, "curve {k}, {mode:?}");
+            } else {
+                assert!(counted >= made, "curve {k}, {mode:?}: counted {counted}, made {made}");
+            }
+        }
+    }
+    // 10 000 turns of radius 1e200 to 0.01: billions of points, counted in no time
+    let huge: AnyCurve<DVec3> = AnyCurve::Helix(Helix::new(1e200, 1.0, 10_000.0));
+    let mode = Tessellation::Distance { tolerance: 0.01 };
+    assert!(flatten_count(&huge, mode) > 1_000_000_000);
+    let drawn = flatten_at_most(&huge, mode, 100_000);
+    assert!(drawn.len() <= 100_000 && drawn.len() > 1, "{}", drawn.len());
+    assert_eq!((drawn[0], *drawn.last().unwrap()), (0.0, 1.0));
+}

@@ -111,6 +111,11 @@ impl Helix {
         equal_params(self.chords::<P>(mode))
     }
 
+    /// The number of chords [`flatten_params`](Self::flatten_params) makes, without making them.
+    pub(crate) fn chord_count<P: Vector>(&self, mode: Tessellation) -> u64 {
+        self.chords::<P>(mode) as u64
+    }
+
     /// Number of equal chords in the given mode (see the docs of
     /// [`flatten_any`](crate::flatten::flatten_any)).
     fn chords<P: Vector>(&self, mode: Tessellation) -> usize {

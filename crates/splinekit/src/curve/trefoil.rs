@@ -120,6 +120,28 @@ impl Trefoil {
         Self::unit_at(t, order) * (self.size * TAU.powi(order as i32))
     }
 
+    /// An upper bound of the number of points [`flatten_params`](Self::flatten_params) makes: exact for
+    /// uniform steps; 4·2^depth + 1 in the angle mode; in the distance mode the full turn over
+    /// the smallest chord width the curvature bound allows.
+    pub(crate) fn point_bound<P: Vector>(&self, mode: Tessellation) -> u64 {
+        match mode {
+            Tessellation::Uniform { steps } => steps.clamp(1, MAX_STEPS) as u64 + 1,
+            Tessellation::Angle { .. } => (4u64 << MAX_ANGLE_DEPTH) + 1,
+            Tessellation::Distance { tolerance } => {
+                let s = self.size;
+                if !(s > 0.0 && s.is_finite()) {
+                    return 2;
+                }
+                let magnitude = 3.0 * s;
+                let tol = valid_or(tolerance, DEFAULT_TOLERANCE).max(1e-12 * magnitude);
+                let limit = tol * (1.0 - 1e-9) - 1e-14 * magnitude;
+                let width = (8.0 * limit / s / max_deriv2(0.0, TAU, P::DIM < 3)).sqrt();
+                let n = (TAU / width).ceil() + 2.0;
+                if n.is_finite() && n < u64::MAX as f64 { n as u64 } else { u64::MAX }
+            }
+        }
+    }
+
     /// Parameters of the polyline's vertices (see [`flatten_any`](crate::flatten::flatten_any)).
     pub(crate) fn flatten_params<P: Vector>(&self, mode: Tessellation) -> Vec<f64> {
         let planar = P::DIM < 3;
