@@ -42,7 +42,9 @@ pub struct ArclenArgs {
     #[arg(long, value_name = "NAME|INDEX", allow_negative_numbers = true)]
     pub curve: Option<String>,
 
-    /// Table samples per curve segment, at least 1 (chord and gauss3)
+    /// Table samples per curve segment, at least 1 (chord and gauss3). Too few for a curve that
+    /// turns much within a segment (a helix of many turns) alias: the length is then compared
+    /// with the adaptive one and a warning says when they differ by more than 2%
     #[arg(long, value_name = "N", default_value_t = 5, allow_hyphen_values = true)]
     #[arg(value_parser = clap::value_parser!(u32).range(1..))]
     pub samples: u32,
@@ -150,6 +152,33 @@ pub fn run(args: &ArclenArgs, out: &mut impl Write) -> anyhow::Result<()> {
         Inverse::Table(table) => table.length(),
         Inverse::Exact(index) => index.length(),
     };
+    // a length past the largest f64 (coordinates near 1e308) is no answer
+    let table_finite = match &inverse {
+        Inverse::Table(table) => table.iter_rows().all(|(u, s)| u.is_finite() && s.is_finite()),
+        Inverse::Exact(_) => true,
+    };
+    if !length.is_finite() || !table_finite {
+        bail!(
+            "curve {}: its arc length overflows f64 arithmetic (its coordinates are too close to the largest \
+             number, about 1.8e308); scale the curve down",
+            sel.name
+        );
+    }
+    // a table that aliases (too few samples for the curve's turns) can be far off: compare
+    // with the adaptive length, to a relative 1e-6, and say so
+    if let Inverse::Table(_) = &inverse {
+        let reference = ArclenIndex::new(curve, 1e-6 * length.max(f64::MIN_POSITIVE)).length();
+        if reference.is_finite() && (length - reference).abs() > 0.02 * reference {
+            eprintln!(
+                "warning: curve {}: the {} table's length {length} differs from the adaptive length {reference} by \
+                 {:.0}%: {samples} samples per segment are too few for this curve; raise --samples or use \
+                 --method adaptive",
+                sel.name,
+                args.method.name(),
+                100.0 * (length - reference).abs() / reference
+            );
+        }
+    }
     // the accuracy met, when it is not the one asked (said on standard error)
     let met = match &inverse {
         Inverse::Exact(index) if !index.meets_accuracy() => {

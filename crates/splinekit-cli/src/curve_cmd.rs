@@ -129,6 +129,16 @@ pub fn run(args: &CurveArgs, out: &mut impl Write) -> anyhow::Result<()> {
     };
     let samples = frame::sample(curve, &params);
     let frames = frame::frames_for_samples(&samples, &FrameOptions::DEFAULT.with_method(method));
+    // a point or frame past the largest f64 (coordinates near 1e308) is no answer
+    let finite = samples.iter().all(|s| s.position.is_finite())
+        && frames.iter().all(|f| f.t.is_finite() && f.n.is_finite() && f.b.is_finite());
+    if !finite {
+        bail!(
+            "curve {}: its points or frames overflow f64 arithmetic (its coordinates are too close to the largest \
+             number, about 1.8e308); scale the curve down",
+            sel.name
+        );
+    }
     let closed = curve.is_closed();
     let last = samples.len().saturating_sub(1);
     // the last point of a closed curve repeats the first exactly

@@ -187,3 +187,52 @@ fn tessellations_are_counted_before_they_are_made() {
             .to_string();
     assert!(stderr.contains("would have about") && stderr.contains("points"), "{stderr}");
 }
+
+/// Coordinates near the top of the f64 range: `arclen` and `curve` refuse, naming the curve,
+/// instead of printing `inf`, `null` or NaN as an answer.
+#[test]
+fn overflowing_curves_are_refused_not_answered_with_inf() {
+    let dir = tempfile::tempdir().unwrap();
+    let os = |s: &'static str| std::ffi::OsStr::new(s);
+    for (name, text) in
+        [("big.swp", "bez2 a 20 4 [0 0] [1 1e308] [2 -1e308] [3 1]\n"), ("circle.swp", "circ a 20 1e300\n")]
+    {
+        let file = dir.path().join(name);
+        fs::write(&file, text).unwrap();
+        for args in [&["arclen"][..], &["arclen", "--json"], &["arclen", "--method", "adaptive"]] {
+            let mut all: Vec<&std::ffi::OsStr> = args.iter().map(|a| os(a)).collect();
+            all.push(file.as_os_str());
+            let run = within_a_minute(&all);
+            if name == "circle.swp" && args.len() == 3 {
+                // the exact length of a circle does not overflow: 2π·1e300
+                let out = run.ok().to_owned();
+                let length: f64 = out.lines().find_map(|l| l.strip_prefix("length: ")).unwrap().parse().unwrap();
+                assert!((length / (std::f64::consts::TAU * 1e300) - 1.0).abs() < 1e-12, "{out}");
+                continue;
+            }
+            let stderr = run.fails_with_error().to_string();
+            assert!(stderr.contains("curve a: its arc length overflows f64"), "{name} {args:?}: {stderr}");
+        }
+    }
+}
+
+/// A chord table that aliases (5 samples a segment on a helix of 10 000 turns: a length of
+/// 1000 for 62 840) is printed as asked, with a warning that compares it with the adaptive
+/// length; a table that agrees prints no warning.
+#[test]
+fn an_aliasing_chord_table_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let helix = dir.path().join("helix.swp");
+    fs::write(&helix, "helix h 5 1 0.1 10000\nbez2 b 10 4 [0 0] [1 1] [2 1] [3 0]\n").unwrap();
+    let os = |s: &'static str| std::ffi::OsStr::new(s);
+    let run = within_a_minute(&[os("arclen"), helix.as_os_str(), os("--curve"), os("h")]);
+    assert!(run.ok().contains("length: 1000"));
+    assert!(
+        run.stderr.contains("differs from the adaptive length 62839.81") && run.stderr.contains("98%"),
+        "{}",
+        run.stderr
+    );
+    let run = within_a_minute(&[os("arclen"), helix.as_os_str(), os("--curve"), os("b")]);
+    run.ok();
+    assert!(run.stderr.is_empty(), "{}", run.stderr);
+}
