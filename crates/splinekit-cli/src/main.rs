@@ -65,6 +65,13 @@ enum Command {
 fn run(cli: Cli) -> anyhow::Result<()> {
     let stdout = io::stdout();
     let mut out = io::BufWriter::new(stdout.lock());
+    let force = match &cli.command {
+        Command::Sweep(args) => args.force,
+        Command::Subdivide(args) => args.force,
+        Command::Render(args) => args.force,
+        _ => false,
+    };
+    splinekit_io::atomic::set_replace_read_only(force);
     match cli.command {
         Command::Arclen(args) => arclen_cmd::run(&args, &mut out)?,
         Command::Curve(args) => curve_cmd::run(&args, &mut out)?,

@@ -75,6 +75,10 @@ pub struct RenderArgs {
     #[arg(short = 'o', long = "output", value_name = "OUT")]
     pub output: PathBuf,
 
+    /// Replace output files that are read-only (refused otherwise)
+    #[arg(long)]
+    pub force: bool,
+
     /// Picture size in pixels, WIDTHxHEIGHT (each 1 to 8192)
     #[arg(long, value_name = "WxH", default_value = "800x600")]
     pub size: ImageSize,

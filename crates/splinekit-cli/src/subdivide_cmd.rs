@@ -147,6 +147,10 @@ pub struct SubdivideArgs {
     /// Output mesh (.obj, .ply, .stl, .glb); omit to only measure
     #[arg(short = 'o', long = "output", value_name = "OUT")]
     pub output: Option<PathBuf>,
+
+    /// Replace output files that are read-only (refused otherwise)
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Subdivision schemes.

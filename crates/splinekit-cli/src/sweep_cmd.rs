@@ -58,6 +58,10 @@ pub struct SweepArgs {
     #[arg(short = 'o', long = "output", value_name = "DIR", default_value = ".")]
     pub output: PathBuf,
 
+    /// Replace output files that are read-only (refused otherwise)
+    #[arg(long)]
+    pub force: bool,
+
     /// Mesh file format
     #[arg(long, value_enum, value_name = "FORMAT", default_value_t = Format::Obj)]
     pub format: Format,

@@ -236,3 +236,40 @@ fn an_aliasing_chord_table_is_warned_about() {
     run.ok();
     assert!(run.stderr.is_empty(), "{}", run.stderr);
 }
+
+/// Outputs that are not regular files are written in place (`/dev/null` stays a device), and a
+/// read-only file is not replaced unless `--force` says so.
+#[test]
+fn devices_are_written_in_place_and_read_only_files_kept() {
+    use std::os::unix::fs::FileTypeExt as _;
+    // (a device such as /dev/null is written the same way; a pipe can be made and checked here)
+    let dir = tempfile::tempdir().unwrap();
+    let swp = dir.path().join("p.swp");
+    fs::write(&swp, "bsp2 p 10 4 [1 -1] [2 -1] [2 1] [1 1]\nsrev s 8 p\n").unwrap();
+    let os = |s: &'static str| std::ffi::OsStr::new(s);
+    // a named pipe with an .obj name, read by another thread while subdivide writes it
+    let obj = dir.path().join("s.obj");
+    fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let fifo = dir.path().join("pipe.obj");
+    assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || fs::read_to_string(fifo).unwrap())
+    };
+    within_a_minute(&[os("subdivide"), obj.as_os_str(), os("-n"), os("1"), os("-o"), fifo.as_os_str()]).ok();
+    let text = reader.join().unwrap();
+    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 4, "{text}");
+    assert!(fs::metadata(&fifo).unwrap().file_type().is_fifo(), "the pipe is still a pipe");
+
+    let png = dir.path().join("kept.png");
+    fs::write(&png, b"mine").unwrap();
+    let mut perms = fs::metadata(&png).unwrap().permissions();
+    perms.set_readonly(true);
+    fs::set_permissions(&png, perms).unwrap();
+    let stderr =
+        within_a_minute(&[os("render"), swp.as_os_str(), os("-o"), png.as_os_str()]).fails_with_error().to_string();
+    assert!(stderr.contains("read-only") && stderr.contains("--force"), "{stderr}");
+    assert_eq!(fs::read(&png).unwrap(), b"mine");
+    within_a_minute(&[os("render"), swp.as_os_str(), os("-o"), png.as_os_str(), os("--force")]).ok();
+    assert!(fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+}

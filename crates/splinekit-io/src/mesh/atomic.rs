@@ -113,6 +113,11 @@ impl Drop for TempGuard {
 ///   file is removed and `path` is untouched: a new file is not created, an existing one keeps
 ///   its old contents.
 ///
+/// - A device or pipe at `path` (`/dev/null`, a FIFO) is written in place: no temporary file,
+///   no rename (which would put a regular file in its place).
+/// - A read-only file at `path` is refused (`cannot replace: the file is read-only`) unless
+///   [`set_replace_read_only`] allows it (a command's `--force`).
+///
 /// The temporary file is named `.NAME.PID-N.tmp` after the target's file name `NAME`; it is
 /// hidden on Unix and never left behind except when the process is killed while writing.
 ///
@@ -143,9 +148,20 @@ where
 #[derive(Debug)]
 #[must_use = "a staged file is removed unless committed"]
 pub struct Staged {
-    guard: TempGuard,
+    /// The temporary file, or `None` when the target was written in place (a device or pipe).
+    guard: Option<TempGuard>,
     target: PathBuf,
     dir: PathBuf,
+}
+
+/// Whether [`write_file`] may replace a read-only file (off unless a program's `--force` turns
+/// it on for the whole process).
+static REPLACE_READ_ONLY: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Lets [`write_file`] and [`stage_file`] replace read-only files (for a command's `--force`),
+/// or stops them again; process-wide.
+pub fn set_replace_read_only(allow: bool) {
+    REPLACE_READ_ONLY.store(allow, Ordering::Relaxed);
 }
 
 impl Staged {
@@ -161,9 +177,10 @@ impl Staged {
     /// A [`WriteFileError`] naming the target when the rename is refused (the staged file is
     /// then removed).
     pub fn commit(mut self) -> Result<(), WriteFileError> {
-        fs::rename(&self.guard.path, &self.target)
+        let Some(guard) = &mut self.guard else { return Ok(()) };
+        fs::rename(&guard.path, &self.target)
             .map_err(|e| WriteFileError::new(&self.target, "rename temporary file", e))?;
-        self.guard.armed = false;
+        guard.armed = false;
         sync_dir(&self.dir);
         Ok(())
     }
@@ -194,6 +211,22 @@ where
         Some(dir) if !dir.as_os_str().is_empty() => dir,
         _ => Path::new("."),
     };
+    if let Ok(meta) = fs::symlink_metadata(path) {
+        let kind = meta.file_type();
+        if !kind.is_file() && !kind.is_symlink() {
+            // a device or a pipe (`/dev/null`, `/dev/stdout`, a FIFO): written in place, since
+            // a rename would put a regular file where it was
+            let file = OpenOptions::new().write(true).open(path).map_err(|e| fail("open", e))?;
+            let mut writer = BufWriter::with_capacity(1 << 16, file);
+            let value = write(&mut writer)?;
+            writer.into_inner().map_err(|e| fail("write", e.into_error()))?;
+            return Ok((Staged { guard: None, target: path.to_path_buf(), dir: dir.to_path_buf() }, value));
+        }
+        if kind.is_file() && meta.permissions().readonly() && !REPLACE_READ_ONLY.load(Ordering::Relaxed) {
+            let error = io::Error::new(io::ErrorKind::PermissionDenied, "the file is read-only (--force replaces it)");
+            return Err(fail("replace", error));
+        }
+    }
 
     let (file, guard) = create_temp(dir, &name.to_string_lossy()).map_err(|e| fail("create temporary file", e))?;
     if let Ok(meta) = fs::metadata(path) {
@@ -205,7 +238,7 @@ where
     let file = writer.into_inner().map_err(|e| fail("write", e.into_error()))?;
     file.sync_all().map_err(|e| fail("sync", e))?;
     drop(file);
-    let staged = Staged { guard, target: path.to_path_buf(), dir: dir.to_path_buf() };
+    let staged = Staged { guard: Some(guard), target: path.to_path_buf(), dir: dir.to_path_buf() };
     Ok((staged, value))
 }
 
