@@ -93,6 +93,12 @@ fn is_broken_pipe(err: &anyhow::Error) -> bool {
 
 fn main() -> ExitCode {
     alloc::keep_small_blocks();
+    // Ctrl-C or SIGTERM while a large file is written: remove its temporary file (the target
+    // is untouched until the rename), then exit as interrupted programs do
+    let _ = ctrlc::set_handler(|| {
+        splinekit_io::atomic::remove_temporaries();
+        std::process::exit(130);
+    });
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,

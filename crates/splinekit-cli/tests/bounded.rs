@@ -273,3 +273,41 @@ fn devices_are_written_in_place_and_read_only_files_kept() {
     within_a_minute(&[os("render"), swp.as_os_str(), os("-o"), png.as_os_str(), os("--force")]).ok();
     assert!(fs::read(&png).unwrap().starts_with(b"\x89PNG"));
 }
+
+/// SIGTERM (or Ctrl-C) while a large file is being written: the temporary file is removed and
+/// the target never appears.
+#[test]
+fn an_interrupted_write_leaves_no_temporary_file() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let swp = dir.path().join("big.swp");
+    // 2000 slices of a 1001-point profile: 4 million triangles, a second or more to write as OBJ
+    fs::write(&swp, "bsp2 p 1000 4 [1 -1] [2 -1] [2 1] [1 1]\nsrev big 2000 p\n").unwrap();
+    let out = dir.path().join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_splinekit"))
+        .args(["sweep".as_ref(), swp.as_os_str(), "-o".as_ref(), out.as_os_str()])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let temporary = || {
+        fs::read_dir(&out)
+            .ok()
+            .into_iter()
+            .flatten()
+            .any(|e| e.unwrap().file_name().to_string_lossy().ends_with(".tmp"))
+    };
+    let start = Instant::now();
+    while !temporary() {
+        assert!(start.elapsed() < Duration::from_secs(60), "no temporary file appeared");
+        assert!(child.try_wait().unwrap().is_none(), "the sweep ended before it could be interrupted");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    assert!(Command::new("kill").args(["-TERM", &child.id().to_string()]).status().unwrap().success());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{status:?}");
+    let left: Vec<String> =
+        fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    assert!(left.is_empty(), "{left:?}");
+}

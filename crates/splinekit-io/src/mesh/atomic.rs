@@ -96,6 +96,8 @@ struct TempGuard {
 
 impl Drop for TempGuard {
     fn drop(&mut self) {
+        // renamed or removed: no longer a temporary file to clean up on interruption
+        live().retain(|p| *p != self.path);
         if self.armed {
             // Best effort: there is nothing better to do with an error while cleaning up.
             let _ = fs::remove_file(&self.path);
@@ -242,6 +244,23 @@ where
     Ok((staged, value))
 }
 
+/// The temporary files being written now (by every thread), so that an interrupted program
+/// can remove them ([`remove_temporaries`]).
+static LIVE: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+fn live() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    LIVE.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// Removes every temporary file that a write in progress (or a [`Staged`] file not yet
+/// committed) holds, for a program that is being interrupted (Ctrl-C, SIGTERM): its handler
+/// calls this before it exits, so no hidden `.NAME.PID-N.tmp` of a large output is left.
+/// Returns how many were removed.
+pub fn remove_temporaries() -> usize {
+    let paths = std::mem::take(&mut *live());
+    paths.iter().filter(|p| fs::remove_file(p).is_ok()).count()
+}
+
 /// Creates a new, uniquely named temporary file in `dir`.
 fn create_temp(dir: &Path, name: &str) -> io::Result<(File, TempGuard)> {
     let pid = std::process::id();
@@ -250,7 +269,10 @@ fn create_temp(dir: &Path, name: &str) -> io::Result<(File, TempGuard)> {
         let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
         let temp = dir.join(format!(".{name}.{pid}-{n}.tmp"));
         match OpenOptions::new().write(true).create_new(true).open(&temp) {
-            Ok(file) => return Ok((file, TempGuard { path: temp, armed: true })),
+            Ok(file) => {
+                live().push(temp.clone());
+                return Ok((file, TempGuard { path: temp, armed: true }));
+            }
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists => last_error = Some(e),
             Err(e) => return Err(e),
         }
