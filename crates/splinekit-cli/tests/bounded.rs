@@ -311,3 +311,33 @@ fn an_interrupted_write_leaves_no_temporary_file() {
         fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// `subdivide` estimates the memory of the finest level from its triangle count before making
+/// anything, and refuses past the memory available or `--max-memory`, naming the estimate.
+#[test]
+fn subdivision_past_the_memory_is_refused_before_it_starts() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("ico.obj");
+    fs::copy(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../splinekit-io/tests/data/obj/icosahedron.obj"),
+        &obj,
+    )
+    .unwrap();
+    let out = dir.path().join("out.obj");
+    let os = |s: &'static str| std::ffi::OsStr::new(s);
+    // 20·4¹³ = 1.3 billion triangles (their counts fit u32 indices): more than any machine here
+    // has memory for
+    let stderr = within_a_minute(&[os("subdivide"), obj.as_os_str(), os("-n"), os("13"), os("-o"), out.as_os_str()])
+        .fails()
+        .to_string();
+    assert!(stderr.contains("13 levels of Loop would make up to 1.342e9 triangles"), "{stderr}");
+    assert!(stderr.contains("of memory available"), "{stderr}");
+    // 20·4⁶ = 81 920 triangles, about 13 MB: refused under 1 MB, made under 1 GB
+    let small = [os("subdivide"), obj.as_os_str(), os("-n"), os("6"), os("-o"), out.as_os_str(), os("--max-memory")];
+    let stderr = within_a_minute(&[&small[..], &[os("0.001")]].concat()).fails().to_string();
+    assert!(stderr.contains("81920") || stderr.contains("8.192e4"), "{stderr}");
+    assert!(stderr.contains("--max-memory allows"), "{stderr}");
+    assert!(!out.exists());
+    within_a_minute(&[&small[..], &[os("1")]].concat()).ok();
+    assert!(out.exists());
+}
