@@ -341,3 +341,19 @@ fn subdivision_past_the_memory_is_refused_before_it_starts() {
     within_a_minute(&[&small[..], &[os("1")]].concat()).ok();
     assert!(out.exists());
 }
+
+/// A 50-byte SWP file whose surface `sweep` accepts (32 million triangles) is too large to draw:
+/// `render` refuses it from its sample counts, before building it, instead of needing gigabytes.
+#[test]
+fn render_refuses_a_scene_past_its_triangle_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    let swp = dir.path().join("big.swp");
+    fs::write(&swp, "bsp2 p 4000 4 [1 -1] [2 -1] [2 1] [1 1]\nsrev s 4000 p\n").unwrap();
+    let png = dir.path().join("big.png");
+    let os = |s: &'static str| std::ffi::OsStr::new(s);
+    let stderr =
+        within_a_minute(&[os("render"), swp.as_os_str(), os("-o"), png.as_os_str()]).fails_with_error().to_string();
+    assert!(stderr.contains("surface s would have about 32000000 triangles"), "{stderr}");
+    assert!(stderr.contains("more than the limit of 20000000"), "{stderr}");
+    assert!(!png.exists());
+}

@@ -241,17 +241,28 @@ fn render_options(options: &FileOptions, view: View) -> RenderOptions {
         .with_colour(options.colour)
 }
 
+/// The most triangles a picture of an SWP file's surfaces draws, all surfaces together (about
+/// 2.5 GB of meshes and renderer buffers at the peak): a file whose surfaces would have more is
+/// refused, from their sample counts, before any is built.
+pub const MAX_SCENE_TRIANGLES: usize = 20_000_000;
+
 fn render_swp(input: &Path, path: &str, format: PictureFormat, options: &FileOptions) -> Result<Rendered, RenderError> {
     let doc = SwpDocument::read(input)?;
-    let meshes = if options.colour == SurfaceColour::UvChecker {
-        let uvs = SurfaceOptions {
-            sweep: SweepOptions { uvs: true, ..SweepOptions::default() },
-            ..SurfaceOptions::default()
-        };
-        sweep_surfaces_with(&doc, path, &uvs)?
-    } else {
-        sweep_surfaces(&doc, path)?
+    let base = SurfaceOptions {
+        sweep: SweepOptions { uvs: options.colour == SurfaceColour::UvChecker, ..SweepOptions::default() },
+        ..SurfaceOptions::default()
     };
+    // one budget for the whole scene: each surface gets what the ones before it left
+    let mut meshes = Vec::with_capacity(doc.surfaces.len());
+    let mut left = MAX_SCENE_TRIANGLES;
+    for i in 0..doc.surfaces.len() {
+        let surface_options = SurfaceOptions { max_triangles: Some(left), ..base };
+        let mesh = doc
+            .surface_mesh(i, &surface_options)
+            .map_err(|source| RenderError::Surface { path: path.to_string(), source })?;
+        left = left.saturating_sub(mesh.num_triangles());
+        meshes.push(mesh);
+    }
     render_swp_document(&doc, &meshes, path, format, options)
 }
 

@@ -76,8 +76,8 @@ pub use colour::{
 };
 pub use error::RenderError;
 pub use file::{
-    FileOptions, Picture, PictureFormat, PictureKind, Rendered, render_file, render_swp_document, render_tri_mesh,
-    sweep_surfaces, sweep_surfaces_with,
+    FileOptions, MAX_SCENE_TRIANGLES, Picture, PictureFormat, PictureKind, Rendered, render_file, render_swp_document,
+    render_tri_mesh, sweep_surfaces, sweep_surfaces_with,
 };
 pub use gallery::{Gallery, GalleryOptions, write_gallery};
 pub use image::{Image, ImageSize, MAX_SIDE, Rgb, SizeError};
