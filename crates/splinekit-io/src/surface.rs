@@ -401,18 +401,11 @@ fn slice_count(angle: f64) -> usize {
 /// Slices around the axis: the file's steps, or enough for the tolerance at the largest radius.
 fn revolution_steps(profile: &Profile, file_steps: u32, mode: SurfaceTessellation) -> usize {
     let radius = profile.points.iter().map(|p| p.x.abs()).fold(0.0, f64::max);
-    let from_angle = |a: f64| (std::f64::consts::TAU / a).ceil();
-    let n = match mode {
-        SurfaceTessellation::FileSteps => return file_steps.max(1) as usize,
-        // a chord of angle θ strays r·(1 − cos(θ/2)) from its circle
-        SurfaceTessellation::Distance(tol) if radius > tol && tol > 0.0 => {
-            from_angle(2.0 * (1.0 - tol / radius).clamp(-1.0, 1.0).acos())
-        }
-        SurfaceTessellation::Distance(_) => 3.0,
-        SurfaceTessellation::Angle(a) if a > 0.0 => from_angle(a),
-        SurfaceTessellation::Angle(_) => 3.0,
-    };
-    n.clamp(3.0, f64::from(crate::MAX_STEPS)) as usize
+    match mode {
+        SurfaceTessellation::FileSteps => file_steps.max(1) as usize,
+        SurfaceTessellation::Distance(tol) => slice_count(slice_angle(radius, tol)),
+        SurfaceTessellation::Angle(a) => slice_count(a),
+    }
 }
 
 /// The triangle limit of one surface's mesh.
