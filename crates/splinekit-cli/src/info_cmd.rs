@@ -21,7 +21,8 @@ use crate::sweep_cmd;
     splinekit info scene.swp --json\n\n\
     Surface counts are given for both layouts: compat (the course program's: seam vertices \
     duplicated, poles repeated) and welded (seams and poles shared; the default of \
-    `splinekit sweep`).")]
+    `splinekit sweep`). They are counted from the curves' samples and the slices, without \
+    building the meshes, so even the largest surfaces are listed at once.")]
 pub struct InfoArgs {
     /// SWP file, or mesh file (.obj, .glb, .ply, .stl), to read
     #[arg(value_name = "FILE")]
@@ -48,7 +49,7 @@ struct SurfaceRow {
     kind: &'static str,
     curves: Vec<(&'static str, String)>,
     steps: Option<u32>,
-    counts: Result<[(usize, usize); 2], String>,
+    counts: Result<[(u64, u64); 2], String>,
 }
 
 /// Runs the command, writing to `out`.

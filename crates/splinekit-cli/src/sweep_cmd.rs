@@ -184,8 +184,9 @@ fn safe_stem(name: &str) -> Option<String> {
     (!stem.trim_matches('.').is_empty()).then_some(stem)
 }
 
-/// Compat and welded `(vertices, triangles)` of surface `k`, for `info`.
-pub fn counts(doc: &SwpDocument, k: usize) -> anyhow::Result<[(usize, usize); 2]> {
+/// Compat and welded `(vertices, triangles)` of surface `k`, for `info`: counted from the
+/// samples and slices, without building the meshes.
+pub fn counts(doc: &SwpDocument, k: usize) -> anyhow::Result<[(u64, u64); 2]> {
     let mut out = [(0, 0); 2];
     // the two layouts, whatever the surface's own layout; the compat layout never has caps
     let mut doc = doc.clone();
@@ -199,8 +200,9 @@ pub fn counts(doc: &SwpDocument, k: usize) -> anyhow::Result<[(usize, usize); 2]
             s.settings.caps = if caps { own_caps } else { None };
         }
         let opts = SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps }, ..SurfaceOptions::default() };
-        let mesh = doc.surface_mesh(k, &opts)?;
-        *slot = (mesh.num_vertices(), mesh.num_triangles());
+        // counted from the samples: nothing the size of the mesh is built
+        let counts = doc.surface_counts(k, &opts)?;
+        *slot = (counts.vertices, counts.triangles);
     }
     Ok(out)
 }

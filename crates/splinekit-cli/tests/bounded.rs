@@ -357,3 +357,25 @@ fn render_refuses_a_scene_past_its_triangle_budget() {
     assert!(stderr.contains("more than the limit of 20000000"), "{stderr}");
     assert!(!png.exists());
 }
+
+/// `info` counts a surface from its samples and slices instead of building it: a 53-byte file
+/// whose revolution has 48 million triangles (several gigabytes as a mesh) is listed within
+/// half a gigabyte of address space, with the closed form's counts.
+#[test]
+fn info_counts_surfaces_without_building_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("big.swp");
+    fs::write(&file, "bsp2 p 1000 4 [1 0] [2 1] [1 2] [1 3]\nsrev s 24000 p\n").unwrap();
+    let out = std::process::Command::new("bash")
+        .args(["-c", "ulimit -v 524288; exec \"$0\" info --json \"$1\""])
+        .arg(env!("CARGO_BIN_EXE_splinekit"))
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // 1001 profile points off the axis in 24 000 copies, two triangles per quad, both layouts
+    let counts = serde_json::json!({"vertices": 1001 * 24_000, "triangles": 2 * 1000 * 24_000});
+    assert_eq!(json["surfaces"][0]["welded"], counts);
+    assert_eq!(json["surfaces"][0]["compat"], counts);
+}

@@ -35,10 +35,10 @@ use glam::{DVec2, DVec3};
 use splinekit::flatten::{self, Tessellation};
 use splinekit::frame::{self, CurveSample, Frame, FrameMethod, FrameOptions, Side, StartNormal};
 use splinekit::sweep::surface::{Lathe, LatheOptions, RevolveOptions, UvMode};
-use splinekit::sweep::{self, MeshLayout, Profile, SweepOptions, SweepPath};
+use splinekit::sweep::{self, MeshCounts, MeshLayout, Profile, SweepOptions, SweepPath};
 use splinekit::{AnyCurve, CubicBezier, ParamCurve, PiecewiseCubic, TriMesh};
 
-use crate::mesh::rebuild::revolve_spline_z;
+use crate::mesh::rebuild::{Built, revolve_spline_z};
 use crate::mesh::{HeaderSpline, RebuildError, RebuildOptions, SweepHeader};
 use crate::swp::{
     SwpClause, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation,
@@ -203,6 +203,22 @@ impl SwpDocument {
     /// An unknown index, a curve that does not compile, a 3D profile, scale or twist curve, or
     /// a degenerate sweep.
     pub fn surface_mesh(&self, index: usize, options: &SurfaceOptions) -> Result<TriMesh, SurfaceError> {
+        self.surface(index, options)
+    }
+
+    /// The vertex and triangle counts of [`Self::surface_mesh`]`(index, options)`, found from
+    /// the curves' samples and the slices without building the mesh: the time and memory
+    /// this takes grow with the samples, not with the mesh (a revolution in a million slices
+    /// is counted as fast as in ten).
+    ///
+    /// # Errors
+    /// As [`Self::surface_mesh`], [`SurfaceError::TooLarge`] included.
+    pub fn surface_counts(&self, index: usize, options: &SurfaceOptions) -> Result<MeshCounts, SurfaceError> {
+        self.surface(index, options)
+    }
+
+    /// [`Self::surface_mesh`], or its counts.
+    fn surface<B: Built>(&self, index: usize, options: &SurfaceOptions) -> Result<B, SurfaceError> {
         let surface = self.surfaces.get(index).ok_or(SurfaceError::NoSuchSurface(index))?;
         let options = &options.with_settings(&surface.settings);
         let surface_name = surface.display_name(index);
@@ -237,7 +253,7 @@ impl SwpDocument {
                 limit.check(2 * steps as u64 * (p as u64).saturating_sub(1), || {
                     format!("{steps} slices of a {p}-point profile")
                 })?;
-                sweep::revolve(&prof, steps, options.sweep).map_err(sweep_err)
+                B::revolve(&prof, steps, options.sweep).map_err(sweep_err)
             }
             SwpSurfaceKind::GeneralizedCylinder { profile, sweep: path, scale, twist } => {
                 let prof = profile_of(profile)?;
@@ -279,7 +295,7 @@ impl SwpDocument {
                     }
                 }
                 let path = SweepPath { positions: samples.iter().map(|s| s.position).collect(), frames, scales };
-                sweep::generalized_cylinder(&prof, &path, options.sweep).map_err(sweep_err)
+                B::cylinder(&prof, &path, options.sweep).map_err(sweep_err)
             }
             SwpSurfaceKind::RevolutionZ { profile, epsilon, slice_tolerance, scale } => {
                 let spline = spline_2d(&curve(profile)?, &self.curves[profile].display_name(profile), &surface_name)?;
@@ -333,7 +349,7 @@ impl SwpDocument {
                     .with_layout(options.sweep.layout)
                     .with_uvs(options.sweep.uvs)
                     .with_max_triangles(options.max_triangles);
-                header.rebuild(&rebuild).map_err(|e| match e {
+                header.build(&rebuild).map_err(|e| match e {
                     RebuildError::TooLarge { triangles, why, limit } => {
                         SurfaceError::TooLarge { surface: surface_name.clone(), triangles, why, limit }
                     }
@@ -362,7 +378,7 @@ impl SwpDocument {
                 };
                 let lathe = Lathe::new(&r, &z).map_err(failed)?;
                 let uvs = if options.sweep.uvs { UvMode::SplitSeams } else { UvMode::Omit };
-                lathe.to_mesh(&LatheOptions::new(slices, stacks as usize).with_uvs(uvs)).map_err(failed)
+                B::lathe(&lathe, &LatheOptions::new(slices, stacks as usize).with_uvs(uvs)).map_err(failed)
             }
         }
     }

@@ -70,8 +70,13 @@
 use glam::{DVec2, DVec3};
 use splinekit::flatten::{Tessellation, flatten_params};
 use splinekit::frame::Frame;
-use splinekit::sweep::surface::{RevolveOptions, SurfaceError, UvMode, revolve_z};
-use splinekit::sweep::{MeshLayout, Profile, SweepError, SweepOptions, SweepPath, generalized_cylinder};
+use splinekit::sweep::surface::{
+    Lathe, LatheOptions, RevolveOptions, SurfaceError, UvMode, revolve_z, revolve_z_counts,
+};
+use splinekit::sweep::{
+    self, MeshCounts, MeshLayout, Profile, SweepError, SweepOptions, SweepPath, generalized_cylinder,
+    generalized_cylinder_counts, revolve_counts,
+};
 use splinekit::{BSpline, CatmullRom, ParamCurve, PiecewiseCubic, SplineError, TriMesh};
 
 use super::revolution_obj::{HeaderSpline, RevolutionHeader, SplineHeader, SweepHeader};
@@ -80,6 +85,49 @@ use crate::surface::DEFAULT_MAX_TRIANGLES;
 /// Relative tolerance (times the size of the profile) within which a revolution profile
 /// point counts as on the axis when deciding which side the profile is on.
 const AXIS_TOLERANCE: f64 = 1e-9;
+
+/// What a surface builder makes: the mesh ([`TriMesh`]), or only its counts
+/// ([`MeshCounts`], found from the samples without building the mesh).
+pub(crate) trait Built: Sized {
+    /// [`sweep::revolve`], or its counts.
+    fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result<Self, SweepError>;
+    /// [`generalized_cylinder`], or its counts.
+    fn cylinder(profile: &Profile, path: &SweepPath, options: SweepOptions) -> Result<Self, SweepError>;
+    /// [`revolve_z`], or its counts.
+    fn revolve_z(points: &[DVec2], normals: Option<&[DVec2]>, options: &RevolveOptions) -> Result<Self, SurfaceError>;
+    /// [`Lathe::to_mesh`], or its counts.
+    fn lathe(lathe: &Lathe, options: &LatheOptions) -> Result<Self, SurfaceError>;
+}
+
+impl Built for TriMesh {
+    fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result<Self, SweepError> {
+        sweep::revolve(profile, steps, options)
+    }
+    fn cylinder(profile: &Profile, path: &SweepPath, options: SweepOptions) -> Result<Self, SweepError> {
+        generalized_cylinder(profile, path, options)
+    }
+    fn revolve_z(points: &[DVec2], normals: Option<&[DVec2]>, options: &RevolveOptions) -> Result<Self, SurfaceError> {
+        revolve_z(points, normals, options)
+    }
+    fn lathe(lathe: &Lathe, options: &LatheOptions) -> Result<Self, SurfaceError> {
+        lathe.to_mesh(options)
+    }
+}
+
+impl Built for MeshCounts {
+    fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result<Self, SweepError> {
+        revolve_counts(profile, steps, options)
+    }
+    fn cylinder(profile: &Profile, path: &SweepPath, options: SweepOptions) -> Result<Self, SweepError> {
+        generalized_cylinder_counts(profile, path, options)
+    }
+    fn revolve_z(points: &[DVec2], normals: Option<&[DVec2]>, options: &RevolveOptions) -> Result<Self, SurfaceError> {
+        revolve_z_counts(points, normals, options)
+    }
+    fn lathe(lathe: &Lathe, options: &LatheOptions) -> Result<Self, SurfaceError> {
+        lathe.counts(options)
+    }
+}
 
 /// Options of [`SplineHeader::rebuild`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -281,6 +329,11 @@ impl SweepHeader {
     ///
     /// A spline with too few control points (open: 4, closed: 3), or a degenerate sweep.
     pub fn rebuild(&self, options: &RebuildOptions) -> Result<TriMesh, RebuildError> {
+        self.build(options)
+    }
+
+    /// [`Self::rebuild`], or its counts.
+    pub(crate) fn build<B: Built>(&self, options: &RebuildOptions) -> Result<B, RebuildError> {
         let compat = options.layout == MeshLayout::Compat;
         let cross = sweep_samples(&self.cross_section, "cross-section", compat)?;
         let along = sweep_samples(&self.swept_along, "swept-along", compat)?;
@@ -310,7 +363,7 @@ impl SweepHeader {
             scales: Vec::new(),
         };
         let sweep = SweepOptions { layout: options.layout, uvs: options.uvs, caps: false };
-        generalized_cylinder(&profile, &path, sweep).map_err(RebuildError::Sweep)
+        B::cylinder(&profile, &path, sweep).map_err(RebuildError::Sweep)
     }
 }
 
@@ -322,12 +375,12 @@ impl SweepHeader {
 /// # Errors
 /// A profile across the axis, more triangles than `options` allow, or a bad scale, slice
 /// tolerance or profile (see [`revolve_z`]).
-pub(crate) fn revolve_spline_z(
+pub(crate) fn revolve_spline_z<B: Built>(
     curve: &PiecewiseCubic<DVec2>,
     mode: Tessellation,
     revolve: &RevolveOptions,
     options: &RebuildOptions,
-) -> Result<TriMesh, RebuildError> {
+) -> Result<B, RebuildError> {
     let closed = curve.is_closed();
     let mut samples = sample_by(curve, mode, closed, true);
     // which side of the axis: mirror a profile drawn at x < 0, refuse one across it
@@ -351,7 +404,7 @@ pub(crate) fn revolve_spline_z(
             format!("{slices} slices of a {p}-point cross-section")
         })?;
     }
-    revolve_z(&samples.points, Some(&samples.normals), &revolve).map_err(RebuildError::Revolve)
+    B::revolve_z(&samples.points, Some(&samples.normals), &revolve).map_err(RebuildError::Revolve)
 }
 
 /// A tessellated 2D spline: positions, unit tangents and right normals `(t.y, −t.x)`.

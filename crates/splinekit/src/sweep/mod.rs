@@ -54,6 +54,16 @@ impl Default for SweepOptions {
     }
 }
 
+/// The size of a mesh a sweep would build, known before building it (see [`revolve_counts`]
+/// and [`generalized_cylinder_counts`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MeshCounts {
+    /// Vertices.
+    pub vertices: u64,
+    /// Triangles.
+    pub triangles: u64,
+}
+
 /// Why a sweep could not be built.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SweepError {
@@ -230,17 +240,8 @@ fn normalized_lengths(steps: impl Iterator<Item = f64>) -> Vec<f64> {
 /// Fewer than two profile points, mismatched normals, non-finite input, `steps == 0`, more
 /// vertices than 32-bit indices can address.
 pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result<TriMesh, SweepError> {
-    profile.check()?;
-    if steps == 0 {
-        return Err(SweepError::ZeroSteps);
-    }
+    let RevolveLayout { on_axis, twin, copies, welded } = RevolveLayout::new(profile, steps, options)?;
     let p = profile.points.len();
-    check_vertex_count((steps as f64 + 1.0) * p as f64)?;
-    let size = extent(profile.points.iter().map(|q| q.extend(0.0)));
-    let welded = options.layout == MeshLayout::Welded;
-    let on_axis: Vec<bool> = profile.points.iter().map(|q| welded && q.x.abs() <= 1e-12 * size).collect();
-    // UV seam: with UVs, the copy at 2π is emitted again (u = 1)
-    let copies = if options.uvs { steps + 1 } else { steps };
     let vs = profile.normalized_lengths();
 
     let mut mesh = TriMesh::default();
@@ -272,7 +273,6 @@ pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result
             index[j * p + i] = id;
         }
     }
-    let twin = twins(&profile.points, welded);
     for j in 0..steps {
         let next = if options.uvs { j + 1 } else { (j + 1) % steps };
         for i in (0..p - 1).filter(|&i| !twin[i]) {
@@ -289,6 +289,57 @@ pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result
     Ok(mesh)
 }
 
+/// The vertex and triangle counts of [`revolve`]`(profile, steps, options)`, from the profile
+/// alone: the work is linear in the profile's length, whatever `steps` is.
+///
+/// # Errors
+/// As [`revolve`].
+pub fn revolve_counts(profile: &Profile, steps: usize, options: SweepOptions) -> Result<MeshCounts, SweepError> {
+    let RevolveLayout { on_axis, twin, copies, welded } = RevolveLayout::new(profile, steps, options)?;
+    let p = on_axis.len();
+    let poles = on_axis.iter().filter(|&&a| a).count();
+    // a pole is one vertex; every other point has one per copy
+    let vertices = (copies * (p - poles) + poles) as u64;
+    // welded with one copy and no UV copy: every quad collapses onto itself
+    let collapsed = welded && !options.uvs && steps == 1;
+    let per_turn: u64 = if collapsed {
+        0
+    } else {
+        (0..p - 1)
+            .filter(|&i| !twin[i])
+            .map(|i| if welded { u64::from(!on_axis[i]) + u64::from(!on_axis[i + 1]) } else { 2 })
+            .sum()
+    };
+    Ok(MeshCounts { vertices, triangles: per_turn * steps as u64 })
+}
+
+/// Which profile points of a revolution are poles and which strips are left out.
+struct RevolveLayout {
+    /// Profile points on the axis (welded layout): one vertex for every copy.
+    on_axis: Vec<bool>,
+    /// See [`twins`].
+    twin: Vec<bool>,
+    /// Copies of the profile: `steps`, and one more (the UV seam at 2π) with UVs.
+    copies: usize,
+    welded: bool,
+}
+
+impl RevolveLayout {
+    fn new(profile: &Profile, steps: usize, options: SweepOptions) -> Result<Self, SweepError> {
+        profile.check()?;
+        if steps == 0 {
+            return Err(SweepError::ZeroSteps);
+        }
+        check_vertex_count((steps as f64 + 1.0) * profile.points.len() as f64)?;
+        let size = extent(profile.points.iter().map(|q| q.extend(0.0)));
+        let welded = options.layout == MeshLayout::Welded;
+        let on_axis = profile.points.iter().map(|q| welded && q.x.abs() <= 1e-12 * size).collect();
+        // UV seam: with UVs, the copy at 2π is emitted again (u = 1)
+        let copies = if options.uvs { steps + 1 } else { steps };
+        Ok(Self { on_axis, twin: twins(&profile.points, welded), copies, welded })
+    }
+}
+
 /// The generalized cylinder (`gcyl`): a copy of the profile at every sweep
 /// point, `vertex = N·p.x + B·p.y + V`, `normal = −(N·n.x + B·n.y)` with the sweep frame
 /// `(T, N, B)` at `V` and the profile normal `n`.
@@ -301,21 +352,8 @@ pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result
 /// Fewer than two points in either curve, mismatched arrays, non-finite input, more vertices
 /// than 32-bit indices can address.
 pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepOptions) -> Result<TriMesh, SweepError> {
-    profile.check()?;
-    path.check()?;
-    // the copies of the profile and two caps
-    check_vertex_count((path.positions.len() as f64 + 2.0) * profile.points.len() as f64)?;
+    let CylinderLayout { p, s, wrap_p, wrap_s, twin, cap_ring } = CylinderLayout::new(profile, path, options)?;
     let welded = options.layout == MeshLayout::Welded;
-    let p_all = profile.points.len();
-    let s_all = path.positions.len();
-    // welded: drop the repeated seam point / copy and wrap instead (unless UVs need it)
-    // (a closed curve whose ends meet at a corner keeps both end samples: a crease)
-    let n_last = profile.normals[p_all - 1];
-    let wrap_p = welded && !options.uvs && profile.is_closed() && profile.normals[0].dot(n_last) > 1.0 - 1e-9;
-    let t_last = path.frames[s_all - 1].t;
-    let wrap_s = welded && !options.uvs && path.is_closed() && path.frames[0].t.dot(t_last) > 1.0 - 1e-9;
-    let p = if wrap_p { p_all - 1 } else { p_all };
-    let s = if wrap_s { s_all - 1 } else { s_all };
     let vs = profile.normalized_lengths();
     let us = normalized_lengths(path.positions.iter().zip(path.positions.iter().skip(1)).map(|(a, b)| a.distance(*b)));
 
@@ -337,7 +375,6 @@ pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepO
     let id = |k: usize, i: usize| ((k % s) * p + (i % p)) as u32;
     let quads_s = if wrap_s { s } else { s - 1 };
     let quads_p = if wrap_p { p } else { p - 1 };
-    let twin = twins(&profile.points, welded);
     for k in 0..quads_s {
         for i in (0..quads_p).filter(|&i| !twin[i]) {
             push_quad(&mut mesh, [id(k, i), id(k, i + 1), id(k + 1, i), id(k + 1, i + 1)], welded);
@@ -348,28 +385,97 @@ pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepO
     if scaled {
         face_average_normals(&mut mesh);
     }
-    if options.caps && !path.is_closed() && profile.is_closed() {
-        let ring = &profile.points[..p_all - 1];
+    if let Some(ring) = cap_ring {
         let sc = |k: usize| if scaled { path.scales[k] } else { DVec2::ONE };
-        add_cap(&mut mesh, ring, path.frames[0], path.positions[0], sc(0), -path.frames[0].t);
-        let last = s_all - 1;
-        add_cap(&mut mesh, ring, path.frames[last], path.positions[last], sc(last), path.frames[last].t);
+        add_cap(&mut mesh, &ring, path.frames[0], path.positions[0], sc(0), -path.frames[0].t);
+        let last = path.positions.len() - 1;
+        add_cap(&mut mesh, &ring, path.frames[last], path.positions[last], sc(last), path.frames[last].t);
     }
     Ok(mesh)
 }
 
-/// A flat cap: the profile ring placed with `frame` at `centre`, triangulated, facing `outward`.
-fn add_cap(mesh: &mut TriMesh, ring: &[DVec2], frame: Frame, centre: DVec3, scale: DVec2, outward: DVec3) {
-    let base = mesh.positions.len() as u32;
-    let uv = !mesh.uvs.is_empty();
-    // A crease samples its corner twice (one point per side): the cap needs it once, or
-    // its triangulation gets zero-area triangles.
+/// The vertex and triangle counts of [`generalized_cylinder`]`(profile, path, options)`,
+/// without building it: the work is linear in the lengths of the profile and the path.
+///
+/// # Errors
+/// As [`generalized_cylinder`].
+pub fn generalized_cylinder_counts(
+    profile: &Profile,
+    path: &SweepPath,
+    options: SweepOptions,
+) -> Result<MeshCounts, SweepError> {
+    let CylinderLayout { p, s, wrap_p, wrap_s, twin, cap_ring } = CylinderLayout::new(profile, path, options)?;
+    let quads_s = if wrap_s { s } else { s - 1 };
+    let quads_p = if wrap_p { p } else { p - 1 };
+    // no quad has a repeated corner: p, s ≥ 2, and a wrapped curve has at least 2 distinct samples
+    let strips = (0..quads_p).filter(|&i| !twin[i]).count() as u64;
+    let mut counts = MeshCounts { vertices: (p * s) as u64, triangles: 2 * strips * quads_s as u64 };
+    if let Some(ring) = cap_ring {
+        // each cap: its ring's vertices, and an (n − 2)-triangle polygon triangulation
+        counts.vertices += 2 * ring.len() as u64;
+        counts.triangles += 2 * ring.len().saturating_sub(2) as u64;
+    }
+    Ok(counts)
+}
+
+/// How a generalized cylinder's copies of the profile are laid out.
+struct CylinderLayout {
+    /// Profile points and path points with vertices of their own.
+    p: usize,
+    s: usize,
+    /// The profile (path) wraps around: its last sample is its first, shared (welded layout).
+    wrap_p: bool,
+    wrap_s: bool,
+    /// See [`twins`].
+    twin: Vec<bool>,
+    /// The profile ring each end cap triangulates, when the sweep is capped.
+    cap_ring: Option<Vec<DVec2>>,
+}
+
+impl CylinderLayout {
+    fn new(profile: &Profile, path: &SweepPath, options: SweepOptions) -> Result<Self, SweepError> {
+        profile.check()?;
+        path.check()?;
+        // the copies of the profile and two caps
+        check_vertex_count((path.positions.len() as f64 + 2.0) * profile.points.len() as f64)?;
+        let welded = options.layout == MeshLayout::Welded;
+        let p_all = profile.points.len();
+        let s_all = path.positions.len();
+        // welded: drop the repeated seam point / copy and wrap instead (unless UVs need it)
+        // (a closed curve whose ends meet at a corner keeps both end samples: a crease)
+        let n_last = profile.normals[p_all - 1];
+        let wrap_p = welded && !options.uvs && profile.is_closed() && profile.normals[0].dot(n_last) > 1.0 - 1e-9;
+        let t_last = path.frames[s_all - 1].t;
+        let wrap_s = welded && !options.uvs && path.is_closed() && path.frames[0].t.dot(t_last) > 1.0 - 1e-9;
+        let capped = options.caps && !path.is_closed() && profile.is_closed();
+        Ok(Self {
+            p: if wrap_p { p_all - 1 } else { p_all },
+            s: if wrap_s { s_all - 1 } else { s_all },
+            wrap_p,
+            wrap_s,
+            twin: twins(&profile.points, welded),
+            cap_ring: capped.then(|| cap_ring(&profile.points[..p_all - 1])),
+        })
+    }
+}
+
+/// The points of a closed profile (without its repeated last point) a cap is made of: a
+/// crease samples its corner twice (one point per side), and the cap needs it once, or its
+/// triangulation gets zero-area triangles.
+fn cap_ring(ring: &[DVec2]) -> Vec<DVec2> {
     let mut ring: Vec<DVec2> = ring.to_vec();
     ring.dedup();
     while ring.len() > 1 && ring.first() == ring.last() {
         ring.pop();
     }
-    let ring = ring.as_slice();
+    ring
+}
+
+/// A flat cap: the profile ring (from [`cap_ring`]) placed with `frame` at `centre`,
+/// triangulated, facing `outward`.
+fn add_cap(mesh: &mut TriMesh, ring: &[DVec2], frame: Frame, centre: DVec3, scale: DVec2, outward: DVec3) {
+    let base = mesh.positions.len() as u32;
+    let uv = !mesh.uvs.is_empty();
     for q in ring {
         mesh.positions.push(frame.n * (q.x * scale.x) + frame.b * (q.y * scale.y) + centre);
         mesh.normals.push(outward.normalize_or_zero());

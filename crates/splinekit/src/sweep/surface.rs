@@ -40,6 +40,7 @@ use glam::{DVec2, DVec3};
 
 use crate::curve::{BezierSpline, ParamCurve, PiecewiseCubic, SplineError};
 use crate::mesh::TriMesh;
+use crate::sweep::MeshCounts;
 
 /// Default relative tolerance for collapsing a row into a pole (and, for the
 /// revolutions, for snapping a profile point onto the axis and merging repeated points):
@@ -490,6 +491,30 @@ pub fn revolve_z(
     normals: Option<&[DVec2]>,
     options: &RevolveOptions,
 ) -> Result<TriMesh, SurfaceError> {
+    let (axial, slices) = revolve_z_profile(profile, normals, options)?;
+    axial.mesh(normals, None, slices, options.uvs, options.pole_tolerance)
+}
+
+/// The vertex and triangle counts of [`revolve_z`]`(profile, normals, options)`, without
+/// building it: the work is linear in the profile's length, whatever the slices.
+///
+/// # Errors
+/// As [`revolve_z`].
+pub fn revolve_z_counts(
+    profile: &[DVec2],
+    normals: Option<&[DVec2]>,
+    options: &RevolveOptions,
+) -> Result<MeshCounts, SurfaceError> {
+    let (axial, slices) = revolve_z_profile(profile, normals, options)?;
+    axial.counts(slices, options.uvs)
+}
+
+/// [`revolve_z`]'s input checked and scaled, and its slices.
+fn revolve_z_profile(
+    profile: &[DVec2],
+    normals: Option<&[DVec2]>,
+    options: &RevolveOptions,
+) -> Result<(AxialProfile, usize), SurfaceError> {
     let s = options.scale;
     if !(s > 0.0 && s.is_finite()) {
         return Err(SurfaceError::BadScale { scale: s });
@@ -511,7 +536,7 @@ pub fn revolve_z(
         }
     }
     let points: Vec<DVec2> = profile.iter().map(|&p| p * s).collect();
-    revolve_core(&points, normals, None, slices, options.uvs, options.pole_tolerance)
+    Ok((AxialProfile::new(&points, options.pole_tolerance)?, slices))
 }
 
 /// Options of [`Lathe::to_mesh`].
@@ -644,6 +669,28 @@ impl Lathe {
     /// `slices < 3`, `stacks < 1`, a bad pole tolerance, too many vertices for 32-bit
     /// indices, or a profile with no area (for example `r = 0` everywhere).
     pub fn to_mesh(&self, options: &LatheOptions) -> Result<TriMesh, SurfaceError> {
+        let (axial, vs) = self.axial_profile(options)?;
+        let normals: Vec<DVec2> = vs
+            .iter()
+            .map(|&v| {
+                let d = self.profile_deriv(v);
+                DVec2::new(d.y, -d.x)
+            })
+            .collect();
+        axial.mesh(Some(&normals), Some(&vs), options.slices, options.uvs, options.pole_tolerance)
+    }
+
+    /// The vertex and triangle counts of [`Self::to_mesh`]`(options)`, without building it:
+    /// the work is linear in the stacks, whatever the slices.
+    ///
+    /// # Errors
+    /// As [`Self::to_mesh`].
+    pub fn counts(&self, options: &LatheOptions) -> Result<MeshCounts, SurfaceError> {
+        self.axial_profile(options)?.0.counts(options.slices, options.uvs)
+    }
+
+    /// The options checked, and the profile at the stacks' `v`, with those `v`.
+    fn axial_profile(&self, options: &LatheOptions) -> Result<(AxialProfile, Vec<f64>), SurfaceError> {
         if options.slices < 3 {
             return Err(SurfaceError::TooFewQuads { direction: 'u', needed: 3, given: options.slices });
         }
@@ -661,14 +708,7 @@ impl Lathe {
                 DVec2::new(p.x.max(0.0), p.y)
             })
             .collect();
-        let normals: Vec<DVec2> = vs
-            .iter()
-            .map(|&v| {
-                let d = self.profile_deriv(v);
-                DVec2::new(d.y, -d.x)
-            })
-            .collect();
-        revolve_core(&points, Some(&normals), Some(&vs), options.slices, options.uvs, options.pole_tolerance)
+        Ok((AxialProfile::new(&points, options.pole_tolerance)?, vs))
     }
 
     fn widths(&self) -> (f64, f64) {
@@ -693,123 +733,170 @@ fn check_size(nu: usize, nv: usize) -> Result<(), SurfaceError> {
     }
 }
 
-/// The revolution about +z shared by [`revolve_z`] and [`Lathe::to_mesh`]. `points` are
-/// finite and already scaled; `normals` (finite, same length) are the caller's, in any
-/// orientation; `vs` (same length) are the `v` texture coordinates (chord length if `None`).
-fn revolve_core(
-    points: &[DVec2],
-    normals: Option<&[DVec2]>,
-    vs: Option<&[f64]>,
-    slices: usize,
-    uvs: UvMode,
-    pole_tolerance: f64,
-) -> Result<TriMesh, SurfaceError> {
-    let (lo, hi) = points.iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-    let size = (hi - lo).length();
-    if !(size > 0.0 && size.is_finite()) {
-        return Err(SurfaceError::Degenerate);
-    }
-    let tol = pole_tolerance * size;
-    if let Some(index) = points.iter().position(|p| p.x < -tol) {
-        return Err(SurfaceError::NegativeRadius { index, value: points[index].x });
-    }
-    // snap onto the axis, merge repeated points (keeping the first of each run)
-    let mut keep: Vec<usize> = Vec::with_capacity(points.len());
-    let mut pts: Vec<DVec2> = Vec::with_capacity(points.len());
-    for (i, &p) in points.iter().enumerate() {
-        let p = if p.x <= tol { DVec2::new(0.0, p.y) } else { p };
-        if pts.last().is_none_or(|q| q.distance(p) > tol) {
-            keep.push(i);
-            pts.push(p);
+/// A profile ready to be revolved about +z by [`revolve_z`] and [`Lathe::to_mesh`]: points
+/// snapped onto the axis and repeated points merged.
+struct AxialProfile {
+    /// The distinct points, in order (a loop repeats its first point at the end).
+    pts: Vec<DVec2>,
+    /// The index in the caller's points of each of `pts`.
+    keep: Vec<usize>,
+    /// The last point repeats the first.
+    closed: bool,
+    /// Rows of the grid: the points, less the repeated first point of a loop.
+    rows: usize,
+    /// Quads along the profile.
+    nv: usize,
+    /// The size of the points' bounding box.
+    size: f64,
+}
+
+impl AxialProfile {
+    /// `points` are finite and already scaled.
+    fn new(points: &[DVec2], pole_tolerance: f64) -> Result<Self, SurfaceError> {
+        let (lo, hi) =
+            points.iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        let size = (hi - lo).length();
+        // revolved, the points span twice their largest radius: that too must be finite
+        if !(size > 0.0 && (2.0 * size).is_finite()) {
+            return Err(SurfaceError::Degenerate);
         }
-    }
-    let closed = pts.len() >= 4 && pts[0].distance(pts[pts.len() - 1]) <= tol;
-    // rows of the grid: the points, less the repeated first point of a loop
-    let rows = if closed { pts.len() - 1 } else { pts.len() };
-    if rows < 2 {
-        return Err(SurfaceError::Degenerate);
-    }
-    let nv = if closed { rows } else { rows - 1 };
-    let segment = |k: usize| (pts[k], pts[(k + 1) % rows]);
-
-    // unit right normals (T.y, −T.x) of the segments, and their bisectors at the points
-    let right: Vec<DVec2> = (0..nv)
-        .map(|k| {
-            let (a, b) = segment(k);
-            DVec2::new(b.y - a.y, a.x - b.x).try_normalize().unwrap_or(DVec2::ZERO)
-        })
-        .collect();
-    let bisector: Vec<DVec2> = (0..rows)
-        .map(|j| {
-            let before = if j > 0 {
-                right[j - 1]
-            } else if closed {
-                right[nv - 1]
-            } else {
-                DVec2::ZERO
-            };
-            let after = if j < nv { right[j] } else { DVec2::ZERO };
-            (before + after).try_normalize().unwrap_or(DVec2::ZERO)
-        })
-        .collect();
-
-    // which side is out: the capped volume, else the given normals, else the right normal
-    let volume: f64 = (0..nv)
-        .map(|k| {
-            let (a, b) = segment(k);
-            (b.y - a.y) * (a.x * a.x + a.x * b.x + b.x * b.x) / 3.0
-        })
-        .sum();
-    let given: Option<Vec<DVec2>> =
-        normals.map(|n| keep[..rows].iter().map(|&i| n[i].try_normalize().unwrap_or(DVec2::ZERO)).collect());
-    let agreement: f64 = given.as_ref().map_or(0.0, |g| g.iter().zip(&bisector).map(|(a, b)| a.dot(*b)).sum());
-    let sign = if agreement < 0.0 { -1.0 } else { 1.0 };
-    let flip = if volume.abs() > 1e-12 * size * size * size { volume < 0.0 } else { agreement < 0.0 };
-    // vertex normal hints, on the right-normal side (the grid flips them with the faces)
-    let hints2: Vec<DVec2> = match &given {
-        Some(g) => g.iter().map(|&n| n * sign).collect(),
-        None => bisector,
-    };
-
-    let v_coords: Vec<f64> = match vs {
-        Some(vs) => keep.iter().map(|&i| vs[i]).collect(),
-        None => {
-            let mut acc = Vec::with_capacity(pts.len());
-            let mut total = 0.0;
-            for (k, p) in pts.iter().enumerate() {
-                if k > 0 {
-                    total += p.distance(pts[k - 1]);
-                }
-                acc.push(total);
+        let tol = pole_tolerance * size;
+        if let Some(index) = points.iter().position(|p| p.x < -tol) {
+            return Err(SurfaceError::NegativeRadius { index, value: points[index].x });
+        }
+        // snap onto the axis, merge repeated points (keeping the first of each run)
+        let mut keep: Vec<usize> = Vec::with_capacity(points.len());
+        let mut pts: Vec<DVec2> = Vec::with_capacity(points.len());
+        for (i, &p) in points.iter().enumerate() {
+            let p = if p.x <= tol { DVec2::new(0.0, p.y) } else { p };
+            if pts.last().is_none_or(|q| q.distance(p) > tol) {
+                keep.push(i);
+                pts.push(p);
             }
-            acc.iter().map(|&d| d / total).collect()
         }
-    };
-    check_size(slices, nv)?;
-    let us: Vec<f64> = (0..=slices).map(|i| i as f64 / slices as f64).collect();
-    let angles: Vec<(f64, f64)> = us[..slices].iter().map(|&u| (TAU * u).sin_cos()).collect();
-    let mut points3 = Vec::with_capacity(rows * slices);
-    let mut hints3 = Vec::with_capacity(rows * slices);
-    for (p, n) in pts[..rows].iter().zip(&hints2) {
-        for &(sin, cos) in &angles {
-            points3.push(DVec3::new(p.x * cos, p.x * sin, p.y));
-            hints3.push(DVec3::new(n.x * cos, n.x * sin, n.y));
+        let closed = pts.len() >= 4 && pts[0].distance(pts[pts.len() - 1]) <= tol;
+        let rows = if closed { pts.len() - 1 } else { pts.len() };
+        if rows < 2 {
+            return Err(SurfaceError::Degenerate);
         }
+        let nv = if closed { rows } else { rows - 1 };
+        Ok(Self { pts, keep, closed, rows, nv, size })
     }
-    build(Grid {
-        nu: slices,
-        nv,
-        wrap_u: true,
-        wrap_v: closed,
-        points: points3,
-        hints: hints3,
-        poles: Some(pts[..rows].iter().map(|p| p.x == 0.0).collect()),
-        us,
-        vs: v_coords,
-        flip,
-        uvs,
-        pole_tolerance,
-    })
+
+    /// Which rows are poles (points on the axis).
+    fn poles(&self) -> Vec<bool> {
+        self.pts[..self.rows].iter().map(|p| p.x == 0.0).collect()
+    }
+
+    /// The vertex and triangle counts of [`Self::mesh`] with `slices` and `uvs`.
+    fn counts(&self, slices: usize, uvs: UvMode) -> Result<MeshCounts, SurfaceError> {
+        check_size(slices, self.nv)?;
+        let poles = self.poles();
+        let pole_at = |j: usize| poles[j % self.rows];
+        let triangles = grid_triangle_count(slices, self.nv, &pole_at);
+        if triangles == 0 {
+            return Err(SurfaceError::Degenerate);
+        }
+        // the seam is shared unless UVs split it (see `build`)
+        let (columns, rows) = if uvs == UvMode::SplitSeams { (slices + 1, self.nv + 1) } else { (slices, self.rows) };
+        let vertices = (0..rows).map(|j| if pole_at(j) { 1 } else { columns as u64 }).sum();
+        Ok(MeshCounts { vertices, triangles })
+    }
+
+    /// The revolution: `normals` (finite, as long as the caller's points) are the caller's,
+    /// in any orientation; `vs` (same length) are the `v` texture coordinates (chord length
+    /// if `None`).
+    fn mesh(
+        &self,
+        normals: Option<&[DVec2]>,
+        vs: Option<&[f64]>,
+        slices: usize,
+        uvs: UvMode,
+        pole_tolerance: f64,
+    ) -> Result<TriMesh, SurfaceError> {
+        let Self { pts, keep, closed, rows, nv, size } = self;
+        let (closed, rows, nv, size) = (*closed, *rows, *nv, *size);
+        let segment = |k: usize| (pts[k], pts[(k + 1) % rows]);
+
+        // unit right normals (T.y, −T.x) of the segments, and their bisectors at the points
+        let right: Vec<DVec2> = (0..nv)
+            .map(|k| {
+                let (a, b) = segment(k);
+                DVec2::new(b.y - a.y, a.x - b.x).try_normalize().unwrap_or(DVec2::ZERO)
+            })
+            .collect();
+        let bisector: Vec<DVec2> = (0..rows)
+            .map(|j| {
+                let before = if j > 0 {
+                    right[j - 1]
+                } else if closed {
+                    right[nv - 1]
+                } else {
+                    DVec2::ZERO
+                };
+                let after = if j < nv { right[j] } else { DVec2::ZERO };
+                (before + after).try_normalize().unwrap_or(DVec2::ZERO)
+            })
+            .collect();
+
+        // which side is out: the capped volume, else the given normals, else the right normal
+        let volume: f64 = (0..nv)
+            .map(|k| {
+                let (a, b) = segment(k);
+                (b.y - a.y) * (a.x * a.x + a.x * b.x + b.x * b.x) / 3.0
+            })
+            .sum();
+        let given: Option<Vec<DVec2>> =
+            normals.map(|n| keep[..rows].iter().map(|&i| n[i].try_normalize().unwrap_or(DVec2::ZERO)).collect());
+        let agreement: f64 = given.as_ref().map_or(0.0, |g| g.iter().zip(&bisector).map(|(a, b)| a.dot(*b)).sum());
+        let sign = if agreement < 0.0 { -1.0 } else { 1.0 };
+        let flip = if volume.abs() > 1e-12 * size * size * size { volume < 0.0 } else { agreement < 0.0 };
+        // vertex normal hints, on the right-normal side (the grid flips them with the faces)
+        let hints2: Vec<DVec2> = match &given {
+            Some(g) => g.iter().map(|&n| n * sign).collect(),
+            None => bisector,
+        };
+
+        let v_coords: Vec<f64> = match vs {
+            Some(vs) => keep.iter().map(|&i| vs[i]).collect(),
+            None => {
+                let mut acc = Vec::with_capacity(pts.len());
+                let mut total = 0.0;
+                for (k, p) in pts.iter().enumerate() {
+                    if k > 0 {
+                        total += p.distance(pts[k - 1]);
+                    }
+                    acc.push(total);
+                }
+                acc.iter().map(|&d| d / total).collect()
+            }
+        };
+        check_size(slices, nv)?;
+        let us: Vec<f64> = (0..=slices).map(|i| i as f64 / slices as f64).collect();
+        let angles: Vec<(f64, f64)> = us[..slices].iter().map(|&u| (TAU * u).sin_cos()).collect();
+        let mut points3 = Vec::with_capacity(rows * slices);
+        let mut hints3 = Vec::with_capacity(rows * slices);
+        for (p, n) in pts[..rows].iter().zip(&hints2) {
+            for &(sin, cos) in &angles {
+                points3.push(DVec3::new(p.x * cos, p.x * sin, p.y));
+                hints3.push(DVec3::new(n.x * cos, n.x * sin, n.y));
+            }
+        }
+        build(Grid {
+            nu: slices,
+            nv,
+            wrap_u: true,
+            wrap_v: closed,
+            points: points3,
+            hints: hints3,
+            poles: Some(self.poles()),
+            us,
+            vs: v_coords,
+            flip,
+            uvs,
+            pole_tolerance,
+        })
+    }
 }
 
 /// A sampled grid, ready to be triangulated.
@@ -942,6 +1029,12 @@ fn grid_triangles(
         }
     }
     out
+}
+
+/// How many triangles [`grid_triangles`] gives: the quads of every row of quads that is not
+/// between two poles, less one triangle for each quad next to a pole.
+fn grid_triangle_count(nu: usize, nv: usize, pole: &impl Fn(usize) -> bool) -> u64 {
+    (0..nv).map(|j| (u64::from(!pole(j)) + u64::from(!pole(j + 1))) * nu as u64).sum()
 }
 
 /// Unit vertex normals: the hint (negated with `flip`) when it is usable and within 90° of
