@@ -17,7 +17,7 @@ use splinekit::subdiv::{
     catmull_clark_subdivide_creased, doo_sabin_subdivide, loop_limit_creased, loop_limit_normals, loop_limit_positions,
     loop_subdivide, loop_subdivide_creased, sqrt3_subdivide,
 };
-use splinekit_io::mesh::{MeshFormat, load_mesh, read_creases, save, save_poly, save_poly_creased};
+use splinekit_io::mesh::{MeshFormat, load_mesh, read_creases, save_poly, save_poly_creased};
 
 use crate::output::JsonNum;
 
@@ -73,9 +73,14 @@ use crate::output::JsonNum;
 ///
 /// Writes the result by the extension of OUT (.obj, .ply, .stl, .glb) through a temporary
 /// file, so an error never leaves a partial file; without -o nothing is written (use it to
-/// measure). Prints the counts and the time of the subdivision alone (no file I/O); with
-/// --json, one object `{"vertices": V, "faces": F, "seconds": S}`, where S is the median of
-/// --repeat runs. Shows a progress bar on standard error when it is a terminal.
+/// measure). OBJ keeps the mesh's vertices and topology, normals and UVs with their own
+/// indices (`f v/vt/vn`): a closed mesh stays closed, and subdividing a level-k file again
+/// gives level k+1. glb and PLY hold one normal and UV per vertex, so a vertex on a UV seam or
+/// a sharp normal is written once per side. Prints the counts and the time of the subdivision
+/// alone (no file I/O); with --json, one object `{"vertices": V, "faces": F, "seconds": S}`,
+/// where S is the median of --repeat runs, and `"written_vertices": W` when the file holds
+/// another number of vertices (seams split). Shows a progress bar on standard error when it
+/// is a terminal.
 ///
 /// Non-triangle faces, and non-manifold or inconsistently oriented edges and vertices, are
 /// errors naming the face, edge or vertex; `--split-nonmanifold` instead splits
@@ -479,32 +484,23 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     let seconds = times[times.len() / 2].as_secs_f64();
     let (vertices, faces) = (finest.num_vertices(), finest.num_triangles());
 
+    let mut written = None;
     if let (Some(path), Some(format)) = (&args.output, format) {
-        let tri = if args.limit {
-            // Limit positions and normals of the subdivided surface's vertices, given to every
-            // vertex made from them (a seam splits a vertex in the triangle mesh): corner by
-            // corner, the triangles are the same.
-            let mesh = PolyMesh::from_triangles(finest.positions.clone(), &finest.triangles);
+        // face-varying normals and UVs kept: OBJ keeps the topology, glb and PLY split seams
+        let mut fine = finest.to_mesh();
+        drop(finest);
+        if args.limit {
+            // limit positions and normals of the subdivided surface's vertices (one normal per
+            // vertex: the limit surface is smooth there); UVs stay as they are
             let limit = |e: SubdivError| anyhow!("{}: {e}", args.input.display());
-            let (positions, normals) = (
-                loop_limit_positions(&mesh, &options).map_err(limit)?,
-                loop_limit_normals(&mesh, &options).map_err(limit)?,
-            );
-            let mut tri = finest.into_tri_mesh();
-            tri.normals = vec![DVec3::ZERO; tri.positions.len()];
-            for (out, within) in tri.triangles.iter().zip(mesh.face_vertices.chunks_exact(3)) {
-                for (&o, &w) in out.iter().zip(within) {
-                    tri.positions[o as usize] = positions[w as usize];
-                    tri.normals[o as usize] = normals[w as usize];
-                }
-            }
-            tri
-        } else {
-            finest.into_tri_mesh()
-        };
-        save(&tri, path, format)?;
+            let bare = PolyMesh { normals: None, uvs: None, colors: Vec::new(), ..fine.clone() };
+            let normals = loop_limit_normals(&bare, &options).map_err(limit)?;
+            fine.positions = loop_limit_positions(&bare, &options).map_err(limit)?;
+            fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
+        }
+        written = Some(save_poly(&fine, path, format)?);
     }
-    report(args, out, (vertices, faces, "triangles"), seconds, threads)
+    report(args, out, (vertices, faces, "triangles"), seconds, threads, written)
 }
 
 /// The boundary rule of `--boundary`.
@@ -547,23 +543,37 @@ fn thread_pool(args: &SubdivideArgs) -> anyhow::Result<rayon::ThreadPool> {
     builder.build().context("cannot start the worker threads")
 }
 
-/// Prints the counts and the time (one JSON object with --json).
+/// Prints the counts and the time (one JSON object with --json), and, when the file holds
+/// another number of vertices (glb and PLY give a vertex on a UV seam or sharp normal once per
+/// side), that number.
 fn report(
     args: &SubdivideArgs,
     out: &mut impl Write,
     (vertices, faces, noun): (usize, usize, &str),
     seconds: f64,
     threads: usize,
+    written: Option<usize>,
 ) -> anyhow::Result<()> {
     if args.json {
-        writeln!(out, "{{\"vertices\": {vertices}, \"faces\": {faces}, \"seconds\": {}}}", JsonNum(seconds))?;
+        // the shape stays {vertices, faces, seconds} unless the file holds more vertices
+        let file = match written {
+            Some(n) if n != vertices => format!(", \"written_vertices\": {n}"),
+            _ => String::new(),
+        };
+        writeln!(out, "{{\"vertices\": {vertices}, \"faces\": {faces}, \"seconds\": {}{file}}}", JsonNum(seconds))?;
     } else {
         let target = args.output.as_ref().map_or_else(|| String::from("(not written)"), |p| p.display().to_string());
         let scheme = args.scheme.title();
+        let split = match written {
+            Some(n) if n != vertices => {
+                format!("; the file has {n} vertices (a vertex on a UV seam or a sharp normal once per side)")
+            }
+            _ => String::new(),
+        };
         writeln!(
             out,
             "{target}: {vertices} vertices, {faces} {noun} after {} level{} of {scheme} subdivision in {seconds:.3} s \
-             ({threads} thread{}{})",
+             ({threads} thread{}{}){split}",
             args.levels,
             if args.levels == 1 { "" } else { "s" },
             if threads == 1 { "" } else { "s" },
@@ -583,6 +593,7 @@ fn run_catmull_clark(
     let options = CatmullClarkOptions { boundary: boundary_rule(args), color_by_level: args.color_by_level };
     let pool = thread_pool(args)?;
     let (mut fine, seconds) = timed(args, &pool, |m| catmull_clark_subdivide(m, args.levels as usize, &options), mesh)?;
+    let mut written = None;
     if let (Some(path), Some(format)) = (&args.output, format) {
         if args.limit {
             let limit = |e: SubdivError| anyhow!("{}: {e}", args.input.display());
@@ -590,9 +601,10 @@ fn run_catmull_clark(
             fine.positions = catmull_clark_limit_positions(&fine, &options).map_err(limit)?;
             fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
         }
-        save_poly(&fine, path, format)?;
+        written = Some(save_poly(&fine, path, format)?);
     }
-    report(args, out, (fine.num_vertices(), fine.num_faces(), "quads"), seconds, pool.current_num_threads())
+    let threads = pool.current_num_threads();
+    report(args, out, (fine.num_vertices(), fine.num_faces(), "quads"), seconds, threads, written)
 }
 
 /// √3, Doo-Sabin and butterfly: time `--repeat` runs of `subdivide`, write the last.
@@ -624,6 +636,7 @@ fn run_creased(
 ) -> anyhow::Result<()> {
     let pool = thread_pool(args)?;
     let ((mut fine, creases), seconds) = timed(args, &pool, subdivide, mesh)?;
+    let mut written = None;
     if let (Some(path), Some(format)) = (&args.output, format) {
         if let (true, Some(limit)) = (args.limit, limit) {
             let (positions, normals) =
@@ -634,9 +647,9 @@ fn run_creased(
         if format != MeshFormat::Obj && !creases.is_empty() {
             eprintln!("note: {} cannot hold crease tags; write .obj to keep the child creases", path.display());
         }
-        save_poly_creased(&fine, &creases, path, format)?;
+        written = Some(save_poly_creased(&fine, &creases, path, format)?);
     }
-    report(args, out, (fine.num_vertices(), fine.num_faces(), noun), seconds, pool.current_num_threads())
+    report(args, out, (fine.num_vertices(), fine.num_faces(), noun), seconds, pool.current_num_threads(), written)
 }
 
 /// `--repeat` runs of `subdivide` on `mesh` in `pool`: the last result and the median time.

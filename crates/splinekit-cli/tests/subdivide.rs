@@ -548,3 +548,93 @@ fn too_many_levels_fail_before_any_work() {
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// A cube of 12 triangles, flat-shaded (one normal per side) and UV-mapped side by side: every
+/// vertex has three normals and several UVs.
+const FLAT_CUBE: &str = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1
+vn 0 0 -1\nvn 0 0 1\nvn 0 -1 0\nvn 0 1 0\nvn -1 0 0\nvn 1 0 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1
+f 1/1/1 4/4/1 3/3/1\nf 1/1/1 3/3/1 2/2/1\nf 5/1/2 6/2/2 7/3/2\nf 5/1/2 7/3/2 8/4/2
+f 1/1/3 2/2/3 6/3/3\nf 1/1/3 6/3/3 5/4/3\nf 4/1/4 8/2/4 7/3/4\nf 4/1/4 7/3/4 3/4/4
+f 1/1/5 5/2/5 8/3/5\nf 1/1/5 8/3/5 4/4/5\nf 2/1/6 3/2/6 7/3/6\nf 2/1/6 7/3/6 6/4/6\n";
+
+/// An octahedron with smooth normals (one per vertex) and a UV seam along its equator: the
+/// upper and lower halves have UVs of their own.
+const SEAMED_OCTAHEDRON: &str = "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1
+vn 1 0 0\nvn -1 0 0\nvn 0 1 0\nvn 0 -1 0\nvn 0 0 1\nvn 0 0 -1
+vt 1 0.5\nvt 0 0.5\nvt 0.5 1\nvt 0.5 0\nvt 0.5 0.5\nvt 0.9 0.4\nvt 0.1 0.4\nvt 0.4 0.9\nvt 0.4 0.1\nvt 0.6 0.6
+f 1/1/1 3/3/3 5/5/5\nf 3/3/3 2/2/2 5/5/5\nf 2/2/2 4/4/4 5/5/5\nf 4/4/4 1/1/1 5/5/5
+f 3/8/3 1/6/1 6/10/6\nf 2/7/2 3/8/3 6/10/6\nf 4/9/4 2/7/2 6/10/6\nf 1/6/1 4/9/4 6/10/6\n";
+
+/// Every face of an OBJ file as its corners' (position, UV, normal), each face rotated to
+/// start at its least corner and the faces sorted: the same surface numbered differently
+/// gives the same list.
+fn corners(path: &Path) -> Vec<Vec<[f64; 8]>> {
+    let mesh = splinekit_io::mesh::load_mesh(path).unwrap().mesh;
+    let (uvs, normals) = (mesh.uvs.as_ref().unwrap(), mesh.normals.as_ref().unwrap());
+    let mut faces: Vec<Vec<[f64; 8]>> = mesh
+        .face_offsets
+        .windows(2)
+        .map(|w| {
+            let mut face: Vec<[f64; 8]> = (w[0] as usize..w[1] as usize)
+                .map(|c| {
+                    let (p, t) = (mesh.positions[mesh.face_vertices[c] as usize], uvs.values[uvs.indices[c] as usize]);
+                    let n = normals.values[normals.indices[c] as usize];
+                    [p.x, p.y, p.z, t.x, t.y, n.x, n.y, n.z]
+                })
+                .collect();
+            let least = (0..face.len()).min_by(|&a, &b| face[a].partial_cmp(&face[b]).unwrap()).unwrap();
+            face.rotate_left(least);
+            face
+        })
+        .collect();
+    // sorted by positions rounded well above the differences of summation order
+    let key =
+        |f: &Vec<[f64; 8]>| f.iter().flat_map(|c| c[..3].iter().map(|x| (x * 1e6).round() as i64)).collect::<Vec<_>>();
+    faces.sort_by_key(key);
+    faces
+}
+
+/// Attributes never tear a mesh: the OBJ written keeps one vertex per position with the
+/// normals and UVs indexed per corner, so `-n 0` gives the input's topology, and subdividing a
+/// level-1 file once more gives level 2 (positions, UVs and normals to 1e-12). glb splits the
+/// seams and says how many vertices it wrote.
+#[test]
+fn attributes_keep_the_topology_and_levels_carry_on() {
+    let dir = temp_dir("attributes");
+    for (name, text, vertices, faces) in [("cube", FLAT_CUBE, 8, 12), ("octahedron", SEAMED_OCTAHEDRON, 6, 8)] {
+        let input = dir.join(format!("{name}.obj"));
+        std::fs::write(&input, text).unwrap();
+        let file = |s: &str| dir.join(format!("{name}-{s}")).to_string_lossy().into_owned();
+        let input = input.to_string_lossy().into_owned();
+        // level 0: the input's vertices and faces, closed, attribute values per corner kept
+        splinekit(&["subdivide", &input, "-n", "0", "-o", &file("0.obj")]).ok();
+        let zero = splinekit_io::mesh::load_mesh(file("0.obj")).unwrap().mesh;
+        let original = splinekit_io::mesh::load_mesh(&input).unwrap().mesh;
+        assert_eq!((zero.num_vertices(), zero.num_faces()), (vertices, faces));
+        assert_eq!(zero.face_vertices, original.face_vertices, "{name}");
+        assert_eq!(corners(Path::new(&file("0.obj"))), corners(Path::new(&input)), "{name}");
+        let info = splinekit(&["info", &file("0.obj")]).ok().to_owned();
+        assert!(info.contains("boundary: none (closed)") && info.contains("components: 1"), "{info}");
+        // one level, then one more, against two at once
+        splinekit(&["subdivide", &input, "-n", "1", "-o", &file("1.obj")]).ok();
+        splinekit(&["subdivide", &file("1.obj"), "-n", "1", "-o", &file("11.obj")]).ok();
+        splinekit(&["subdivide", &input, "-n", "2", "-o", &file("2.obj")]).ok();
+        let (again, twice) = (corners(Path::new(&file("11.obj"))), corners(Path::new(&file("2.obj"))));
+        assert_eq!(again.len(), twice.len());
+        let worst = again
+            .iter()
+            .flatten()
+            .zip(twice.iter().flatten())
+            .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
+            .fold(0.0, f64::max);
+        assert!(worst <= 1e-12, "{name}: level 1 twice differs from level 2 by {worst}");
+        // glb: one normal and UV per vertex, so the seams are split, and the count says so
+        let json: Value =
+            serde_json::from_str(splinekit(&["subdivide", &input, "-n", "1", "-o", &file("1.glb"), "--json"]).ok())
+                .unwrap();
+        let glb = splinekit_io::mesh::load_mesh(file("1.glb")).unwrap().mesh;
+        assert_eq!(json["written_vertices"], glb.num_vertices(), "{json}");
+        assert!(glb.num_vertices() > json["vertices"].as_u64().unwrap() as usize);
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -119,6 +119,56 @@ fn tobj_read(bytes: &[u8]) -> tobj::Mesh {
     models.remove(0).mesh
 }
 
+/// Face-varying normals and UVs are written with their own indices: tobj reads back the same
+/// positions, the same corners' indices into each pool, and the same values; the mesh keeps
+/// its vertices (a closed quad cube with flat normals and a UV seam stays 8 vertices).
+#[test]
+fn obj_keeps_face_varying_attributes_with_their_own_indices() {
+    use splinekit::{FaceVarying, PolyMesh};
+    let positions: Vec<DVec3> =
+        (0..8).map(|i| DVec3::new(f64::from(i & 1), f64::from((i >> 1) & 1), f64::from(i >> 2))).collect();
+    let quads: [[u32; 4]; 6] = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    let axes = [DVec3::NEG_Z, DVec3::Z, DVec3::NEG_Y, DVec3::Y, DVec3::NEG_X, DVec3::X];
+    let mut mesh = PolyMesh {
+        positions,
+        face_offsets: (0..=6).map(|f| 4 * f).collect(),
+        face_vertices: quads.iter().flatten().copied().collect(),
+        ..PolyMesh::default()
+    };
+    // one normal per side; UVs: four shared corners, but side 5 has its own (a seam)
+    mesh.normals = Some(FaceVarying { values: axes.to_vec(), indices: (0..24).map(|c| c / 4).collect() });
+    let uv = |k: u32| DVec2::new(f64::from(k & 1), f64::from(k >> 1));
+    mesh.uvs = Some(FaceVarying {
+        values: (0..8).map(|k| uv(k % 4) * if k < 4 { 1.0 } else { 0.5 }).collect(),
+        indices: (0..24).map(|c| if c >= 20 { 4 + c % 4 } else { c % 4 }).collect(),
+    });
+    let mut bytes = Vec::new();
+    splinekit_io::mesh::write_obj_poly(&mesh, &mut bytes).unwrap();
+    let read = tobj_read(&bytes);
+    // tobj numbers the pools in its own order: compare every corner's values
+    assert_eq!(read.positions.len(), 3 * 8, "one v per vertex");
+    assert_eq!((read.normals.len(), read.texcoords.len()), (3 * 6, 2 * 8), "one vn per side, one vt per value");
+    let (normals, uvs) = (mesh.normals.as_ref().unwrap(), mesh.uvs.as_ref().unwrap());
+    let at = |pool: &[f64], i: u32, n: usize| -> Vec<f64> { pool[n * i as usize..n * (i as usize + 1)].to_vec() };
+    for c in 0..24 {
+        assert_eq!(at(&read.positions, read.indices[c], 3), mesh.positions[mesh.face_vertices[c] as usize].to_array());
+        assert_eq!(
+            at(&read.normals, read.normal_indices[c], 3),
+            normals.values[normals.indices[c] as usize].to_array()
+        );
+        assert_eq!(at(&read.texcoords, read.texcoord_indices[c], 2), uvs.values[uvs.indices[c] as usize].to_array());
+    }
+    // and our own reader gives the mesh back exactly
+    let back = splinekit_io::mesh::read_obj(Cursor::new(&bytes), "cube.obj").unwrap().mesh;
+    assert_eq!(back, mesh);
+    // an index past the values is refused before anything is written
+    mesh.uvs.as_mut().unwrap().indices[7] = 8;
+    let mut out = Vec::new();
+    let err = splinekit_io::mesh::write_obj_poly(&mesh, &mut out).unwrap_err();
+    assert!(out.is_empty());
+    assert_eq!(err.to_string(), "invalid UVs: corner 7 names value 8 of 8");
+}
+
 fn check_obj(mesh: &TriMesh) {
     let bytes = to_bytes(mesh, MeshFormat::Obj);
     let read = tobj_read(&bytes);

@@ -134,6 +134,15 @@ pub enum MeshIoErrorKind {
     /// written.
     #[error("invalid mesh: {0}")]
     InvalidMesh(MeshError),
+    /// A face-varying attribute to be written does not match the faces or holds a value that
+    /// is not finite; nothing is written.
+    #[error("invalid {attribute}: {problem}")]
+    InvalidAttribute {
+        /// `normals` or `UVs`.
+        attribute: &'static str,
+        /// What is wrong, naming the corner or value.
+        problem: String,
+    },
     /// A value or count does not fit the file format (a coordinate beyond the `f32` range, more
     /// than 2³² bytes in a `.glb`, more vertices than a PLY `int` index can address).
     #[error("{what} does not fit in {format}")]

@@ -234,13 +234,18 @@ pub fn save_cancellable(
 }
 
 /// Writes the polygon mesh `mesh` to the file at `path` in `format`, atomically (as
-/// [`save`]): OBJ keeps the polygons ([`write_obj_poly`]); the other formats get its fan
-/// triangulation ([`PolyMesh::to_tri_mesh`]).
+/// [`save`]), and returns the number of vertices the file holds.
+///
+/// OBJ keeps the polygons and the face-varying normals and UVs with their own indices
+/// ([`write_obj_poly`]): the file has the mesh's vertices and topology. glb and PLY get the
+/// fan triangulation with a vertex for every distinct (vertex, normal, UV) of a corner
+/// ([`PolyMesh::to_tri_mesh_with_seams`]: their attributes are per vertex, so a vertex on a
+/// UV seam or a sharp normal is written once per side), STL the fan triangulation's positions.
 ///
 /// # Errors
 ///
 /// As [`save`].
-pub fn save_poly(mesh: &PolyMesh, path: impl AsRef<Path>, format: MeshFormat) -> Result<(), MeshIoError> {
+pub fn save_poly(mesh: &PolyMesh, path: impl AsRef<Path>, format: MeshFormat) -> Result<usize, MeshIoError> {
     save_poly_creased(mesh, &Creases::default(), path, format)
 }
 
@@ -255,16 +260,23 @@ pub fn save_poly_creased(
     creases: &Creases,
     path: impl AsRef<Path>,
     format: MeshFormat,
-) -> Result<(), MeshIoError> {
+) -> Result<usize, MeshIoError> {
     let path = path.as_ref();
-    if format != MeshFormat::Obj {
-        return save(&mesh.to_tri_mesh(), path, format);
+    let split = match format {
+        MeshFormat::Obj => None,
+        MeshFormat::Glb | MeshFormat::Ply => Some(mesh.to_tri_mesh_with_seams()),
+        MeshFormat::Stl => Some(mesh.to_tri_mesh()),
+    };
+    if let Some(tri) = split {
+        save(&tri, path, format)?;
+        return Ok(tri.num_vertices());
     }
     // write_obj_poly validates before writing a byte; on error the temporary file goes away
     atomic::write_file(path, |w| {
         write_obj_poly(mesh, w).map_err(|e| e.with_origin(path))?;
         write_creases(creases, w).map_err(|e| MeshIoError::from(e).with_origin(path))
-    })
+    })?;
+    Ok(mesh.num_vertices())
 }
 
 /// Validates the mesh for writing.

@@ -54,23 +54,30 @@ pub fn write_obj<W: Write + ?Sized>(mesh: &TriMesh, out: &mut W) -> Result<(), M
 }
 
 /// Writes a polygon mesh as Wavefront OBJ text: `v x y z` lines (`v x y z r g b` with one
-/// colour per vertex), `vn` and `vt` lines for normals and UVs given per vertex (a channel
-/// whose indices are the face corners' vertices), and one `f` line per face with its corners
-/// (1-based, `v/t/n` forms as needed), numbers as [`write_obj`]. Face-varying normals and UVs
-/// (with seams) are not written.
+/// colour per vertex), then a `vn` line per normal value and a `vt` line per UV value, and one
+/// `f` line per face with its corners (1-based, `v/t/n` forms as needed), numbers as
+/// [`write_obj`].
+///
+/// Normals and UVs are face-varying ([`FaceVarying`]): each corner names its own value, so a
+/// vertex on a UV seam or at a sharp edge of flat shading stays one `v` with several `vt` or
+/// `vn` values, and the file keeps the mesh's topology (a closed mesh stays closed, and
+/// reading the file back gives the same vertices, faces and attribute indices). A channel
+/// given per vertex (its indices are the corners' vertices) writes the same bytes as
+/// [`write_obj`] would.
 ///
 /// # Errors
 ///
 /// [`InvalidMesh`](super::MeshIoErrorKind::InvalidMesh) if the fan triangulation fails
-/// [`TriMesh::validate`] (nothing is written then), or an
-/// [`Io`](super::MeshIoErrorKind::Io) error from `out`.
+/// [`TriMesh::validate`], or an attribute's indices do not match the corners or its values
+/// (nothing is written then), or an [`Io`](super::MeshIoErrorKind::Io) error from `out`.
 pub fn write_obj_poly<W: Write + ?Sized>(mesh: &PolyMesh, out: &mut W) -> Result<(), MeshIoError> {
     // the checks of a triangle mesh, on the fan triangulation (same vertices and indices)
     super::check(&mesh.to_tri_mesh())?;
+    let normals = channel(mesh, mesh.normals.as_ref(), "normals")?;
+    let uvs = channel(mesh, mesh.uvs.as_ref(), "UVs")?;
     let n = mesh.positions.len();
     let mut w = BufWriter::with_capacity(super::BUFFER_SIZE, out);
     let colors = mesh.colors.len() == n;
-    let (normals, uvs) = (per_vertex(mesh, mesh.normals.as_ref()), per_vertex(mesh, mesh.uvs.as_ref()));
     let body = |w: &mut BufWriter<&mut W>| -> std::io::Result<()> {
         for (i, p) in mesh.positions.iter().enumerate() {
             if colors {
@@ -86,10 +93,11 @@ pub fn write_obj_poly<W: Write + ?Sized>(mesh: &PolyMesh, out: &mut W) -> Result
         for &t in uvs.iter().flat_map(|c| &c.values) {
             write_vec2(w, "vt", t)?;
         }
-        for face in mesh.faces() {
+        for range in mesh.face_offsets.windows(2) {
             w.write_all(b"f")?;
-            for &v in face {
-                write_corner(w, v, uvs.is_some(), normals.is_some())?;
+            for c in range[0] as usize..range[1] as usize {
+                let (t, n) = (uvs.map(|a| a.indices[c]), normals.map(|a| a.indices[c]));
+                write_face_corner(w, mesh.face_vertices[c], t, n)?;
             }
             w.write_all(b"\n")?;
         }
@@ -97,6 +105,60 @@ pub fn write_obj_poly<W: Write + ?Sized>(mesh: &PolyMesh, out: &mut W) -> Result
     };
     body(&mut w).map_err(MeshIoError::write)?;
     w.flush().map_err(MeshIoError::write)
+}
+
+/// `attribute` checked against the corners of `mesh`: one index per corner, each naming one
+/// of its values, and every value finite.
+fn channel<'m, T: FiniteValue>(
+    mesh: &PolyMesh,
+    attribute: Option<&'m FaceVarying<T>>,
+    what: &'static str,
+) -> Result<Option<&'m FaceVarying<T>>, MeshIoError> {
+    let Some(a) = attribute else { return Ok(None) };
+    let corners = mesh.face_vertices.len();
+    let problem = if a.indices.len() == corners {
+        let out_of_range = a.indices.iter().position(|&i| i as usize >= a.values.len());
+        let not_finite = || a.values.iter().position(|v| !v.finite());
+        match (out_of_range, not_finite()) {
+            (Some(c), _) => Some(format!("corner {c} names value {} of {}", a.indices[c], a.values.len())),
+            (None, Some(v)) => Some(format!("value {v} is not finite")),
+            (None, None) => None,
+        }
+    } else {
+        Some(format!("{} indices for {corners} face corners", a.indices.len()))
+    };
+    match problem {
+        Some(problem) => Err(MeshIoError::new(super::MeshIoErrorKind::InvalidAttribute { attribute: what, problem })),
+        None => Ok(Some(a)),
+    }
+}
+
+/// A normal or UV value, finite or not.
+trait FiniteValue {
+    fn finite(&self) -> bool;
+}
+
+impl FiniteValue for DVec3 {
+    fn finite(&self) -> bool {
+        self.is_finite()
+    }
+}
+
+impl FiniteValue for DVec2 {
+    fn finite(&self) -> bool {
+        self.is_finite()
+    }
+}
+
+/// Writes a face corner as ` v`, ` v/t`, ` v//n` or ` v/t/n` (1-based) from 0-based indices.
+fn write_face_corner<W: Write + ?Sized>(w: &mut W, v: u32, t: Option<u32>, n: Option<u32>) -> std::io::Result<()> {
+    let one = |i: u32| u64::from(i) + 1;
+    match (t, n) {
+        (Some(t), Some(n)) => write!(w, " {}/{}/{}", one(v), one(t), one(n)),
+        (Some(t), None) => write!(w, " {}/{}", one(v), one(t)),
+        (None, Some(n)) => write!(w, " {}//{}", one(v), one(n)),
+        (None, None) => write!(w, " {}", one(v)),
+    }
 }
 
 /// Writes the `v`, `vn`, `vt` and `f` lines.
@@ -124,21 +186,10 @@ fn write_body<W: Write>(mesh: &TriMesh, w: &mut W) -> std::io::Result<()> {
     Ok(())
 }
 
-/// `channel` if it has one value per vertex of `mesh`, indexed by the face corners' vertices.
-fn per_vertex<'m, T>(mesh: &PolyMesh, channel: Option<&'m FaceVarying<T>>) -> Option<&'m FaceVarying<T>> {
-    channel.filter(|c| c.indices == mesh.face_vertices && c.values.len() == mesh.positions.len())
-}
-
 /// Writes face corner `v` (0-based) as ` i`, ` i/i`, ` i//i` or ` i/i/i` (1-based), the vertex
 /// also indexing its UV and normal.
 fn write_corner<W: Write + ?Sized>(w: &mut W, v: u32, has_uv: bool, has_normal: bool) -> std::io::Result<()> {
-    let i = u64::from(v) + 1;
-    match (has_uv, has_normal) {
-        (true, true) => write!(w, " {i}/{i}/{i}"),
-        (true, false) => write!(w, " {i}/{i}"),
-        (false, true) => write!(w, " {i}//{i}"),
-        (false, false) => write!(w, " {i}"),
-    }
+    write_face_corner(w, v, has_uv.then_some(v), has_normal.then_some(v))
 }
 
 /// Writes `KEY x y z`.

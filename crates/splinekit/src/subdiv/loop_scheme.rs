@@ -23,7 +23,8 @@
 //! UVs are face-varying: each is subdivided as a mesh of its own over the same triangles,
 //! whose edges are joined only where both sides share the value indices — a UV seam is a
 //! boundary of the UV mesh, so it gets the boundary rules and the two sides never blend.
-//! Normals are renormalized when a level is turned into a mesh. With
+//! Normals are renormalized at every level (the base's too), so that subdividing a written
+//! level-k mesh once more gives level k + 1. With
 //! [`LoopOptions::color_by_level`], vertices are instead coloured by the level that created
 //! them ([`LEVEL_COLORS`]).
 //!
@@ -306,6 +307,16 @@ struct Channel<T> {
     values: Vec<T>,
 }
 
+impl Channel<DVec3> {
+    /// The channel with its values scaled to unit length (zero stays zero).
+    fn renormalized(mut self) -> Self {
+        for n in &mut self.values {
+            *n = n.normalize_or_zero();
+        }
+        self
+    }
+}
+
 impl<T: Attribute> Channel<T> {
     /// The base level of `fv` over triangles with position topology `pos`: edges join where
     /// both sides share value indices; a value whose corners fall into several fans is
@@ -542,7 +553,11 @@ impl LoopPyramid {
                 problem: format!("{} colours for {n} vertices", mesh.colors.len()),
             });
         }
-        let normals = mesh.normals.as_ref().map(|fv| Channel::base("normals", &topology, fv)).transpose()?;
+        let normals = mesh
+            .normals
+            .as_ref()
+            .map(|fv| Channel::base("normals", &topology, fv).map(Channel::renormalized))
+            .transpose()?;
         let uvs = mesh.uvs.as_ref().map(|fv| Channel::base("uvs", &topology, fv)).transpose()?;
         let colors = if options.color_by_level { vec![LEVEL_COLORS[0]; n] } else { mesh.colors.clone() };
         let level = LoopLevel { triangles, positions, colors, depth: 0, topology: Some(topology), normals, uvs };
@@ -684,7 +699,7 @@ impl LoopPyramid {
             refine_values(&table, c, rules)
         });
         let (triangles, topology) = topo.refine(&level.triangles, with_topology);
-        let normals = level.normals.as_mut().map(|c| c.refine(rules, with_topology));
+        let normals = level.normals.as_mut().map(|c| c.refine(rules, with_topology).renormalized());
         let uvs = level.uvs.as_mut().map(|c| c.refine(rules, with_topology));
         self.levels.push(LoopLevel { triangles, positions, colors, depth, topology, normals, uvs });
     }
