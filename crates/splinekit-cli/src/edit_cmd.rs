@@ -18,6 +18,16 @@ pub struct EditArgs {
 }
 
 /// Runs the editor until its window is closed.
+#[cfg(feature = "editor")]
 pub fn run(args: &EditArgs) -> anyhow::Result<()> {
     splinekit_editor::run(args.file.clone())
+}
+
+/// This binary was built without the editor.
+#[cfg(not(feature = "editor"))]
+pub fn run(_args: &EditArgs) -> anyhow::Result<()> {
+    anyhow::bail!(
+        "this splinekit was built without the editor (cargo feature `editor`); \
+         build it with `cargo build --release -p splinekit-cli` to get `splinekit edit`"
+    )
 }

@@ -4,6 +4,7 @@
 //! exit code (0 success, 1 error, 2 usage error from clap). A closed output pipe
 //! (`splinekit curve f.swp | head`) counts as success.
 
+#[cfg(all(feature = "huge-pages", target_os = "linux"))]
 mod alloc;
 mod arclen_cmd;
 mod curve_cmd;
@@ -22,6 +23,19 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+/// Without the `huge-pages` feature, or off Linux: the system allocator as it is.
+#[cfg(not(all(feature = "huge-pages", target_os = "linux")))]
+mod alloc {
+    /// Runs `f`.
+    pub fn recycling<R>(f: impl FnOnce() -> R) -> R {
+        f()
+    }
+
+    /// Nothing to tune.
+    pub const fn keep_small_blocks() {}
+}
+
+#[cfg(all(feature = "huge-pages", target_os = "linux"))]
 #[global_allocator]
 static ALLOCATOR: alloc::HugePageAlloc = alloc::HugePageAlloc;
 
