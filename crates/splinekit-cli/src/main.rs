@@ -12,6 +12,7 @@ mod edit_cmd;
 mod gallery_cmd;
 mod info_cmd;
 mod mesh_info;
+mod mesh_read;
 mod output;
 mod render_cmd;
 mod select;

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use splinekit::PolyMesh;
 use splinekit::mesh::{DEFAULT_DEGENERATE_TOLERANCE, DEFAULT_LISTED, Degeneracy, TopologyReport};
-use splinekit_io::mesh::{LoadedMesh, MeshFormat, load_mesh};
+use splinekit_io::mesh::{LoadedMesh, MeshFormat};
 
 use crate::output::{json_array, json_str};
 
@@ -34,9 +34,9 @@ pub fn is_mesh(path: &Path) -> bool {
 
 /// Describes the mesh at `path` on `out`: text, or one JSON object. Problems in the mesh are
 /// reported, not errors; an unreadable or malformed file is an error naming file, line and
-/// column.
+/// column. The reader's warnings are part of the description, and go to standard error too.
 pub fn run(path: &Path, json: bool, out: &mut impl Write) -> anyhow::Result<()> {
-    let loaded = load_mesh(path)?;
+    let loaded = crate::mesh_read::load(path)?;
     let report = TopologyReport::new(&loaded.mesh, DEFAULT_DEGENERATE_TOLERANCE);
     let file = path.display().to_string();
     let format = MeshFormat::from_path(path).map_or("", MeshFormat::extension);

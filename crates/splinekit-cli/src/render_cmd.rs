@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::bail;
 use clap::ValueEnum;
+use splinekit_io::mesh::MeshFormat;
 use splinekit_render::colour::{CHECKER_SQUARES, SCALE_PERCENTILE};
 use splinekit_render::legend::format_value;
 use splinekit_render::{
@@ -152,9 +153,10 @@ pub fn run(args: &RenderArgs, out: &mut impl Write) -> anyhow::Result<()> {
         .with_wireframe(args.wireframe)
         .with_curves(CurveOptions::DEFAULT.with_frames(args.frames).with_marker_spacing(args.markers))
         .with_colour(colour);
-    let rendered = match args.levels {
-        Some(levels) => render_subdivided(args, levels, format, &options)?,
-        None => render_file(&args.file, format, &options).map_err(explain)?,
+    let rendered = if args.levels.is_some() || MeshFormat::from_path(&args.file).is_some() {
+        render_mesh(args, format, &options)?
+    } else {
+        render_file(&args.file, format, &options).map_err(explain)?
     };
     rendered.picture.write(&args.output)?;
     let what = match rendered.kind {
@@ -203,13 +205,9 @@ fn explain(err: RenderError) -> anyhow::Error {
     }
 }
 
-/// `--levels`: the mesh file subdivided, then drawn.
-fn render_subdivided(
-    args: &RenderArgs,
-    levels: u32,
-    format: PictureFormat,
-    options: &FileOptions,
-) -> anyhow::Result<Rendered> {
+/// A mesh file, drawn as [`render_file`] draws it (subdivided first with `--levels`), its
+/// reader's warnings on standard error.
+fn render_mesh(args: &RenderArgs, format: PictureFormat, options: &FileOptions) -> anyhow::Result<Rendered> {
     let path = args.file.display().to_string();
     let is_swp = args.file.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("swp"));
     if is_swp {
@@ -218,11 +216,16 @@ fn render_subdivided(
     if format == PictureFormat::Svg {
         return Err(RenderError::SvgOf3d { path, what: "a mesh" }.into());
     }
-    let loaded = splinekit_io::load_mesh(&args.file)?;
+    let loaded = crate::mesh_read::load(&args.file)?;
+    crate::mesh_read::require_faces(&loaded.mesh, &args.file, "render")?;
     let checker = args.color == ColorChoice::UvChecker;
     if checker && loaded.mesh.uvs.is_none() {
         return Err(explain(RenderError::NoTextureCoordinates { path }));
     }
+    let Some(levels) = args.levels else {
+        let mesh = if checker { loaded.mesh.to_tri_mesh_with_seams() } else { loaded.mesh.to_tri_mesh() };
+        return render_tri_mesh(&mesh, &path, options).map_err(explain);
+    };
     let scheme = args.scheme.unwrap_or(Scheme::Loop);
     let fine = subdivide_for_render(
         &loaded.mesh,

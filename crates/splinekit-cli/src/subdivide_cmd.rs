@@ -17,7 +17,7 @@ use splinekit::subdiv::{
     catmull_clark_subdivide_creased, doo_sabin_subdivide, loop_limit_creased, loop_limit_normals, loop_limit_positions,
     loop_subdivide, loop_subdivide_creased, sqrt3_subdivide,
 };
-use splinekit_io::mesh::{MeshFormat, load_mesh, read_creases, save_poly, save_poly_creased};
+use splinekit_io::mesh::{MeshFormat, read_creases, save_poly, save_poly_creased};
 
 use crate::output::JsonNum;
 
@@ -386,10 +386,8 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
             })?),
             None => None,
         };
-    let loaded = load_mesh(&args.input)?;
-    for w in &loaded.warnings {
-        eprintln!("warning: {w}");
-    }
+    let loaded = crate::mesh_read::load(&args.input)?;
+    crate::mesh_read::require_faces(&loaded.mesh, &args.input, "subdivide")?;
     let mut mesh = loaded.mesh;
     let mut creases = loaded.creases;
     if let Some(path) = &args.creases {

@@ -203,3 +203,59 @@ fn help_documents_meshes_and_json_fields() {
         assert!(help.contains(needle), "{needle:?} missing in\n{help}");
     }
 }
+
+/// Files as people have them (#39): triangle strips, UTF-16, continued lines; what the
+/// reader skips is on standard error, `warning: FILE: …`, as well as in the report.
+#[test]
+fn files_as_people_have_them() {
+    let dir = tempfile::tempdir().unwrap();
+    // A scanner's PLY: two strips of a quad each, a confidence per vertex, a range grid.
+    let ply = dir.path().join("scan.ply");
+    let text = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n\
+                property float confidence\nelement range_grid 1\nproperty list uchar int vertex_indices\n\
+                element tristrips 1\nproperty list int int vertex_indices\nend_header\n\
+                0 0 0 1\n0 1 0 1\n1 0 0 1\n1 1 0 1\n2 0 0 1\n2 1 0 1\n1 0\n9 0 2 1 3 -1 2 4 3 5\n";
+    std::fs::write(&ply, text).unwrap();
+    let run = info(&ply, false);
+    let report = run.ok();
+    assert!(
+        report.starts_with(&format!("{}: PLY mesh, 6 vertices, 4 faces (4 triangles)\n", ply.display())),
+        "{report}"
+    );
+    assert!(report.contains("  problems: none\n"), "{report}");
+    assert!(report.contains("read warnings (2):\n"), "{report}");
+    let file = ply.display();
+    assert_eq!(
+        run.stderr,
+        format!(
+            "warning: {file}: line 7: skipped property \"confidence\" of element \"vertex\"\n\
+             warning: {file}: line 8: skipped element \"range_grid\" (1 in the file; the elements read are vertex, face and tristrips)\n"
+        )
+    );
+    let j = info(&ply, true).json();
+    assert_eq!(
+        (j["faces"].as_u64(), j["boundary_edges"].as_u64(), j["consistently_oriented"].as_bool()),
+        (Some(4), Some(6), Some(true))
+    );
+
+    // Notepad's UTF-16 OBJ, with a line continued.
+    let obj = dir.path().join("notepad.obj");
+    let mut bytes = vec![0xFF, 0xFE];
+    for unit in "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 \\\r\n  3\r\n".encode_utf16() {
+        bytes.extend(unit.to_le_bytes());
+    }
+    std::fs::write(&obj, &bytes).unwrap();
+    let run = info(&obj, false);
+    assert!(run.ok().starts_with(&format!("{}: OBJ mesh, 3 vertices, 1 face (1 triangle)\n", obj.display())));
+    assert_eq!(run.stderr, "");
+    // Without its byte-order mark: a clear error, not an empty mesh.
+    std::fs::write(&obj, &bytes[2..]).unwrap();
+    let message = info(&obj, false).fails_with_error().to_owned();
+    assert_eq!(
+        message,
+        format!(
+            "error: {}: found text that looks like UTF-16 without a byte-order mark, expected UTF-8 (or UTF-16 with a byte-order mark)\n",
+            obj.display()
+        )
+    );
+}

@@ -226,7 +226,8 @@ fn colouring_errors_name_the_problem_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out.png");
     let o = out.to_string_lossy().into_owned();
-    let ico = course_mesh("icosahedron.obj").to_string_lossy().into_owned();
+    // Without the HTML lines, whose warnings would come before the error.
+    let ico = course_mesh("clean/icosahedron.obj").to_string_lossy().into_owned();
     let tor = swp("gcyl/tor.swp").to_string_lossy().into_owned();
     let check = |parts: &[&str], needle: &str, usage: bool| {
         let run = splinekit(&args(parts));
@@ -255,4 +256,40 @@ fn colouring_errors_name_the_problem_and_write_nothing() {
     check(&["render", &ico, "-o", &o.replace(".png", ".svg"), "--levels", "1"], "SVG output draws curves only", false);
     check(&["render", &ico, "-o", &o, "--scheme", "loop"], "--levels", true);
     check(&["render", &ico, "-o", &o, "--color", "rainbow"], "curvature-gauss", true);
+}
+
+/// A file without faces is a clear error (#39), with and without `--levels`; what the reader
+/// skips is a warning naming the file.
+#[test]
+fn a_mesh_without_faces_and_reader_warnings() {
+    let dir = tempfile::tempdir().unwrap();
+    let points = dir.path().join("points.ply");
+    std::fs::write(
+        &points,
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out.png");
+    for levels in [None, Some("1")] {
+        let mut args = vec!["render", points.to_str().unwrap(), "-o", out.to_str().unwrap()];
+        args.extend(levels.map(|n| ["--levels", n]).into_iter().flatten());
+        let message = splinekit(&args).fails_with_error().to_owned();
+        assert_eq!(message, format!("error: {} has no faces (1 vertex): render needs faces\n", points.display()));
+        assert!(!out.exists());
+    }
+    let strips = dir.path().join("strips.ply");
+    std::fs::write(
+        &strips,
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+         element tristrips 1\nproperty list int int vertex_indices\nproperty uchar flags\nend_header\n\
+         0 0 0\n1 0 0\n0 1 0\n1 1 0\n4 0 1 2 3 0\n",
+    )
+    .unwrap();
+    let run = splinekit(&["render", strips.to_str().unwrap(), "-o", out.to_str().unwrap(), "--size", "64x48"]);
+    assert_eq!(run.ok(), format!("{}: 64x48, mesh of 2 triangles, iso view\n", out.display()));
+    assert_eq!(
+        run.stderr,
+        format!("warning: {}: line 9: skipped property \"flags\" of element \"tristrips\"\n", strips.display())
+    );
+    assert_eq!(png_size(&out), (64, 48));
 }

@@ -638,3 +638,36 @@ fn attributes_keep_the_topology_and_levels_carry_on() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// A file without faces is a clear error (#39), and what the reader skips is a warning naming
+/// the file.
+#[test]
+fn points_only_and_skipped_lines() {
+    let dir = temp_dir("no-faces");
+    let points = dir.join("points.obj");
+    std::fs::write(&points, "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n").unwrap();
+    let out = dir.join("out.obj");
+    let run = splinekit(&["subdivide", points.to_str().unwrap(), "-n", "1", "-o", out.to_str().unwrap()]);
+    assert_eq!(run.code, Some(1));
+    assert_eq!(
+        run.fails(),
+        format!(
+            "warning: {0}: line 4: skipped 1 \"p\" statement (points are not read)\n\
+             error: {0} has no faces (3 vertices): subdivide needs faces\n",
+            points.display()
+        )
+    );
+    assert!(!out.exists());
+    let lines = dir.join("lines.obj");
+    std::fs::write(&lines, "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\nf 1 2 3\n").unwrap();
+    let run = splinekit(&["subdivide", lines.to_str().unwrap(), "-n", "1", "--json"]);
+    assert_eq!(run.json()["faces"], 4);
+    assert_eq!(
+        run.stderr,
+        format!(
+            "warning: {}: line 4: skipped 2 \"l\" statements, the first on this line (lines are not read)\n",
+            lines.display()
+        )
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -521,6 +521,331 @@ fn errors_name_file_line_and_column() {
 }
 
 // ---------------------------------------------------------------------------------------
+// Files as people have them (#39)
+
+/// The header of a PLY file of the 5 × 3 grid of vertices `3·x + y` at (x, y, 0), x in 0..5,
+/// y in 0..3, and its `tristrips` element; `FORMAT` is replaced by the format.
+const STRIP_HEADER: &str = "ply\nformat FORMAT 1.0\ncomment a 4 x 2 grid of quads in four strips\n\
+                            element vertex 15\nproperty float x\nproperty float y\nproperty float z\n\
+                            element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
+
+/// The strips of the grid, one column of two quads each.
+const GRID_STRIPS: [i32; 27] =
+    [0, 3, 1, 4, 2, 5, -1, 3, 6, 4, 7, 5, 8, -1, 6, 9, 7, 10, 8, 11, -1, 9, 12, 10, 13, 11, 14];
+
+/// The triangles MeshLab reads from the grid's strips (pymeshlab 2025.7.post1, `face_matrix`
+/// of the ASCII, little-endian and big-endian files, all three the same).
+const MESHLAB_GRID_TRIANGLES: [[u32; 3]; 16] = [
+    [0, 3, 1],
+    [1, 3, 4],
+    [1, 4, 2],
+    [2, 4, 5],
+    [3, 6, 4],
+    [4, 6, 7],
+    [4, 7, 5],
+    [5, 7, 8],
+    [6, 9, 7],
+    [7, 9, 10],
+    [7, 10, 8],
+    [8, 10, 11],
+    [9, 12, 10],
+    [10, 12, 13],
+    [10, 13, 11],
+    [11, 13, 14],
+];
+
+/// An ASCII PLY of the grid with the strip list `strip`.
+fn strip_ply(strip: &[i32]) -> String {
+    let mut text = STRIP_HEADER.replace("FORMAT", "ascii");
+    for v in 0..15 {
+        text += &format!("{} {} 0\n", v / 3, v % 3);
+    }
+    let items: Vec<String> = strip.iter().map(ToString::to_string).collect();
+    text + &format!("{} {}\n", strip.len(), items.join(" "))
+}
+
+/// A binary PLY of the grid with the strip list `strip`.
+fn binary_strip_ply(strip: &[i32], big: bool) -> Vec<u8> {
+    let format = if big { "binary_big_endian" } else { "binary_little_endian" };
+    let mut bytes = STRIP_HEADER.replace("FORMAT", format).into_bytes();
+    let f32_bytes = |x: f32| if big { x.to_be_bytes() } else { x.to_le_bytes() };
+    let i32_bytes = |x: i32| if big { x.to_be_bytes() } else { x.to_le_bytes() };
+    for v in 0..15 {
+        for x in [v / 3, v % 3, 0] {
+            bytes.extend(f32_bytes(x as f32));
+        }
+    }
+    bytes.extend(i32_bytes(strip.len() as i32));
+    for &i in strip {
+        bytes.extend(i32_bytes(i));
+    }
+    bytes
+}
+
+/// A triangle turned to start at its smallest vertex (the same triangle, facing the same way).
+fn canonical([a, b, c]: [u32; 3]) -> [u32; 3] {
+    match a.min(b).min(c) {
+        m if m == a => [a, b, c],
+        m if m == b => [b, c, a],
+        _ => [c, a, b],
+    }
+}
+
+fn triangles(mesh: &PolyMesh) -> Vec<[u32; 3]> {
+    mesh.faces().map(|f| canonical([f[0], f[1], f[2]])).collect()
+}
+
+#[test]
+fn ply_tristrips_read_as_meshlab_reads_them() {
+    let dir = TempDir::new("strips");
+    let expected: Vec<[u32; 3]> = MESHLAB_GRID_TRIANGLES.iter().map(|&t| canonical(t)).collect();
+    let files = [
+        ("ascii.ply", strip_ply(&GRID_STRIPS).into_bytes()),
+        ("little.ply", binary_strip_ply(&GRID_STRIPS, false)),
+        ("big.ply", binary_strip_ply(&GRID_STRIPS, true)),
+    ];
+    for (name, bytes) in files {
+        let loaded = load_mesh(dir.write(name, bytes)).unwrap();
+        assert!(loaded.warnings.is_empty(), "{name}: {:?}", loaded.warnings);
+        let m = &loaded.mesh;
+        assert_eq!((m.num_vertices(), m.num_faces()), (15, 16), "{name}");
+        assert_eq!(triangles(m), expected, "{name}");
+        // Every triangle faces +z, as the first does: the alternate winding is right.
+        for f in m.faces() {
+            let [a, b, c] = [f[0], f[1], f[2]].map(|v| m.positions[v as usize]);
+            assert!((b - a).cross(c - a).z > 0.0, "{name}: {f:?}");
+        }
+        // The strips make the whole grid: one disk, its 12 outer edges the boundary.
+        let r = report(m);
+        assert!(r.is_clean() && r.is_consistently_oriented(), "{name}: {r}");
+        assert_eq!((r.num_boundary_edges, r.boundary_loops.len(), r.euler_characteristic), (12, 1, 1), "{name}");
+    }
+}
+
+#[test]
+fn ply_tristrip_restarts_and_degenerate_triangles() {
+    let read = |strip: &[i32]| {
+        let loaded = read_ply(strip_ply(strip).as_bytes(), "s.ply").unwrap_or_else(|e| panic!("{e}"));
+        loaded.mesh.faces().map(|f| [f[0], f[1], f[2]]).collect::<Vec<_>>()
+    };
+    // Worked by hand: triangle k of a strip is (a, b, c) for even k and (a, c, b) for odd k,
+    // k counted from the start of each strip, so the strip after an odd-length one starts
+    // over with (a, b, c).
+    assert_eq!(read(&[0, 3, 1, -1, 3, 6, 4, 7]), [[0, 3, 1], [3, 6, 4], [6, 7, 4]]);
+    assert_eq!(read(&[0, 3, 1, 4]), [[0, 3, 1], [3, 4, 1]]);
+    // Triangles with a repeated vertex are left out, and count for the winding: MeshLab
+    // reads [0 3 1] and [4 1 2] from this strip.
+    assert_eq!(read(&[0, 3, 1, 1, 4, 2]), [[0, 3, 1], [1, 2, 4]]);
+    assert_eq!(read(&[5, 5, 8, 7]), [[5, 7, 8]]);
+    // Strips too short for a triangle, and empty ones (two restarts in a row, which MeshLab
+    // refuses), give nothing.
+    assert_eq!(read(&[0, 3, 1, 4, -1, 5, 8]), [[0, 3, 1], [3, 4, 1]]);
+    assert_eq!(read(&[-1, 0, 3, 1, -1, -1]), [[0, 3, 1]]);
+    // `vertex_index`, as some writers name the list, and a face element beside the strips.
+    let text = strip_ply(&[0, 3, 1]).replace("vertex_indices", "vertex_index");
+    let text = text
+        .replace("element tristrips 1", "element face 1\nproperty list uchar int vertex_indices\nelement tristrips 1");
+    let text = text.replace("3 0 3 1\n", "4 1 4 5 2\n3 0 3 1\n");
+    let m = read_ply(text.as_bytes(), "s.ply").unwrap().mesh;
+    assert_eq!(m.face_offsets, [0, 4, 7]);
+    assert_eq!(m.face_vertices, [1, 4, 5, 2, 0, 3, 1]);
+}
+
+#[test]
+fn ply_tristrip_errors() {
+    let dir = TempDir::new("strip-errors");
+    let err = |name: &str, bytes: Vec<u8>| {
+        let e = load_mesh(dir.write(name, bytes)).unwrap_err().to_string();
+        e.strip_prefix(&format!("{}/", dir.0.display())).unwrap_or(&e).to_owned()
+    };
+    // ASCII: line and column of the index; binary: the element and item.
+    assert_eq!(
+        err("a.ply", strip_ply(&[0, 3, 15]).into_bytes()),
+        r#"a.ply:26:7: found "15", expected a vertex index below 15, or -1 to restart the strip (item 2 of tristrips 0)"#
+    );
+    assert_eq!(
+        err("b.ply", strip_ply(&[0, 3, 1, -2]).into_bytes()),
+        r#"b.ply:26:9: found "-2", expected a vertex index below 15, or -1 to restart the strip (item 3 of tristrips 0)"#
+    );
+    assert_eq!(
+        err("c.ply", binary_strip_ply(&[0, -7, 1], true)),
+        r#"c.ply: found "-7", expected a vertex index below 15, or -1 to restart the strip (item 1 of tristrips 0)"#
+    );
+    let mut truncated = binary_strip_ply(&GRID_STRIPS, false);
+    truncated.truncate(truncated.len() - 2);
+    assert_eq!(
+        err("d.ply", truncated),
+        "d.ply: found end of file, expected an int (item 26 of list vertex_indices of tristrips 0)"
+    );
+    // Strips, and not one triangle from them: an error, not an empty mesh.
+    assert_eq!(
+        err("e.ply", strip_ply(&[0, 3, 3, 1, -1, 4, 5]).into_bytes()),
+        r#"e.ply: read no faces from element "tristrips" (1 strip): no strip has a triangle of three different vertices"#
+    );
+    assert_eq!(
+        err("f.ply", strip_ply(&[]).into_bytes()),
+        r#"f.ply: read no faces from element "tristrips" (1 strip): no strip has a triangle of three different vertices"#
+    );
+    assert_eq!(
+        err("g.ply", strip_ply(&[0, 1, 2]).replace("vertex_indices", "corners").into_bytes()),
+        r#"g.ply:8:9: found "tristrips", expected an element with a list property vertex_indices or vertex_index"#
+    );
+}
+
+#[test]
+fn ply_skipped_elements_and_properties_are_warnings() {
+    // A range scan as the Stanford repository has them: confidence and intensity per vertex,
+    // a range grid, and a face with a flag and per-corner texture coordinates.
+    let text = "ply\nformat ascii 1.0\nobj_info num_cols 2\nelement vertex 3\nproperty float x\nproperty float y\n\
+                property float z\nproperty float confidence\nproperty float intensity\nproperty uchar alpha\n\
+                element range_grid 2\nproperty list uchar int vertex_indices\nelement face 1\n\
+                property uchar flags\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n\
+                element material 0\nproperty float shininess\nend_header\n\
+                0 0 0 0.5 0.5 1\n1 0 0 0.5 0.5 1\n0 1 0 0.5 0.5 1\n1 0\n0\n7 3 0 1 2 6 0 0 1 0 0 1\n";
+    let loaded = read_ply(text.as_bytes(), "scan.ply").unwrap();
+    let w: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(
+        w,
+        [
+            r#"line 8: skipped property "confidence" of element "vertex""#,
+            r#"line 9: skipped property "intensity" of element "vertex""#,
+            r#"line 10: skipped property "alpha" of element "vertex""#,
+            r#"line 11: skipped element "range_grid" (2 in the file; the elements read are vertex, face and tristrips)"#,
+            r#"line 14: skipped property "flags" of element "face""#,
+            r#"line 16: skipped property "texcoord" of element "face""#,
+        ]
+    );
+    assert_eq!(loaded.warnings[3].kind, ReadWarningKind::SkippedElement { name: "range_grid".into(), count: 2 });
+    assert_eq!(loaded.mesh.face(0), &[0, 1, 2]);
+    // Our own writer's files have nothing to skip.
+    let ply = bytes_of(&torus(4, 3), MeshFormat::Ply);
+    assert!(read_ply(ply.as_slice(), "t.ply").unwrap().warnings.is_empty());
+}
+
+/// `text` as UTF-16 with a byte-order mark.
+fn utf16(text: &str, big: bool) -> Vec<u8> {
+    let mut bytes = if big { vec![0xFE, 0xFF] } else { vec![0xFF, 0xFE] };
+    for unit in text.encode_utf16() {
+        bytes.extend(if big { unit.to_be_bytes() } else { unit.to_le_bytes() });
+    }
+    bytes
+}
+
+#[test]
+fn utf16_text_is_decoded_or_refused() {
+    let dir = TempDir::new("utf16");
+    let obj = "# made by Notepad\r\nv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nvn 0 0 1\r\nf 1//1 2//1 3//1\r\n";
+    let plain = read_obj(obj.as_bytes(), "p.obj").unwrap();
+    for big in [false, true] {
+        let loaded = load_mesh(dir.write("u.obj", utf16(obj, big))).unwrap();
+        assert_eq!(loaded, plain, "big endian: {big}");
+    }
+    let loaded = load_mesh(dir.write("u8.obj", [b"\xEF\xBB\xBF", obj.as_bytes()].concat())).unwrap();
+    assert_eq!(loaded, plain);
+    // Errors count lines and characters of the decoded text.
+    let e = load_mesh(dir.write("bad.obj", utf16("v 0 0 0\nv é 0 0\n", false))).unwrap_err();
+    assert_eq!((e.line(), e.column()), (2, 3), "{e}");
+    // Without a byte-order mark: refused, not read as an empty mesh.
+    let no_bom = utf16(obj, false)[2..].to_vec();
+    let e = load_mesh(dir.write("nobom.obj", &no_bom)).unwrap_err().to_string();
+    assert!(
+        e.ends_with("nobom.obj: found text that looks like UTF-16 without a byte-order mark, expected UTF-8 (or UTF-16 with a byte-order mark)"),
+        "{e}"
+    );
+    let big_no_bom = utf16(obj, true)[2..].to_vec();
+    assert!(load_mesh(dir.write("nobom-be.obj", big_no_bom)).unwrap_err().to_string().contains("UTF-16"));
+
+    // ASCII PLY and STL too.
+    let ply = strip_ply(&GRID_STRIPS);
+    let plain = read_ply(ply.as_bytes(), "p.ply").unwrap();
+    assert_eq!(load_mesh(dir.write("u.ply", utf16(&ply, true))).unwrap(), plain);
+    assert_eq!(load_mesh(dir.write("u8.ply", [b"\xEF\xBB\xBF", ply.as_bytes()].concat())).unwrap(), plain);
+    let e = load_mesh(dir.write("nobom.ply", &utf16(&ply, false)[2..])).unwrap_err().to_string();
+    assert!(e.ends_with("nobom.ply: found text that looks like UTF-16 without a byte-order mark, expected UTF-8 (or UTF-16 with a byte-order mark)"), "{e}");
+    let stl = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+    let plain = read_stl(stl.as_bytes(), "p.stl").unwrap();
+    assert_eq!(load_mesh(dir.write("u.stl", utf16(stl, false))).unwrap(), plain);
+    let e = load_mesh(dir.write("nobom.stl", &utf16(stl, true)[2..])).unwrap_err().to_string();
+    assert!(e.ends_with("nobom.stl: found text that looks like UTF-16 without a byte-order mark, expected UTF-8 (or UTF-16 with a byte-order mark)"), "{e}");
+}
+
+#[test]
+fn obj_line_continuation() {
+    let text = "v 0 0 0\nv 1 \\\n  0 0\nv 0 1 0 \\  \r\n\nvt 0 0\nf 1/1 \\\n2/1\\\n 3/1\n";
+    let m = read_obj(text.as_bytes(), "c.obj").unwrap();
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    assert_eq!(m.mesh.positions, [DVec3::ZERO, DVec3::X, DVec3::Y]);
+    assert_eq!(m.mesh.face(0), &[0, 1, 2]);
+    assert_eq!(m.mesh.uvs.unwrap().indices, [0, 0, 0]);
+    // Errors give the line and column where the token is, not where the statement starts.
+    let err = |text: &str| read_obj(text.as_bytes(), "c.obj").unwrap_err().to_string();
+    assert_eq!(err("v 0 0 \\\n  x\n"), r#"c.obj:2:3: found "x", expected a number (z coordinate)"#);
+    assert_eq!(
+        err("v 0 0 0\nv 1 0 0\nf 1 \\\n 2 \\\n\t\t-4\n"),
+        r#"c.obj:5:3: found "-4", expected a vertex index from 1 to 2 or from -2 to -1"#
+    );
+    // A forward reference, checked at the end of the file, and a crease tag's vertex too.
+    assert_eq!(
+        err("f 1 2 \\\n   9\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"),
+        r#"c.obj:2:4: found "9", expected a vertex index from 1 to 3 or from -3 to -1"#
+    );
+    assert_eq!(
+        err("v 0 0 0\nv 1 0 0\nt crease 2/1 \\\n 0 5 \\\n 1\n"),
+        r#"c.obj:4:4: found "5", expected a vertex index from 0 to 1 (tags count vertices from 0)"#
+    );
+    // A backslash at the end of a comment is part of the comment; at the end of the file it
+    // continues into nothing.
+    let m = read_obj("v 0 0 0 # C:\\dir\\\nv 1 0 0\nv 0 1 0\nf 1 2 3 \\".as_bytes(), "c.obj").unwrap();
+    assert_eq!((m.mesh.num_vertices(), m.mesh.num_faces()), (3, 1));
+}
+
+#[test]
+fn obj_geometry_that_is_not_read() {
+    let dir = TempDir::new("obj-skipped");
+    // A polyline and points beside a face: one warning per kind, with the count.
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\nl 3 1\np 1\nf 1 2 3\nmg 1 0.5\nc_interp on\n";
+    let loaded = load_mesh(dir.write("lines.obj", text)).unwrap();
+    let w: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(
+        w,
+        [
+            r#"line 4: skipped 3 "l" statements, the first on this line (lines are not read)"#,
+            r#"line 7: skipped 1 "p" statement (points are not read)"#,
+        ]
+    );
+    assert_eq!(
+        loaded.warnings[0].kind,
+        ReadWarningKind::SkippedStatements { keyword: "l", count: 3, reason: "lines are not read" }
+    );
+    // A points-only file reads: it has no face records (commands that need faces say so).
+    let points = load_mesh(dir.write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n")).unwrap();
+    assert_eq!((points.mesh.num_vertices(), points.mesh.num_faces(), points.warnings.len()), (3, 0, 0));
+    // A free-form surface and nothing else: an error, not an empty mesh.
+    let surface = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\ncstype bspline\ndeg 1 1\n\
+                   surf 0 1 0 1 1 2 3 4\nparm u 0 0 1 1\nparm v 0 0 1 1\nend\n";
+    let e = load_mesh(dir.write("surface.obj", surface)).unwrap_err().to_string();
+    assert!(
+        e.ends_with(
+            "surface.obj: read no faces from 1 free-form surface (surf): free-form surfaces are not read; export them as polygons"
+        ),
+        "{e}"
+    );
+    // With a face beside it, the surface is a warning.
+    let loaded = load_mesh(dir.write("both.obj", format!("{surface}f 1 2 3\n"))).unwrap();
+    let w: Vec<String> = loaded.warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(
+        w,
+        [
+            r#"line 5: skipped 1 "cstype" statement (free-form geometry is not read)"#,
+            r#"line 6: skipped 1 "deg" statement (free-form geometry is not read)"#,
+            r#"line 7: skipped 1 "surf" statement (free-form surfaces are not read)"#,
+            r#"line 8: skipped 2 "parm" statements, the first on this line (free-form geometry is not read)"#,
+            r#"line 10: skipped 1 "end" statement (free-form geometry is not read)"#,
+        ]
+    );
+}
+
+// ---------------------------------------------------------------------------------------
 // Never a panic
 
 mod no_panic {
@@ -551,6 +876,8 @@ mod no_panic {
                 MeshFormat::Glb,
                 std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/glb/trimesh_scene.glb")).unwrap(),
             ),
+            (MeshFormat::Ply, super::binary_strip_ply(&super::GRID_STRIPS, false)),
+            (MeshFormat::Obj, super::utf16("v 0 0 0\nv 1 0 \\\n 0\nv 0 1 0\nl 1 2\nf 1 2 3\n", true)),
         ]
     }
 
@@ -581,7 +908,7 @@ mod no_panic {
         /// Flipping, inserting or deleting bytes of a valid file gives a mesh or an error.
         #[test]
         fn mutated_files_do_not_panic(
-            seed in 0..7usize,
+            seed in 0..9usize,
             edits in proptest::collection::vec((any::<u16>(), any::<u8>(), 0..3u8), 1..6),
         ) {
             let (format, mut bytes) = seeds().swap_remove(seed);

@@ -59,6 +59,12 @@ impl MeshIoError {
         Self::new(MeshIoErrorKind::Io { action: "write", error })
     }
 
+    /// Moves the position through `map` (for statements joined from several lines).
+    pub(crate) fn map_pos(mut self, map: impl Fn(SourcePos) -> SourcePos) -> Self {
+        self.pos = self.pos.map(map);
+        self
+    }
+
     /// Sets the origin if the error has none yet.
     pub(crate) fn with_origin(mut self, origin: &std::path::Path) -> Self {
         if self.origin.is_empty() {
@@ -195,6 +201,21 @@ pub enum MeshIoErrorKind {
     /// The header is not valid UTF-8. Points at the line.
     #[error("found invalid UTF-8, expected UTF-8 text")]
     InvalidUtf8,
+    /// The file has NUL bytes in every other byte, as UTF-16 text has, but no byte-order mark
+    /// to say which byte order (text files with a UTF-16 byte-order mark are decoded).
+    #[error(
+        "found text that looks like UTF-16 without a byte-order mark, expected UTF-8 (or UTF-16 with a byte-order mark)"
+    )]
+    Utf16WithoutBom,
+    /// The file has face records but not one face came of them: every one was skipped or
+    /// made only degenerate triangles.
+    #[error("read no faces from {records}: {reason}")]
+    NoFacesRead {
+        /// The face records, like `element tristrips (2 strips)` or `3 free-form surfaces (surf)`.
+        records: String,
+        /// Why none gave a face, like `every triangle of the strips repeats a vertex`.
+        reason: String,
+    },
     /// A binary glTF file is malformed, or uses something the reader does not support (see
     /// [`read_glb`](super::read_glb)). Binary files have no lines, so `at` says where instead.
     #[error("{at}: {message}")]

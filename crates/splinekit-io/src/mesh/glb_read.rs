@@ -71,9 +71,12 @@ const COMPRESSION_EXTENSIONS: [&str; 3] =
 /// version, a truncated file or chunk, invalid JSON (with its line and column in the JSON
 /// chunk), an index out of range, an accessor beyond its buffer view or a view beyond its
 /// buffer, positions that are not `f32` VEC3, a primitive whose vertex count does not make
-/// whole triangles. Refused with a clear error: sparse accessors, accessors without a buffer
-/// view, external buffer files (`"uri": "x.bin"`; only `.glb` with embedded buffers is read)
-/// and compressed geometry (Draco, meshopt). Nothing is returned on error.
+/// whole triangles, primitives of triangles of which not one triangle is read (all without
+/// `POSITION`, or degenerate: [`NoFacesRead`](MeshIoErrorKind::NoFacesRead); a file of
+/// points or lines only is read, with its warnings). Refused with a clear error: sparse
+/// accessors, accessors without a buffer view, external buffer files (`"uri": "x.bin"`;
+/// only `.glb` with embedded buffers is read) and compressed geometry (Draco, meshopt).
+/// Nothing is returned on error.
 ///
 /// ```
 /// use glam::{DVec2, DVec3};
@@ -123,9 +126,11 @@ pub(crate) fn parse_glb(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
         blocks: HashMap::new(),
         skipped: HashSet::new(),
         warnings,
+        triangle_primitives: 0,
+        without_position: 0,
     };
     reader.read_scene()?;
-    Ok(reader.finish())
+    reader.finish()
 }
 
 /// An error in the glTF document or the binary layout: `at` says where, `message` what.
@@ -519,6 +524,10 @@ struct Reader<'a> {
     /// Primitives skipped, as (mesh, primitive); the first [`MAX_WARNINGS`] have a warning.
     skipped: HashSet<(usize, usize)>,
     warnings: Warnings,
+    /// Primitives of triangles (modes TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN) met, once per
+    /// node, and how many of them were skipped for having no POSITION.
+    triangle_primitives: usize,
+    without_position: usize,
 }
 
 /// The transforms of one node instance.
@@ -737,8 +746,10 @@ impl Reader<'_> {
                     continue;
                 }
             };
+            self.triangle_primitives += 1;
             let attribute = |s: Semantic| primitive.attributes.get(&Valid(s)).map(|a| a.value());
             let Some(position) = attribute(Semantic::Positions) else {
+                self.without_position += 1;
                 self.skip(m, p, String::from("it has no POSITION attribute"));
                 continue;
             };
@@ -863,14 +874,7 @@ impl Reader<'_> {
         let what = if indices.is_some() { "indices" } else { "vertices (no indices)" };
         let mut triangles = Vec::new();
         match mode {
-            Mode::TriangleStrip => {
-                for (i, w) in corners.windows(3).enumerate() {
-                    let t = if i % 2 == 0 { [w[0], w[1], w[2]] } else { [w[0], w[2], w[1]] };
-                    if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-                        triangles.push(t);
-                    }
-                }
-            }
+            Mode::TriangleStrip => load::strip_triangles(&corners, |t| triangles.push(t)),
             Mode::TriangleFan => {
                 for w in corners.get(1..).unwrap_or_default().windows(2) {
                     let t = [w[0], w[1], corners[0]];
@@ -906,8 +910,21 @@ impl Reader<'_> {
         Ok(())
     }
 
-    /// The mesh and the warnings.
-    fn finish(mut self) -> LoadedMesh {
+    /// The mesh and the warnings; an error if there were primitives of triangles but not one
+    /// triangle came of them.
+    fn finish(mut self) -> Result<LoadedMesh, MeshIoError> {
+        if self.builder.face_vertices.is_empty() && self.triangle_primitives > 0 {
+            let (n, without) = (self.triangle_primitives, self.without_position);
+            let no_triangle = "no triangle with three different vertices";
+            let they = if n == 1 { "it has" } else { "they have" };
+            let reason = match without {
+                0 => format!("{they} {no_triangle}"),
+                _ if without == n => format!("{they} no POSITION attribute"),
+                _ => format!("{without} have no POSITION attribute, the others {no_triangle}"),
+            };
+            let records = format!("{n} mesh primitive{} of triangles", if n == 1 { "" } else { "s" });
+            return Err(load::error_in(self.doc.origin, MeshIoErrorKind::NoFacesRead { records, reason }));
+        }
         if self.skipped.len() > MAX_WARNINGS {
             let count = self.skipped.len() - MAX_WARNINGS;
             self.warnings.push(0, ReadWarningKind::More { count });
@@ -943,7 +960,7 @@ impl Reader<'_> {
             normals,
             uvs,
         };
-        LoadedMesh { mesh, warnings: self.warnings.finish(), creases: Creases::default() }
+        Ok(LoadedMesh { mesh, warnings: self.warnings.finish(), creases: Creases::default() })
     }
 }
 
@@ -1073,11 +1090,21 @@ mod tests {
             err(&glb(&json.replace(r#","mode":5"#, ""), &bin)),
             "t.glb: meshes[0].primitives[0]: found 4 indices with mode TRIANGLES, expected a multiple of 3"
         );
-        // A strip with a repeated index: the degenerate triangles are left out.
-        let mut degenerate = bin;
+        // A strip with a repeated index: the degenerate triangles are left out; none left is
+        // an error (#39), a file of points is not.
+        let mut degenerate = bin.clone();
         degenerate[112..116].copy_from_slice(&[0, 1, 1, 2]);
-        let m = read(&glb(&json, &degenerate)).mesh;
-        assert_eq!(m.face_vertices, Vec::<u32>::new());
+        assert_eq!(
+            err(&glb(&json, &degenerate)),
+            "t.glb: read no faces from 1 mesh primitive of triangles: it has no triangle with three different vertices"
+        );
+        let no_position = json.replace(r#""POSITION":0,"#, "");
+        assert_eq!(
+            err(&glb(&no_position.replace("}]}]", "},{\"attributes\":{},\"mode\":4}]}]"), &bin)),
+            "t.glb: read no faces from 2 mesh primitives of triangles: they have no POSITION attribute"
+        );
+        let points = read(&glb(&json.replace(r#""mode":5"#, r#""mode":0"#), &bin));
+        assert_eq!((points.mesh.num_vertices(), points.mesh.num_faces(), points.warnings.len()), (0, 0, 1));
     }
 
     #[test]

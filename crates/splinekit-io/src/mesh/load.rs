@@ -3,6 +3,7 @@
 //! [`read_glb`](super::read_glb), [`read_ply`](super::read_ply) and
 //! [`read_stl`](super::read_stl).
 
+use std::borrow::Cow;
 use std::fmt;
 use std::io::Read;
 use std::path::Path;
@@ -97,6 +98,33 @@ pub enum ReadWarningKind {
         /// Why, like `its mode is LINES, not triangles`.
         reason: String,
     },
+    /// OBJ statements with geometry the reader does not read (points, lines, free-form curves
+    /// and surfaces), skipped: one warning for each keyword, on the line of its first statement.
+    SkippedStatements {
+        /// The keyword, like `l` or `surf`.
+        keyword: &'static str,
+        /// How many statements.
+        count: usize,
+        /// What is not read, like `lines are not read`.
+        reason: &'static str,
+    },
+    /// A PLY element other than `vertex`, `face` and `tristrips` (or a second one of those),
+    /// skipped with all its data.
+    SkippedElement {
+        /// The element's name, like `edge`.
+        name: String,
+        /// How many the file has.
+        count: usize,
+    },
+    /// A property of a PLY element that is read, skipped: for `vertex` anything but the
+    /// position, normal, colour and texture coordinates; for `face` and `tristrips` anything
+    /// but the vertex indices.
+    SkippedProperty {
+        /// The element's name.
+        element: String,
+        /// The property's name.
+        name: String,
+    },
     /// A binary glTF vertex attribute was dropped because some mesh primitives have it and
     /// others do not.
     PrimitiveAttributeDropped {
@@ -133,6 +161,17 @@ impl fmt::Display for ReadWarning {
             ),
             ReadWarningKind::TrailingBytes { count } => write!(f, "ignored {count} bytes after the end of the data"),
             ReadWarningKind::SkippedPrimitive { primitive, reason } => write!(f, "skipped {primitive}: {reason}"),
+            ReadWarningKind::SkippedStatements { keyword, count, reason } => {
+                let (s, first) = if *count == 1 { ("", "") } else { ("s", ", the first on this line") };
+                write!(f, "skipped {count} {keyword:?} statement{s}{first} ({reason})")
+            }
+            ReadWarningKind::SkippedElement { name, count } => write!(
+                f,
+                "skipped element {name:?} ({count} in the file; the elements read are vertex, face and tristrips)"
+            ),
+            ReadWarningKind::SkippedProperty { element, name } => {
+                write!(f, "skipped property {name:?} of element {element:?}")
+            }
             ReadWarningKind::PrimitiveAttributeDropped {
                 attribute,
                 primitives_with,
@@ -164,6 +203,12 @@ impl Warnings {
 
     pub(crate) fn push(&mut self, line: usize, kind: ReadWarningKind) {
         self.list.push(ReadWarning { line, kind });
+    }
+
+    /// A warning about `line`, before the warnings about later lines.
+    pub(crate) fn insert(&mut self, line: usize, kind: ReadWarningKind) {
+        let at = self.list.iter().position(|w| w.line > line).unwrap_or(self.list.len());
+        self.list.insert(at, ReadWarning { line, kind });
     }
 
     pub(crate) fn finish(mut self) -> Vec<ReadWarning> {
@@ -285,6 +330,66 @@ pub(crate) fn parse_i64(token: &[u8]) -> Option<i64> {
         n = n * 10 + i64::from(d - b'0');
     }
     Some(if negative { -n } else { n })
+}
+
+/// Text with a UTF-16 byte-order mark (little or big endian), decoded to UTF-8 (unpaired
+/// surrogates and an odd last byte become U+FFFD); `None` without that mark.
+pub(crate) fn utf16_decoded(bytes: &[u8]) -> Option<Vec<u8>> {
+    let big = match bytes.get(..2)? {
+        [0xFF, 0xFE] => false,
+        [0xFE, 0xFF] => true,
+        _ => return None,
+    };
+    let units = bytes[2..].chunks(2).map(|c| match *c {
+        [a, b] if big => u16::from_be_bytes([a, b]),
+        [a, b] => u16::from_le_bytes([a, b]),
+        _ => 0xFFFD,
+    });
+    let text: String = char::decode_utf16(units).map(|c| c.unwrap_or(char::REPLACEMENT_CHARACTER)).collect();
+    Some(text.into_bytes())
+}
+
+/// Whether `bytes` look like UTF-16 text without a byte-order mark: in the first kilobyte,
+/// NUL in at least half of the bytes at even (or odd) offsets, as in the high bytes of ASCII
+/// characters, and in at most an eighth as many at the others.
+pub(crate) fn looks_like_utf16(bytes: &[u8]) -> bool {
+    let sample = &bytes[..bytes.len().min(1024) & !1];
+    let mut zeros = [0usize; 2];
+    for (i, &b) in sample.iter().enumerate() {
+        zeros[i % 2] += usize::from(b == 0);
+    }
+    let (most, least) = (zeros[0].max(zeros[1]), zeros[0].min(zeros[1]));
+    most > 0 && 4 * most >= sample.len() && 8 * least <= most
+}
+
+/// The bytes of a text file, ready for [`lines`]: UTF-16 with a byte-order mark decoded to
+/// UTF-8, anything else as it is (a UTF-8 byte-order mark is skipped by [`lines`]).
+///
+/// # Errors
+///
+/// [`Utf16WithoutBom`](MeshIoErrorKind::Utf16WithoutBom) for text that looks like UTF-16 but
+/// has no byte-order mark.
+pub(crate) fn text<'a>(bytes: &'a [u8], origin: &str) -> Result<Cow<'a, [u8]>, MeshIoError> {
+    if let Some(decoded) = utf16_decoded(bytes) {
+        return Ok(Cow::Owned(decoded));
+    }
+    if looks_like_utf16(bytes) {
+        return Err(error_in(origin, MeshIoErrorKind::Utf16WithoutBom));
+    }
+    Ok(Cow::Borrowed(bytes))
+}
+
+/// The triangles of the triangle strip `strip`, to `emit`: triangle k, of the corners a, b, c
+/// at k, k + 1, k + 2, is (a, b, c) for even k and (a, c, b) for odd k, so that all face the
+/// way the first does. Triangles with a repeated vertex (which stitch strips together) are
+/// left out.
+pub(crate) fn strip_triangles(strip: &[u32], mut emit: impl FnMut([u32; 3])) {
+    for (k, w) in strip.windows(3).enumerate() {
+        let t = if k % 2 == 0 { [w[0], w[1], w[2]] } else { [w[0], w[2], w[1]] };
+        if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+            emit(t);
+        }
+    }
 }
 
 /// The lines of `bytes` (split at LF, a trailing CR removed), numbered from 1; a UTF-8 byte

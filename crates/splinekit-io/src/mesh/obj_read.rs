@@ -42,15 +42,26 @@ const VERTEX_VALUES: [&str; 6] =
 ///   0-based vertices; see [`read_creases`](super::read_creases)) into
 ///   [`LoadedMesh::creases`]; other `t` tags are skipped with a
 ///   [`SkippedTag`](ReadWarningKind::SkippedTag) warning.
-/// - `o`, `g`, `s`, `usemtl`, `mtllib`, `l` and `p` are ignored, as are comments (`#` to the
-///   end of the line, also after a statement) and empty lines. Any other statement —
-///   including free-form geometry (`vp`, `curv`, `surf`, …) and the HTML lines around the
-///   course's `icosahedron.obj` and `bunny.obj` — is skipped with an
-///   [`UnknownStatement`](ReadWarningKind::UnknownStatement) warning naming the line (at most
-///   [`MAX_WARNINGS`](super::MAX_WARNINGS) of them, then a count).
+/// - Grouping, material and display statements (`o`, `g`, `s`, `mg`, `usemtl`, `mtllib`,
+///   `maplib`, `usemap`, `bevel`, `c_interp`, `d_interp`, `lod`, `shadow_obj`, `trace_obj`,
+///   `ctech`, `stech`) are ignored, as are comments (`#` to the end of the line, also after a
+///   statement) and empty lines.
+/// - Statements with geometry the reader does not read — points `p`, lines `l`, free-form
+///   curves and surfaces (`curv`, `curv2`, `surf`) and the statements that describe them
+///   (`vp`, `cstype`, `deg`, `bmat`, `step`, `parm`, `trim`, `hole`, `scrv`, `sp`, `end`,
+///   `con`) — are skipped with one
+///   [`SkippedStatements`](ReadWarningKind::SkippedStatements) warning per keyword, giving
+///   the count and the line of the first.
+/// - Any other statement — such as the HTML lines around the course's `icosahedron.obj` and
+///   `bunny.obj` — is skipped with an [`UnknownStatement`](ReadWarningKind::UnknownStatement)
+///   warning naming the line (at most [`MAX_WARNINGS`](super::MAX_WARNINGS) of them, then a
+///   count).
 ///
-/// Lines end at LF; a CR before it and a UTF-8 byte order mark are ignored. Backslash line
-/// continuation is not supported. The file is read in one pass without allocating per line.
+/// Lines end at LF; a CR before it is ignored. A line whose last character (other than
+/// whitespace, and not in a comment) is `\` continues on the next line: the `\` separates
+/// tokens like a space, and errors still give the line and column where the token is. The
+/// text is UTF-8 (a byte-order mark is skipped), or UTF-16 little or big endian with a
+/// byte-order mark (decoded first). The file is read in one pass without allocating per line.
 ///
 /// # Errors
 ///
@@ -58,7 +69,9 @@ const VERTEX_VALUES: [&str; 6] =
 /// what was found and what was expected: a malformed number, a missing or extra value, a
 /// malformed face reference, index 0, or an index out of range (checked against the
 /// vertices, texture coordinates or normals defined so far for negative indices, and in the
-/// whole file for positive ones). Nothing is returned on error.
+/// whole file for positive ones). Also a file that looks like UTF-16 without a byte-order
+/// mark, and a file whose only surfaces are free-form ones (`surf` but no `f`:
+/// [`NoFacesRead`](MeshIoErrorKind::NoFacesRead)). Nothing is returned on error.
 ///
 /// ```
 /// use splinekit_io::mesh::read_obj;
@@ -146,25 +159,138 @@ impl Presence {
     }
 }
 
+/// Statements with geometry that is not read: keyword, and what is not read. Each kind is
+/// skipped with one [`SkippedStatements`](ReadWarningKind::SkippedStatements) warning.
+const SKIPPED_GEOMETRY: [(&str, &str); 17] = [
+    ("p", "points are not read"),
+    ("l", "lines are not read"),
+    ("curv", "free-form curves are not read"),
+    ("curv2", "free-form curves are not read"),
+    ("surf", "free-form surfaces are not read"),
+    ("vp", "free-form geometry is not read"),
+    ("cstype", "free-form geometry is not read"),
+    ("deg", "free-form geometry is not read"),
+    ("bmat", "free-form geometry is not read"),
+    ("step", "free-form geometry is not read"),
+    ("parm", "free-form geometry is not read"),
+    ("trim", "free-form geometry is not read"),
+    ("hole", "free-form geometry is not read"),
+    ("scrv", "free-form geometry is not read"),
+    ("sp", "free-form geometry is not read"),
+    ("end", "free-form geometry is not read"),
+    ("con", "free-form geometry is not read"),
+];
+
+/// Statements without geometry, ignored without a warning: grouping, materials and display
+/// attributes.
+const IGNORED: [&[u8]; 16] = [
+    b"o",
+    b"g",
+    b"s",
+    b"mg",
+    b"usemtl",
+    b"mtllib",
+    b"maplib",
+    b"usemap",
+    b"bevel",
+    b"c_interp",
+    b"d_interp",
+    b"lod",
+    b"shadow_obj",
+    b"trace_obj",
+    b"ctech",
+    b"stech",
+];
+
+/// Where the lines after the first of a statement continued with `\` start: for each, its
+/// 1-based column in the joined text and its line number.
+#[derive(Default)]
+struct Joins(Vec<(usize, usize)>);
+
+impl Joins {
+    /// The position in the file of `pos`, a position in the joined text (whose line is the
+    /// statement's first).
+    fn physical(&self, pos: SourcePos) -> SourcePos {
+        match self.0.iter().rev().find(|&&(column, _)| column <= pos.column) {
+            Some(&(column, line)) => SourcePos::new(line, pos.column - column + 1),
+            None => pos,
+        }
+    }
+}
+
+/// The byte offset of the `\` that continues `line` on the next line, if it does: the last
+/// character other than whitespace, outside a comment.
+fn continuation(line: &[u8]) -> Option<usize> {
+    let last = line.iter().rposition(|b| !b.is_ascii_whitespace()).filter(|&i| line[i] == b'\\')?;
+    let comment = (0..last).find(|&i| line[i] == b'#' && (i == 0 || line[i - 1].is_ascii_whitespace()));
+    comment.is_none().then_some(last)
+}
+
+/// The state of one read.
+#[derive(Default)]
+struct Reader {
+    positions: Vec<DVec3>,
+    colors: Vec<DVec3>,
+    colored: usize,
+    first_uncolored: usize,
+    tex: Vec<DVec2>,
+    normals: Vec<DVec3>,
+    face_offsets: Vec<u32>,
+    face_vertices: Vec<u32>,
+    face_tex: Vec<u32>,
+    face_normals: Vec<u32>,
+    tex_presence: Presence,
+    normal_presence: Presence,
+    forward: Vec<Forward>,
+    warnings: Warnings,
+    tags: Tags,
+    /// Per entry of [`SKIPPED_GEOMETRY`]: how many, and the line of the first.
+    skipped: [(usize, usize); SKIPPED_GEOMETRY.len()],
+}
+
 /// Parses OBJ text (see [`read_obj`]).
 pub(crate) fn parse_obj(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIoError> {
-    let mut positions: Vec<DVec3> = Vec::new();
-    let mut colors: Vec<DVec3> = Vec::new();
-    let (mut colored, mut first_uncolored) = (0usize, 0usize);
-    let mut tex: Vec<DVec2> = Vec::new();
-    let mut normals: Vec<DVec3> = Vec::new();
-    let mut face_offsets = vec![0u32];
-    let mut face_vertices: Vec<u32> = Vec::new();
-    let mut face_tex: Vec<u32> = Vec::new();
-    let mut face_normals: Vec<u32> = Vec::new();
-    let (mut tex_presence, mut normal_presence) = (Presence::default(), Presence::default());
-    let mut forward: Vec<Forward> = Vec::new();
-    let mut warnings = Warnings::default();
-    let mut tags = Tags::default();
+    let text = load::text(bytes, origin)?;
+    let mut r = Reader { face_offsets: vec![0], ..Reader::default() };
+    let mut lines = load::lines(&text);
+    // A statement continued over several lines, joined, and where its lines start.
+    let mut joined = Vec::new();
+    let mut joins = Joins::default();
+    while let Some((no, first)) = lines.next() {
+        let Some(cut) = continuation(first) else {
+            r.statement(origin, no, first)?;
+            continue;
+        };
+        // The `\` and what follows it become a space.
+        joined.clear();
+        joins.0.clear();
+        joined.extend_from_slice(&first[..cut]);
+        joined.push(b' ');
+        for (next_no, next) in lines.by_ref() {
+            joins.0.push((load::column(&joined, joined.len()), next_no));
+            let Some(cut) = continuation(next) else {
+                joined.extend_from_slice(next);
+                break;
+            };
+            joined.extend_from_slice(&next[..cut]);
+            joined.push(b' ');
+        }
+        // Positions in the joined text move to the lines they are on.
+        let (forward, tags) = (r.forward.len(), r.tags.num_refs());
+        r.statement(origin, no, &joined).map_err(|e| e.map_pos(|p| joins.physical(p)))?;
+        for f in &mut r.forward[forward..] {
+            f.pos = joins.physical(f.pos);
+        }
+        r.tags.map_refs(tags, |p| joins.physical(p));
+    }
+    r.finish(origin)
+}
 
-    for (no, line) in load::lines(bytes) {
+impl Reader {
+    /// Reads the statement `line`, which starts on line `no`.
+    fn statement(&mut self, origin: &str, no: usize, line: &[u8]) -> Result<(), MeshIoError> {
         let mut pos = 0;
-        let Some((_, key)) = next_token(line, &mut pos) else { continue };
+        let Some((_, key)) = next_token(line, &mut pos) else { return Ok(()) };
         let unexpected =
             |offset: usize, token: &[u8], expected: String| load::unexpected(origin, no, line, offset, token, expected);
         match key {
@@ -174,18 +300,18 @@ pub(crate) fn parse_obj(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
                 if n < 3 || n == 5 {
                     return Err(unexpected(end, b"", format!("a number ({})", VERTEX_VALUES[n])));
                 }
-                if positions.len() >= ABSENT as usize {
+                if self.positions.len() >= ABSENT as usize {
                     return Err(too_many(origin, no, line, "vertices"));
                 }
-                positions.push(DVec3::new(values[0], values[1], values[2]));
+                self.positions.push(DVec3::new(values[0], values[1], values[2]));
                 if n == 6 {
-                    colored += 1;
+                    self.colored += 1;
                     // Kept only while every vertex so far has one; the count decides at the end.
-                    if colors.len() + 1 == positions.len() {
-                        colors.push(DVec3::new(values[3], values[4], values[5]));
+                    if self.colors.len() + 1 == self.positions.len() {
+                        self.colors.push(DVec3::new(values[3], values[4], values[5]));
                     }
-                } else if first_uncolored == 0 {
-                    first_uncolored = no;
+                } else if self.first_uncolored == 0 {
+                    self.first_uncolored = no;
                 }
             }
             b"vt" => {
@@ -195,10 +321,10 @@ pub(crate) fn parse_obj(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
                 if n == 0 {
                     return Err(unexpected(end, b"", String::from("a number (u coordinate)")));
                 }
-                if tex.len() >= ABSENT as usize {
+                if self.tex.len() >= ABSENT as usize {
                     return Err(too_many(origin, no, line, "texture coordinates"));
                 }
-                tex.push(DVec2::new(values[0], values[1]));
+                self.tex.push(DVec2::new(values[0], values[1]));
             }
             b"vn" => {
                 let mut values = [0.0; 3];
@@ -207,17 +333,18 @@ pub(crate) fn parse_obj(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
                 if n < 3 {
                     return Err(unexpected(end, b"", format!("a number ({})", names[n])));
                 }
-                if normals.len() >= ABSENT as usize {
+                if self.normals.len() >= ABSENT as usize {
                     return Err(too_many(origin, no, line, "normals"));
                 }
-                normals.push(DVec3::from_array(values));
+                self.normals.push(DVec3::from_array(values));
             }
             b"f" => {
-                let start = face_vertices.len();
+                let start = self.face_vertices.len();
                 let mut end = pos;
                 while let Some((offset, token)) = next_token(line, &mut pos) {
                     end = pos;
-                    let counts = [positions.len(), tex.len(), normals.len()];
+                    let counts = [self.positions.len(), self.tex.len(), self.normals.len()];
+                    let forward = &mut self.forward;
                     let corner = parse_reference(token, offset, counts, &unexpected, &mut |list, index, at| {
                         forward.push(Forward {
                             list,
@@ -226,69 +353,98 @@ pub(crate) fn parse_obj(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
                             pos: SourcePos::new(no, load::column(line, at)),
                         });
                     })?;
-                    face_vertices.push(corner[0]);
-                    face_tex.push(corner[1]);
-                    face_normals.push(corner[2]);
+                    self.face_vertices.push(corner[0]);
+                    self.face_tex.push(corner[1]);
+                    self.face_normals.push(corner[2]);
                 }
-                let corners = face_vertices.len() - start;
+                let corners = self.face_vertices.len() - start;
                 if corners == 0 {
                     return Err(unexpected(end, b"", String::from("a vertex reference v, v/vt, v//vn or v/vt/vn")));
                 }
-                let with_tex = face_tex[start..].iter().filter(|&&t| t != ABSENT).count();
-                let with_normal = face_normals[start..].iter().filter(|&&t| t != ABSENT).count();
-                tex_presence.face(no, with_tex, corners);
-                normal_presence.face(no, with_normal, corners);
-                face_offsets.push(face_vertices.len() as u32);
+                let with_tex = self.face_tex[start..].iter().filter(|&&t| t != ABSENT).count();
+                let with_normal = self.face_normals[start..].iter().filter(|&&t| t != ABSENT).count();
+                self.tex_presence.face(no, with_tex, corners);
+                self.normal_presence.face(no, with_normal, corners);
+                self.face_offsets.push(self.face_vertices.len() as u32);
             }
-            b"t" => tags.statement(origin, no, line, pos, &mut warnings)?,
-            b"o" | b"g" | b"s" | b"usemtl" | b"mtllib" | b"l" | b"p" => {}
-            _ => warnings.unknown(no, line),
-        }
-    }
-
-    // Forward references, in file order.
-    for f in &forward {
-        let count = match f.list {
-            List::Vertex => positions.len(),
-            List::TexCoord => tex.len(),
-            List::Normal => normals.len(),
-        };
-        if f.index as usize >= count {
-            let kind = MeshIoErrorKind::UnexpectedToken {
-                found: String::from_utf8_lossy(&f.token).into_owned(),
-                expected: range_message(f.list, count, true),
-            };
-            return Err(MeshIoError::at(origin, f.pos, kind));
-        }
-    }
-
-    let creases = tags.finish(origin, positions.len())?;
-    let keep_colors = colored > 0 && colored == positions.len();
-    if colored > 0 && !keep_colors {
-        warnings.push(
-            0,
-            ReadWarningKind::ColorsDropped {
-                vertices_with: colored,
-                vertices_without: positions.len() - colored,
-                first_without: first_uncolored,
+            b"t" => self.tags.statement(origin, no, line, pos, &mut self.warnings)?,
+            _ if IGNORED.contains(&key) => {}
+            _ => match SKIPPED_GEOMETRY.iter().position(|(k, _)| k.as_bytes() == key) {
+                Some(k) => {
+                    let (count, first) = &mut self.skipped[k];
+                    *count += 1;
+                    if *first == 0 {
+                        *first = no;
+                    }
+                }
+                None => self.warnings.unknown(no, line),
             },
-        );
+        }
+        Ok(())
     }
-    let uvs = tex_presence
-        .keep("texture coordinates", &mut warnings)
-        .then_some(FaceVarying { values: tex, indices: face_tex });
-    let normals = normal_presence
-        .keep("normals", &mut warnings)
-        .then_some(FaceVarying { values: normals, indices: face_normals });
-    let mesh = PolyMesh {
-        positions,
-        colors: if keep_colors { colors } else { Vec::new() },
-        face_offsets,
-        face_vertices,
-        normals,
-        uvs,
-    };
-    Ok(LoadedMesh { mesh, warnings: warnings.finish(), creases })
+
+    /// Checks the forward references and crease tags, and makes the mesh.
+    fn finish(mut self, origin: &str) -> Result<LoadedMesh, MeshIoError> {
+        // Forward references, in file order.
+        for f in &self.forward {
+            let count = match f.list {
+                List::Vertex => self.positions.len(),
+                List::TexCoord => self.tex.len(),
+                List::Normal => self.normals.len(),
+            };
+            if f.index as usize >= count {
+                let kind = MeshIoErrorKind::UnexpectedToken {
+                    found: String::from_utf8_lossy(&f.token).into_owned(),
+                    expected: range_message(f.list, count, true),
+                };
+                return Err(MeshIoError::at(origin, f.pos, kind));
+            }
+        }
+        let surfaces = SKIPPED_GEOMETRY.iter().position(|(k, _)| *k == "surf").map_or(0, |k| self.skipped[k].0);
+        if self.face_offsets.len() == 1 && surfaces > 0 {
+            let plural = if surfaces == 1 { "" } else { "s" };
+            let kind = MeshIoErrorKind::NoFacesRead {
+                records: format!("{surfaces} free-form surface{plural} (surf)"),
+                reason: String::from("free-form surfaces are not read; export them as polygons"),
+            };
+            return Err(load::error_in(origin, kind));
+        }
+        for (&(keyword, reason), &(count, first)) in SKIPPED_GEOMETRY.iter().zip(&self.skipped) {
+            if count > 0 {
+                self.warnings.insert(first, ReadWarningKind::SkippedStatements { keyword, count, reason });
+            }
+        }
+
+        let creases = self.tags.finish(origin, self.positions.len())?;
+        let keep_colors = self.colored > 0 && self.colored == self.positions.len();
+        if self.colored > 0 && !keep_colors {
+            self.warnings.push(
+                0,
+                ReadWarningKind::ColorsDropped {
+                    vertices_with: self.colored,
+                    vertices_without: self.positions.len() - self.colored,
+                    first_without: self.first_uncolored,
+                },
+            );
+        }
+        let uvs = self
+            .tex_presence
+            .keep("texture coordinates", &mut self.warnings)
+            .then_some(FaceVarying { values: self.tex, indices: self.face_tex });
+        let normals = self
+            .normal_presence
+            .keep("normals", &mut self.warnings)
+            .then_some(FaceVarying { values: self.normals, indices: self.face_normals });
+        let mesh = PolyMesh {
+            positions: self.positions,
+            colors: if keep_colors { self.colors } else { Vec::new() },
+            face_offsets: self.face_offsets,
+            face_vertices: self.face_vertices,
+            normals,
+            uvs,
+        };
+        Ok(LoadedMesh { mesh, warnings: self.warnings.finish(), creases })
+    }
 }
 
 /// The token of `line` starting at byte `at`.
@@ -478,15 +634,18 @@ mod tests {
     #[test]
     fn ignored_and_unknown_statements() {
         let text = "# c\nmtllib a.mtl\no obj\ng grp\ns 1\nusemtl m\nv 0 0 0 # inline\nv 1 0 0\nv 0 1 0\n\
-                    l 1 2\np 1\nvp 0.5\n<html><pre># x\nf 1 2 3\n\n";
+                    l 1 2\np 1\nvp 0.5\n<html><pre># x\nf 1 2 3\nl 2 3\nl 3 1\nlod 1\nbevel off\n\n";
         let m = read(text).unwrap();
         assert_eq!(m.mesh.num_faces(), 1);
         let w: Vec<String> = m.warnings.iter().map(ToString::to_string).collect();
+        // One warning per kind of geometry skipped (#39), in the order of their first lines.
         assert_eq!(
             w,
             vec![
-                r#"line 12: skipped unknown statement "vp 0.5""#,
-                r#"line 13: skipped unknown statement "<html><pre># x""#
+                r#"line 10: skipped 3 "l" statements, the first on this line (lines are not read)"#,
+                r#"line 11: skipped 1 "p" statement (points are not read)"#,
+                r#"line 12: skipped 1 "vp" statement (free-form geometry is not read)"#,
+                r#"line 13: skipped unknown statement "<html><pre># x""#,
             ]
         );
     }
@@ -547,6 +706,24 @@ mod tests {
         );
         // Columns count characters, not bytes.
         assert_eq!(err("g é\nv 0 é 0\n"), r#"t.obj:2:5: found "é", expected a number (y coordinate)"#);
+    }
+
+    #[test]
+    fn continued_lines_map_back_to_their_columns() {
+        assert_eq!(continuation(b"f 1 2 \\"), Some(6));
+        assert_eq!(continuation(b"f 1 2\\ \t"), Some(5));
+        assert_eq!(continuation(b"f 1 2 # a\\"), None);
+        assert_eq!(continuation(b"#\\"), None);
+        assert_eq!(continuation(b"g a#b\\"), Some(5));
+        assert_eq!(continuation(b"f 1 2"), None);
+        // Columns count characters on each line.
+        assert_eq!(err("v 0 é \\\n 0\n"), r#"t.obj:1:5: found "é", expected a number (y coordinate)"#);
+        assert_eq!(err("v 0 0 \\\n   é\n"), r#"t.obj:2:4: found "é", expected a number (z coordinate)"#);
+        assert_eq!(err("v 0 \\\n0 \\\n\t x\n"), r#"t.obj:3:3: found "x", expected a number (z coordinate)"#);
+        assert_eq!(
+            err("f \\\n \\\n"),
+            "t.obj:1:2: found end of line, expected a vertex reference v, v/vt, v//vn or v/vt/vn"
+        );
     }
 
     #[test]

@@ -18,18 +18,31 @@ use crate::swp::SourcePos;
 ///   `binary_big_endian 1.0`, `comment` and `obj_info` lines, `element NAME COUNT`,
 ///   `property TYPE NAME` and `property list COUNT_TYPE ITEM_TYPE NAME`, `end_header`. Types
 ///   are `char uchar short ushort int uint float double` and their sized names (`int8` …
-///   `float64`). Header lines may end with CRLF.
+///   `float64`). Header lines may end with CRLF. An ASCII file may start with a UTF-8
+///   byte-order mark, or be UTF-16 with a byte-order mark (decoded).
 /// - Element `vertex`: `x y z` (required, any numeric type); `nx ny nz` (normals, if all
 ///   three are present); `red green blue` or `diffuse_red diffuse_green diffuse_blue`
 ///   (colours: integer types are divided by their maximum, so `uchar` 255 is 1.0; float
 ///   types are kept as given); texture coordinates from `u v`, `s t`, `texture_u texture_v`
 ///   or `texture_s texture_t`. Normals and texture coordinates become face-varying
-///   attributes with per-vertex indices. Other properties are read and ignored.
+///   attributes with per-vertex indices.
 /// - Element `face`: the list `vertex_indices` (or `vertex_index`) of any integer types;
 ///   polygons of any size are kept as they are (faces with fewer than three corners too, for
-///   [`TopologyReport`](splinekit::mesh::TopologyReport) to report). Other face properties
-///   are ignored.
-/// - Other elements (edges, materials, …) are read and ignored; they may come in any order.
+///   [`TopologyReport`](splinekit::mesh::TopologyReport) to report).
+/// - Element `tristrips` (triangle strips, as old scanners' files and some MeshLab files
+///   have them: usually `element tristrips 1` and `property list int int vertex_indices`):
+///   the list `vertex_indices` (or `vertex_index`) holds strips separated by `-1`. Triangle k
+///   of a strip (k from 0 at the strip's start), of the corners a, b, c at k, k + 1, k + 2,
+///   is (a, b, c) for even k and (a, c, b) for odd k, so that all face the way the first
+///   does. Triangles with a repeated vertex (which stitch strips together) are left out, as
+///   MeshLab leaves them out. Faces and strip triangles are numbered in the order of their
+///   elements in the file.
+///
+/// Nothing is dropped silently: other elements (edges, materials, range grids, …) are read
+/// past with a [`SkippedElement`](ReadWarningKind::SkippedElement) warning, and the other
+/// properties of `vertex`, `face` and `tristrips` with a
+/// [`SkippedProperty`](ReadWarningKind::SkippedProperty) warning, one per name, on its
+/// header line (none when the element's count is 0). Elements may come in any order.
 ///
 /// In ASCII files values are separated by any whitespace (a record need not be one line).
 /// Bytes after the last element are ignored with a
@@ -42,7 +55,9 @@ use crate::swp::SourcePos;
 /// vertex 3)`); in binary data with the origin only (`found end of file, expected a float
 /// (property z of vertex 99 of 100)`). Also: a missing `x`, `y` or `z` property or face
 /// index list, a list length that is negative or not an integer, a vertex index out of
-/// range, an integer outside its type's range.
+/// range (for strips, other than `-1`), an integer outside its type's range, a file that
+/// looks like UTF-16 without a byte-order mark, and strips that make not one triangle
+/// ([`NoFacesRead`](MeshIoErrorKind::NoFacesRead)).
 ///
 /// ```
 /// use splinekit_io::mesh::read_ply;
@@ -163,6 +178,8 @@ enum PropType {
 struct Property {
     name: String,
     ty: PropType,
+    /// Its line in the header, for warnings.
+    line: usize,
 }
 
 #[derive(Debug)]
@@ -233,6 +250,9 @@ fn parse_header(bytes: &[u8], origin: &str) -> Result<Header, MeshIoError> {
         let (k0, keyword) = next();
         if no == 1 {
             if keyword != b"ply" {
+                if load::looks_like_utf16(bytes) {
+                    return Err(load::error_in(origin, MeshIoErrorKind::Utf16WithoutBom));
+                }
                 return Err(unexpected(k0, keyword, "ply (the first line of a PLY file)"));
             }
             continue;
@@ -292,7 +312,7 @@ fn parse_header(bytes: &[u8], origin: &str) -> Result<Header, MeshIoError> {
                 if name.is_empty() {
                     return Err(unexpected(kn, name, "a property name"));
                 }
-                element.props.push(Property { name: String::from_utf8_lossy(name).into_owned(), ty });
+                element.props.push(Property { name: String::from_utf8_lossy(name).into_owned(), ty, line: no });
             }
             b"end_header" => break,
             _ => {
@@ -460,11 +480,84 @@ fn vertex_roles(element: &Element) -> (Vec<Role>, bool, bool, bool, [bool; 3]) {
     (roles, normals, colors, tex, have_pos)
 }
 
+/// What the reader does with an element.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Use {
+    Vertices,
+    Faces,
+    Strips,
+    Skipped,
+}
+
+/// The index of the vertex index list of a `face` or `tristrips` element.
+fn index_list(element: &Element, origin: &str) -> Result<Option<usize>, MeshIoError> {
+    let found = element.props.iter().position(|p| {
+        matches!(p.ty, PropType::List { .. }) && (p.name == "vertex_indices" || p.name == "vertex_index")
+    });
+    if found.is_none() && element.count > 0 {
+        let kind = MeshIoErrorKind::UnexpectedToken {
+            found: element.name.clone(),
+            expected: String::from("an element with a list property vertex_indices or vertex_index"),
+        };
+        return Err(MeshIoError::at(origin, element.pos, kind));
+    }
+    Ok(found)
+}
+
+/// The faces read so far: a CSR list, and a reused buffer for the strip being read.
+#[derive(Default)]
+struct Faces {
+    offsets: Vec<u32>,
+    vertices: Vec<u32>,
+    strip: Vec<u32>,
+}
+
+impl Faces {
+    /// Closes the face whose corners were pushed last.
+    fn close(&mut self, origin: &str) -> Result<(), MeshIoError> {
+        let end = u32::try_from(self.vertices.len()).map_err(|_| too_many_corners(origin))?;
+        self.offsets.push(end);
+        Ok(())
+    }
+
+    /// Adds the triangles of the strip gathered so far, and starts a new one.
+    fn end_strip(&mut self, origin: &str) -> Result<(), MeshIoError> {
+        let (vertices, offsets) = (&mut self.vertices, &mut self.offsets);
+        let mut fits = true;
+        load::strip_triangles(&self.strip, |t| {
+            vertices.extend(t);
+            match u32::try_from(vertices.len()) {
+                Ok(end) => offsets.push(end),
+                Err(_) => fits = false,
+            }
+        });
+        self.strip.clear();
+        if fits { Ok(()) } else { Err(too_many_corners(origin)) }
+    }
+}
+
+fn too_many_corners(origin: &str) -> MeshIoError {
+    load::error_in(
+        origin,
+        MeshIoErrorKind::Unrepresentable {
+            format: "32-bit indices", what: String::from("more than 2³² face corners")
+        },
+    )
+}
+
 /// Parses PLY bytes (see [`read_ply`]).
 pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIoError> {
+    let decoded;
+    let bytes = match load::utf16_decoded(bytes) {
+        Some(text) => {
+            decoded = text;
+            &decoded[..]
+        }
+        None => bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes),
+    };
     let header = parse_header(bytes, origin)?;
-    let vertex_element = header.elements.iter().position(|e| e.name == "vertex");
-    let face_element = header.elements.iter().position(|e| e.name == "face");
+    let first = |name: &str| header.elements.iter().position(|e| e.name == name);
+    let (vertex_element, face_element, strip_element) = (first("vertex"), first("face"), first("tristrips"));
     let num_vertices = vertex_element.map_or(0, |i| header.elements[i].count);
     if u32::try_from(num_vertices).is_err() {
         return Err(load::error_in(
@@ -489,13 +582,17 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
     let mut normals = Vec::new();
     let mut colors = Vec::new();
     let mut tex = Vec::new();
-    let mut face_offsets = vec![0u32];
-    let mut face_vertices: Vec<u32> = Vec::new();
+    let mut faces = Faces { offsets: vec![0], ..Faces::default() };
+    let mut warnings = Warnings::default();
 
     for (e, element) in header.elements.iter().enumerate() {
-        let is_vertex = Some(e) == vertex_element;
-        let is_face = Some(e) == face_element;
-        let (roles, has_normals, has_colors, has_tex) = if is_vertex {
+        let role = match Some(e) {
+            i if i == vertex_element => Use::Vertices,
+            i if i == face_element => Use::Faces,
+            i if i == strip_element => Use::Strips,
+            _ => Use::Skipped,
+        };
+        let (roles, has_normals, has_colors, has_tex) = if role == Use::Vertices {
             let (roles, n, c, t, have) = vertex_roles(element);
             if let Some(k) = have.iter().position(|&h| !h) {
                 let expected =
@@ -507,21 +604,25 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
         } else {
             (vec![Role::Ignored; element.props.len()], false, false, false)
         };
-        let index_list = if is_face {
-            let found = element.props.iter().position(|p| {
-                matches!(p.ty, PropType::List { .. }) && (p.name == "vertex_indices" || p.name == "vertex_index")
-            });
-            if found.is_none() && element.count > 0 {
-                let kind = MeshIoErrorKind::UnexpectedToken {
-                    found: element.name.clone(),
-                    expected: String::from("an element with a list property vertex_indices or vertex_index"),
-                };
-                return Err(MeshIoError::at(origin, element.pos, kind));
-            }
-            found
-        } else {
-            None
+        let indices = match role {
+            Use::Faces | Use::Strips => index_list(element, origin)?,
+            Use::Vertices | Use::Skipped => None,
         };
+        if element.count > 0 {
+            if role == Use::Skipped {
+                warnings.push(
+                    element.pos.line,
+                    ReadWarningKind::SkippedElement { name: element.name.clone(), count: element.count },
+                );
+            } else {
+                for (k, prop) in element.props.iter().enumerate() {
+                    if roles[k] == Role::Ignored && Some(k) != indices {
+                        let (element, name) = (element.name.clone(), prop.name.clone());
+                        warnings.push(prop.line, ReadWarningKind::SkippedProperty { element, name });
+                    }
+                }
+            }
+        }
         for r in 0..element.count {
             let (mut p, mut n, mut c, mut t) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO, DVec2::ZERO);
             for (k, prop) in element.props.iter().enumerate() {
@@ -544,37 +645,40 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
                             let text = data.last_text(len);
                             return Err(data.value_error(&text, format!("a non-negative length ({})", len_what())));
                         }
-                        let corners = Some(k) == index_list;
+                        let list = if Some(k) == indices { role } else { Use::Skipped };
                         for i in 0..len as usize {
                             let item_what = || format!("item {i} of list {} of {} {r}", prop.name, element.name);
                             let v = data.value(item, &item_what)?;
-                            if corners {
-                                if v.fract() != 0.0 || !(0.0..num_vertices as f64).contains(&v) {
-                                    let text = data.last_text(v);
-                                    return Err(data.value_error(
-                                        &text,
-                                        format!("a vertex index below {num_vertices} (corner {i} of face {r})"),
-                                    ));
-                                }
-                                face_vertices.push(v as u32);
+                            if list == Use::Skipped {
+                                continue;
+                            }
+                            let restart = list == Use::Strips && v == -1.0;
+                            if !restart && (v.fract() != 0.0 || !(0.0..num_vertices as f64).contains(&v)) {
+                                let text = data.last_text(v);
+                                let expected = if list == Use::Faces {
+                                    format!("a vertex index below {num_vertices} (corner {i} of face {r})")
+                                } else {
+                                    format!(
+                                        "a vertex index below {num_vertices}, or -1 to restart the strip (item {i} of tristrips {r})"
+                                    )
+                                };
+                                return Err(data.value_error(&text, expected));
+                            }
+                            match list {
+                                Use::Faces => faces.vertices.push(v as u32),
+                                _ if restart => faces.end_strip(origin)?,
+                                _ => faces.strip.push(v as u32),
                             }
                         }
-                        if corners {
-                            let end = u32::try_from(face_vertices.len()).map_err(|_| {
-                                load::error_in(
-                                    origin,
-                                    MeshIoErrorKind::Unrepresentable {
-                                        format: "32-bit indices",
-                                        what: String::from("more than 2³² face corners"),
-                                    },
-                                )
-                            })?;
-                            face_offsets.push(end);
+                        match list {
+                            Use::Faces => faces.close(origin)?,
+                            Use::Strips => faces.end_strip(origin)?,
+                            _ => {}
                         }
                     }
                 }
             }
-            if is_vertex {
+            if role == Use::Vertices {
                 positions.push(p);
                 if has_normals {
                     normals.push(n);
@@ -589,7 +693,13 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
         }
     }
 
-    let mut warnings = Warnings::default();
+    if faces.offsets.len() == 1
+        && let Some(e) = strip_element.map(|i| &header.elements[i]).filter(|e| e.count > 0)
+    {
+        let records = format!("element {:?} ({} strip{})", e.name, e.count, if e.count == 1 { "" } else { "s" });
+        let reason = String::from("no strip has a triangle of three different vertices");
+        return Err(load::error_in(origin, MeshIoErrorKind::NoFacesRead { records, reason }));
+    }
     let rest = &bytes[data.pos..];
     let trailing = if header.encoding == Encoding::Ascii {
         rest.iter().filter(|b| !b.is_ascii_whitespace()).count()
@@ -599,6 +709,7 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
     if trailing > 0 {
         warnings.push(0, ReadWarningKind::TrailingBytes { count: rest.len() });
     }
+    let Faces { offsets: face_offsets, vertices: face_vertices, .. } = faces;
     let normals = (!normals.is_empty()).then(|| FaceVarying { values: normals, indices: face_vertices.clone() });
     let uvs = (!tex.is_empty()).then(|| FaceVarying { values: tex, indices: face_vertices.clone() });
     let mesh = PolyMesh { positions, colors, face_offsets, face_vertices, normals, uvs };
@@ -625,7 +736,16 @@ mod tests {
                     element face 1\r\nproperty uchar intensity\r\nproperty list uchar uint vertex_index\r\nend_header\r\n\
                     0 0 0 0 0 1 255 0 0 0 0 7\r\n1 0 0 0 0 1 0 255 0 1 0 7\r\n0 1 0 0 0 1 0 0 255 0 1 7\r\n0 1\r\n9 3 0 1 2\r\n";
         let m = parse_ply(text.as_bytes(), "t.ply").unwrap();
-        assert!(m.warnings.is_empty());
+        // What is skipped is said, once per property or element, at its header line (#39).
+        let w: Vec<String> = m.warnings.iter().map(ToString::to_string).collect();
+        assert_eq!(
+            w,
+            [
+                r#"line 15: skipped property "flags" of element "vertex""#,
+                r#"line 16: skipped element "edge" (1 in the file; the elements read are vertex, face and tristrips)"#,
+                r#"line 20: skipped property "intensity" of element "face""#,
+            ]
+        );
         let m = m.mesh;
         assert_eq!(m.positions, vec![DVec3::ZERO, DVec3::X, DVec3::Y]);
         assert_eq!(m.colors, vec![DVec3::X, DVec3::Y, DVec3::Z]);

@@ -23,7 +23,8 @@ const RECORD: usize = 50;
 /// the 80-byte header). Otherwise it is ASCII if it starts with `solid` (after optional
 /// whitespace) and has no NUL byte in its first kilobyte; else binary, where a file longer
 /// than `84 + 50·n` is read with a [`TrailingBytes`](ReadWarningKind::TrailingBytes) warning
-/// and a shorter one is an error.
+/// and a shorter one is an error. ASCII may start with a UTF-8 byte-order mark, or be UTF-16
+/// with a byte-order mark (decoded first); UTF-16 without one is refused with a clear error.
 ///
 /// # Welding
 ///
@@ -68,12 +69,18 @@ pub(crate) fn parse_stl(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
     if binary_size == Some(bytes.len() as u64) {
         return parse_binary(bytes, origin);
     }
-    let text = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
-    let start = text.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(text.len());
-    let solid = text[start..].get(..5).is_some_and(|k| k.eq_ignore_ascii_case(b"solid"));
+    if let Some(text) = load::utf16_decoded(bytes).filter(|t| starts_with_solid(t)) {
+        return parse_ascii(&text, origin);
+    }
+    let solid = starts_with_solid(bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes));
     let has_nul = bytes[..bytes.len().min(1024)].contains(&0);
     if solid && !has_nul {
         return parse_ascii(bytes, origin);
+    }
+    // `solid` in UTF-16 without a byte-order mark (binary data hardly looks so)
+    let head: Vec<u8> = bytes.iter().take(64).filter(|&&b| b != 0).copied().collect();
+    if !solid && starts_with_solid(&head) && load::looks_like_utf16(bytes) {
+        return Err(load::error_in(origin, MeshIoErrorKind::Utf16WithoutBom));
     }
     if declared.is_some() {
         return parse_binary(bytes, origin);
@@ -88,6 +95,12 @@ pub(crate) fn parse_stl(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
             ),
         },
     ))
+}
+
+/// Whether `text` starts with `solid` (in any case) after optional whitespace.
+fn starts_with_solid(text: &[u8]) -> bool {
+    let start = text.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(text.len());
+    text[start..].get(..5).is_some_and(|k| k.eq_ignore_ascii_case(b"solid"))
 }
 
 /// Welds equal positions into shared vertices.

@@ -118,6 +118,18 @@ impl Tags {
         Ok(())
     }
 
+    /// How many vertex references the tags have so far.
+    pub(crate) fn num_refs(&self) -> usize {
+        self.refs.len()
+    }
+
+    /// Moves the positions of the vertex references from the `from`-th on through `map`.
+    pub(crate) fn map_refs(&mut self, from: usize, map: impl Fn(SourcePos) -> SourcePos) {
+        for r in &mut self.refs[from..] {
+            r.pos = map(r.pos);
+        }
+    }
+
     /// The creases, every vertex index checked against `num_vertices`.
     pub(crate) fn finish(self, origin: &str, num_vertices: usize) -> Result<Creases, MeshIoError> {
         if let Some(r) = self.refs.iter().find(|r| r.index as usize >= num_vertices) {
