@@ -17,7 +17,7 @@ use splinekit::subdiv::{
     catmull_clark_subdivide_creased, doo_sabin_subdivide, loop_limit_creased, loop_limit_normals, loop_limit_positions,
     loop_subdivide, loop_subdivide_creased, sqrt3_subdivide,
 };
-use splinekit_io::mesh::{MeshFormat, read_creases, save_poly, save_poly_creased};
+use splinekit_io::mesh::{MeshFormat, SavedPoly, read_creases, save_poly, save_poly_creased};
 
 use crate::output::JsonNum;
 
@@ -75,8 +75,10 @@ use crate::output::JsonNum;
 /// file, so an error never leaves a partial file; without -o nothing is written (use it to
 /// measure). OBJ keeps the mesh's vertices and topology, normals and UVs with their own
 /// indices (`f v/vt/vn`): a closed mesh stays closed, and subdividing a level-k file again
-/// gives level k+1. glb and PLY hold one normal and UV per vertex, so a vertex on a UV seam or
-/// a sharp normal is written once per side. Prints the counts and the time of the subdivision
+/// gives level k+1. PLY keeps them too, with UVs per corner where they differ at a vertex
+/// (MeshLab's `texcoord` lists) and normals only when each vertex has one. glb holds one
+/// normal and UV per vertex, so a vertex on a UV seam or a sharp normal is written once per
+/// side (`--split-seams` does the same for OBJ and PLY). Prints the counts and the time of the subdivision
 /// alone (no file I/O); with --json, one object `{"vertices": V, "faces": F, "seconds": S}`,
 /// where S is the median of --repeat runs, and `"written_vertices": W` when the file holds
 /// another number of vertices (seams split). Shows a progress bar on standard error when it
@@ -132,6 +134,11 @@ pub struct SubdivideArgs {
     /// Split non-manifold edges and vertices instead of refusing the mesh
     #[arg(long)]
     pub split_nonmanifold: bool,
+
+    /// Write a vertex on a UV seam or a sharp normal once per side in OBJ and PLY too (as glb
+    /// always does), with one normal and UV per vertex, for programs that read only those
+    #[arg(long)]
+    pub split_seams: bool,
 
     /// Move every output vertex to its limit position (the surface after infinitely many
     /// levels; exact closed-form masks); not included in the time
@@ -496,7 +503,7 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
             fine.positions = loop_limit_positions(&bare, &options).map_err(limit)?;
             fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
         }
-        written = Some(save_poly(&fine, path, format)?);
+        written = Some(saved(path, save_poly(&fine, path, format, args.split_seams)?));
     }
     report(args, out, (vertices, faces, "triangles"), seconds, threads, written)
 }
@@ -539,6 +546,19 @@ fn thread_pool(args: &SubdivideArgs) -> anyhow::Result<rayon::ThreadPool> {
         builder = builder.num_threads(n);
     }
     builder.build().context("cannot start the worker threads")
+}
+
+/// The number of vertices written to `path`, after a note on standard error if normals had to
+/// be left out.
+fn saved(path: &Path, saved: SavedPoly) -> usize {
+    if saved.normals_left_out {
+        eprintln!(
+            "note: {}: PLY holds one normal a vertex, and the normals differ at some vertices (sharp \
+             edges): written without normals; write .obj, or use --split-seams, to keep them",
+            path.display()
+        );
+    }
+    saved.vertices
 }
 
 /// Prints the counts and the time (one JSON object with --json), and, when the file holds
@@ -599,7 +619,7 @@ fn run_catmull_clark(
             fine.positions = catmull_clark_limit_positions(&fine, &options).map_err(limit)?;
             fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
         }
-        written = Some(save_poly(&fine, path, format)?);
+        written = Some(saved(path, save_poly(&fine, path, format, args.split_seams)?));
     }
     let threads = pool.current_num_threads();
     report(args, out, (fine.num_vertices(), fine.num_faces(), "quads"), seconds, threads, written)
@@ -645,7 +665,7 @@ fn run_creased(
         if format != MeshFormat::Obj && !creases.is_empty() {
             eprintln!("note: {} cannot hold crease tags; write .obj to keep the child creases", path.display());
         }
-        written = Some(save_poly_creased(&fine, &creases, path, format)?);
+        written = Some(saved(path, save_poly_creased(&fine, &creases, path, format, args.split_seams)?));
     }
     report(args, out, (fine.num_vertices(), fine.num_faces(), noun), seconds, pool.current_num_threads(), written)
 }

@@ -635,6 +635,22 @@ fn attributes_keep_the_topology_and_levels_carry_on() {
         let glb = splinekit_io::mesh::load_mesh(file("1.glb")).unwrap().mesh;
         assert_eq!(json["written_vertices"], glb.num_vertices(), "{json}");
         assert!(glb.num_vertices() > json["vertices"].as_u64().unwrap() as usize);
+        // PLY keeps the vertices (UVs per corner), and so does the file MeshLab reads
+        let run = splinekit(&["subdivide", &input, "-n", "1", "-o", &file("1.ply"), "--json"]);
+        let json: Value = serde_json::from_str(run.ok()).unwrap();
+        assert!(json.get("written_vertices").is_none(), "{json}");
+        let ply = splinekit_io::mesh::load_mesh(file("1.ply")).unwrap().mesh;
+        assert_eq!(ply.num_vertices(), json["vertices"].as_u64().unwrap() as usize);
+        let info = splinekit(&["info", &file("1.ply")]).ok().to_owned();
+        assert!(info.contains("boundary: none (closed)"), "{info}");
+        // the cube's flat normals cannot be held per vertex: left out, with a note
+        assert_eq!(run.stderr.contains("written without normals"), name == "cube", "{}", run.stderr);
+        // --split-seams: one normal and UV per vertex in OBJ too
+        let run = splinekit(&["subdivide", &input, "-n", "1", "-o", &file("s.obj"), "--json", "--split-seams"]);
+        let json: Value = serde_json::from_str(run.ok()).unwrap();
+        let split = splinekit_io::mesh::load_mesh(file("s.obj")).unwrap().mesh;
+        assert_eq!(json["written_vertices"], split.num_vertices(), "{json}");
+        assert_eq!(split.uvs.as_ref().unwrap().indices, split.face_vertices);
     }
     let _ = std::fs::remove_dir_all(dir);
 }

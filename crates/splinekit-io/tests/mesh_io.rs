@@ -161,6 +161,43 @@ fn obj_keeps_face_varying_attributes_with_their_own_indices() {
     // and our own reader gives the mesh back exactly
     let back = splinekit_io::mesh::read_obj(Cursor::new(&bytes), "cube.obj").unwrap().mesh;
     assert_eq!(back, mesh);
+    // PLY keeps the 8 vertices too: the UVs per corner (MeshLab's texcoord lists), the
+    // normals, which differ at every vertex, left out (and said so)
+    let mut ply = Vec::new();
+    assert!(splinekit_io::mesh::write_ply_poly(&mesh, &mut ply).unwrap(), "normals left out");
+    let end = ply.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+    let header = std::str::from_utf8(&ply[..end]).unwrap();
+    assert!(
+        header.ends_with(
+            "element face 6\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\nend_header\n"
+        ),
+        "{header}"
+    );
+    assert!(!header.contains("nx") && !header.contains("property float u"), "{header}");
+    // 8 vertices of 3 floats, then 6 faces of (4 indices, 8 floats) with their counts
+    assert_eq!(ply.len() - end, 8 * 12 + 6 * (1 + 16 + 1 + 32));
+    let back = splinekit_io::mesh::read_ply(Cursor::new(&ply), "cube.ply").unwrap().mesh;
+    assert_eq!(
+        (&back.positions, &back.face_offsets, &back.face_vertices),
+        (&mesh.positions, &mesh.face_offsets, &mesh.face_vertices)
+    );
+    let (a, b) = (back.uvs.as_ref().unwrap(), mesh.uvs.as_ref().unwrap());
+    for c in 0..24 {
+        assert_eq!(a.values[a.indices[c] as usize], b.values[b.indices[c] as usize], "corner {c}");
+    }
+    // a vertex's corners with equal UVs share one value: 4 shared corners and the seam's own
+    // 4, each at every vertex that uses it
+    let distinct: std::collections::HashSet<(u32, u32)> =
+        back.face_vertices.iter().zip(&a.indices).map(|(&v, &i)| (v, i)).collect();
+    assert_eq!(a.values.len(), distinct.len());
+    // with one normal and one UV per vertex, they are vertex properties, as write_ply's
+    let mut smooth = mesh.clone();
+    smooth.normals = Some(FaceVarying { values: smooth.positions.clone(), indices: smooth.face_vertices.clone() });
+    smooth.uvs = None;
+    let mut ply = Vec::new();
+    assert!(!splinekit_io::mesh::write_ply_poly(&smooth, &mut ply).unwrap());
+    let back = splinekit_io::mesh::read_ply(Cursor::new(&ply), "smooth.ply").unwrap().mesh;
+    assert_eq!(back.normals, smooth.normals);
     // an index past the values is refused before anything is written
     mesh.uvs.as_mut().unwrap().indices[7] = 8;
     let mut out = Vec::new();

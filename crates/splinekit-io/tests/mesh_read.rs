@@ -712,8 +712,16 @@ fn ply_skipped_elements_and_properties_are_warnings() {
             r#"line 10: skipped property "alpha" of element "vertex""#,
             r#"line 11: skipped element "range_grid" (2 in the file; the elements read are vertex, face and tristrips)"#,
             r#"line 14: skipped property "flags" of element "face""#,
-            r#"line 16: skipped property "texcoord" of element "face""#,
         ]
+    );
+    // the per-corner texture coordinates are read, as face-varying UVs
+    let uvs = loaded.mesh.uvs.as_ref().unwrap();
+    let corner = |c: usize| uvs.values[uvs.indices[c] as usize];
+    assert_eq!([corner(0), corner(1), corner(2)], [DVec2::ZERO, DVec2::X, DVec2::Y]);
+    let short = text.replace("6 0 0 1 0 0 1", "4 0 0 1 0");
+    assert_eq!(
+        read_ply(short.as_bytes(), "scan.ply").unwrap_err().to_string(),
+        "scan.ply: found \"4 numbers\", expected two texture coordinates for each of the 3 corners of face 0 (texcoord)"
     );
     assert_eq!(loaded.warnings[3].kind, ReadWarningKind::SkippedElement { name: "range_grid".into(), count: 2 });
     assert_eq!(loaded.mesh.face(0), &[0, 1, 2]);

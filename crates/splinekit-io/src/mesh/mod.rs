@@ -80,7 +80,7 @@ pub use glb_read::read_glb;
 pub use load::{LoadedMesh, MAX_WARNINGS, ReadWarning, ReadWarningKind, load_mesh, read_mesh};
 pub use obj::{write_obj, write_obj_poly};
 pub use obj_read::read_obj;
-pub use ply::write_ply;
+pub use ply::{write_ply, write_ply_poly};
 pub use ply_read::read_ply;
 pub use rebuild::{RebuildError, RebuildOptions};
 pub use revolution_obj::{
@@ -233,20 +233,39 @@ pub fn save_cancellable(
     })
 }
 
+/// What [`save_poly`] wrote.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct SavedPoly {
+    /// The number of vertices in the file: the mesh's own, or more where seams were split.
+    pub vertices: usize,
+    /// The mesh's normals differ at some vertex, and the format (PLY) holds one normal a
+    /// vertex: they were left out.
+    pub normals_left_out: bool,
+}
+
 /// Writes the polygon mesh `mesh` to the file at `path` in `format`, atomically (as
-/// [`save`]), and returns the number of vertices the file holds.
+/// [`save`]), and says what the file holds.
 ///
 /// OBJ keeps the polygons and the face-varying normals and UVs with their own indices
-/// ([`write_obj_poly`]): the file has the mesh's vertices and topology. glb and PLY get the
-/// fan triangulation with a vertex for every distinct (vertex, normal, UV) of a corner
-/// ([`PolyMesh::to_tri_mesh_with_seams`]: their attributes are per vertex, so a vertex on a
-/// UV seam or a sharp normal is written once per side), STL the fan triangulation's positions.
+/// ([`write_obj_poly`]), and PLY the polygons with UVs per corner where they differ at a
+/// vertex ([`write_ply_poly`]; normals that differ at a vertex are left out): the file has the
+/// mesh's vertices and topology. glb, whose attributes are per vertex, gets the fan
+/// triangulation with a vertex for every distinct (vertex, normal, UV) of a corner
+/// ([`PolyMesh::to_tri_mesh_with_seams`]), so a vertex on a UV seam or a sharp normal is
+/// written once per side; so do OBJ and PLY with `split_seams`. STL gets the fan
+/// triangulation's positions.
 ///
 /// # Errors
 ///
 /// As [`save`].
-pub fn save_poly(mesh: &PolyMesh, path: impl AsRef<Path>, format: MeshFormat) -> Result<usize, MeshIoError> {
-    save_poly_creased(mesh, &Creases::default(), path, format)
+pub fn save_poly(
+    mesh: &PolyMesh,
+    path: impl AsRef<Path>,
+    format: MeshFormat,
+    split_seams: bool,
+) -> Result<SavedPoly, MeshIoError> {
+    save_poly_creased(mesh, &Creases::default(), path, format, split_seams)
 }
 
 /// [`save_poly`] with the mesh's creases: an OBJ file gets them as tag lines after the faces
@@ -260,23 +279,29 @@ pub fn save_poly_creased(
     creases: &Creases,
     path: impl AsRef<Path>,
     format: MeshFormat,
-) -> Result<usize, MeshIoError> {
+    split_seams: bool,
+) -> Result<SavedPoly, MeshIoError> {
     let path = path.as_ref();
     let split = match format {
-        MeshFormat::Obj => None,
-        MeshFormat::Glb | MeshFormat::Ply => Some(mesh.to_tri_mesh_with_seams()),
+        MeshFormat::Glb => Some(mesh.to_tri_mesh_with_seams()),
+        MeshFormat::Obj | MeshFormat::Ply if split_seams => Some(mesh.to_tri_mesh_with_seams()),
         MeshFormat::Stl => Some(mesh.to_tri_mesh()),
+        MeshFormat::Obj | MeshFormat::Ply => None,
     };
     if let Some(tri) = split {
         save(&tri, path, format)?;
-        return Ok(tri.num_vertices());
+        return Ok(SavedPoly { vertices: tri.num_vertices(), normals_left_out: false });
     }
-    // write_obj_poly validates before writing a byte; on error the temporary file goes away
-    atomic::write_file(path, |w| {
+    // the writers validate before writing a byte; on error the temporary file goes away
+    let normals_left_out = atomic::write_file(path, |w| {
+        if format == MeshFormat::Ply {
+            return write_ply_poly(mesh, w).map_err(|e| e.with_origin(path));
+        }
         write_obj_poly(mesh, w).map_err(|e| e.with_origin(path))?;
-        write_creases(creases, w).map_err(|e| MeshIoError::from(e).with_origin(path))
+        write_creases(creases, w).map_err(|e| MeshIoError::from(e).with_origin(path))?;
+        Ok(false)
     })?;
-    Ok(mesh.num_vertices())
+    Ok(SavedPoly { vertices: mesh.num_vertices(), normals_left_out })
 }
 
 /// Validates the mesh for writing.

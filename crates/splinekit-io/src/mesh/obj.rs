@@ -109,7 +109,7 @@ pub fn write_obj_poly<W: Write + ?Sized>(mesh: &PolyMesh, out: &mut W) -> Result
 
 /// `attribute` checked against the corners of `mesh`: one index per corner, each naming one
 /// of its values, and every value finite.
-fn channel<'m, T: FiniteValue>(
+pub(super) fn channel<'m, T: FiniteValue>(
     mesh: &PolyMesh,
     attribute: Option<&'m FaceVarying<T>>,
     what: &'static str,
@@ -134,7 +134,7 @@ fn channel<'m, T: FiniteValue>(
 }
 
 /// A normal or UV value, finite or not.
-trait FiniteValue {
+pub(super) trait FiniteValue {
     fn finite(&self) -> bool;
 }
 

@@ -2,7 +2,9 @@
 
 use std::io::{BufWriter, Write};
 
-use splinekit::TriMesh;
+use glam::DVec2;
+use splinekit::mesh::FaceVarying;
+use splinekit::{PolyMesh, TriMesh};
 
 use super::{MeshIoError, MeshIoErrorKind, to_f32};
 
@@ -62,8 +64,95 @@ pub fn write_ply<W: Write + ?Sized>(mesh: &TriMesh, out: &mut W) -> Result<(), M
     w.flush().map_err(MeshIoError::write)
 }
 
+/// Writes a polygon mesh as a binary little-endian PLY file that keeps its vertices and
+/// faces: the header of [`write_ply`] with polygons in the face lists, and
+///
+/// - normals as vertex properties `nx ny nz` when every vertex has one normal (the same value
+///   at all its corners); face-varying normals that differ at a vertex cannot be held by PLY
+///   and are left out (the returned flag says so);
+/// - UVs as vertex properties `u v` when every vertex has one UV, else as MeshLab's per-corner
+///   `property list uchar float texcoord` on the faces (two numbers a corner), so a vertex on a
+///   UV seam stays one vertex.
+///
+/// Returns whether normals were left out.
+///
+/// # Errors
+///
+/// As [`write_ply`] (checked on the mesh's fan triangulation), a face of more than 255
+/// corners, or an attribute whose indices do not match the corners or its values; nothing is
+/// written then.
+pub fn write_ply_poly<W: Write + ?Sized>(mesh: &PolyMesh, out: &mut W) -> Result<bool, MeshIoError> {
+    let corners = mesh.face_vertices.len();
+    let normals = super::obj::channel(mesh, mesh.normals.as_ref(), "normals")?;
+    let uvs = super::obj::channel(mesh, mesh.uvs.as_ref(), "UVs")?;
+    let vertex_normals = normals.and_then(|a| one_per_vertex(mesh, a));
+    let normals_left_out = normals.is_some() && vertex_normals.is_none();
+    let vertex_uvs = uvs.and_then(|a| one_per_vertex(mesh, a));
+    let corner_uvs = if vertex_uvs.is_none() { uvs } else { None };
+    // the per-vertex parts as a triangle mesh: the checks and the vertex records of `write_ply`
+    let mut tri = mesh.to_tri_mesh();
+    tri.normals = vertex_normals.unwrap_or_default();
+    tri.uvs = vertex_uvs.unwrap_or_default();
+    super::check(&tri)?;
+    if i32::try_from(mesh.positions.len()).is_err() || u32::try_from(corners).is_err() {
+        return Err(MeshIoError::new(MeshIoErrorKind::Unrepresentable {
+            format: FORMAT,
+            what: format!("vertex count {} (indices are 32-bit signed `int`)", mesh.positions.len()),
+        }));
+    }
+    // a `uchar` counts a face's corners, and its texcoord list's two numbers a corner
+    let most = if corner_uvs.is_some() { usize::from(u8::MAX) / 2 } else { usize::from(u8::MAX) };
+    if let Some(f) = mesh.faces().position(|f| f.len() > most) {
+        return Err(MeshIoError::new(MeshIoErrorKind::Unrepresentable {
+            format: FORMAT,
+            what: format!("face {f} of {} corners (at most {most}: list lengths are a `uchar`)", mesh.face(f).len()),
+        }));
+    }
+    super::check_f32_range(&tri, FORMAT, true)?;
+    if let Some(c) =
+        corner_uvs.and_then(|a| a.values.iter().position(|t| !to_f32(t.x).is_finite() || !to_f32(t.y).is_finite()))
+    {
+        return Err(MeshIoError::new(MeshIoErrorKind::Unrepresentable { format: FORMAT, what: format!("UV {c}") }));
+    }
+    let mut w = BufWriter::with_capacity(super::BUFFER_SIZE, out);
+    let body = |w: &mut BufWriter<&mut W>| -> std::io::Result<()> {
+        let faces = Faces { mesh, uvs: corner_uvs };
+        write_records(&tri, &faces, w)
+    };
+    body(&mut w).map_err(MeshIoError::write)?;
+    w.flush().map_err(MeshIoError::write)?;
+    Ok(normals_left_out)
+}
+
+/// The values of `attribute`, one per vertex, when every vertex's corners name one value (a
+/// vertex of no face gets the zero value).
+fn one_per_vertex<T: Copy + Default + PartialEq>(mesh: &PolyMesh, attribute: &FaceVarying<T>) -> Option<Vec<T>> {
+    let mut out: Vec<Option<T>> = vec![None; mesh.positions.len()];
+    for (&v, &i) in mesh.face_vertices.iter().zip(&attribute.indices) {
+        let value = attribute.values[i as usize];
+        match &mut out[v as usize] {
+            Some(seen) if *seen != value => return None,
+            slot => *slot = Some(value),
+        }
+    }
+    Some(out.into_iter().map(Option::unwrap_or_default).collect())
+}
+
+/// The faces to write: polygons, and UVs per corner if any.
+struct Faces<'m> {
+    mesh: &'m PolyMesh,
+    uvs: Option<&'m FaceVarying<DVec2>>,
+}
+
 /// Writes the header and the records.
 fn write_body<W: Write>(mesh: &TriMesh, w: &mut W) -> std::io::Result<()> {
+    let poly = PolyMesh::from_triangles(Vec::new(), &mesh.triangles);
+    write_records(mesh, &Faces { mesh: &poly, uvs: None }, w)
+}
+
+/// Writes the header, the vertex records of `mesh` (positions and its per-vertex normals, UVs
+/// and colours) and the face records of `faces`.
+fn write_records<W: Write>(mesh: &TriMesh, faces: &Faces<'_>, w: &mut W) -> std::io::Result<()> {
     let (has_normals, has_uvs, has_colors) = (!mesh.normals.is_empty(), !mesh.uvs.is_empty(), !mesh.colors.is_empty());
     let mut header = String::from("ply\nformat binary_little_endian 1.0\ncomment written by splinekit-io\n");
     header += &format!("element vertex {}\n", mesh.positions.len());
@@ -77,8 +166,12 @@ fn write_body<W: Write>(mesh: &TriMesh, w: &mut W) -> std::io::Result<()> {
     if has_colors {
         header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
     }
-    header += &format!("element face {}\n", mesh.triangles.len());
-    header += "property list uchar int vertex_indices\nend_header\n";
+    header += &format!("element face {}\n", faces.mesh.num_faces());
+    header += "property list uchar int vertex_indices\n";
+    if faces.uvs.is_some() {
+        header += "property list uchar float texcoord\n";
+    }
+    header += "end_header\n";
     w.write_all(header.as_bytes())?;
 
     for (i, p) in mesh.positions.iter().enumerate() {
@@ -100,13 +193,23 @@ fn write_body<W: Write>(mesh: &TriMesh, w: &mut W) -> std::io::Result<()> {
             w.write_all(&mesh.colors[i].to_array().map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))?;
         }
     }
-    for tri in &mesh.triangles {
-        let mut record = [0u8; 13];
-        record[0] = 3;
-        for (k, &v) in tri.iter().enumerate() {
-            // Checked by the caller: every index is below the vertex count, which fits an i32.
-            let v = i32::try_from(v).unwrap_or(i32::MAX);
-            record[1 + 4 * k..5 + 4 * k].copy_from_slice(&v.to_le_bytes());
+    let mut record = Vec::new();
+    for range in faces.mesh.face_offsets.windows(2) {
+        let corners = range[0] as usize..range[1] as usize;
+        record.clear();
+        // Checked by the callers: at most 255 corners, every index fits an i32.
+        record.push(u8::try_from(corners.len()).unwrap_or(u8::MAX));
+        for &v in &faces.mesh.face_vertices[corners.clone()] {
+            record.extend_from_slice(&i32::try_from(v).unwrap_or(i32::MAX).to_le_bytes());
+        }
+        if let Some(uvs) = faces.uvs {
+            // two numbers a corner (checked by the caller: at most 127 corners)
+            record.push(u8::try_from(2 * corners.len()).unwrap_or(u8::MAX));
+            for &i in &uvs.indices[corners] {
+                for x in uvs.values[i as usize].to_array() {
+                    record.extend_from_slice(&to_f32(x).to_le_bytes());
+                }
+            }
         }
         w.write_all(&record)?;
     }

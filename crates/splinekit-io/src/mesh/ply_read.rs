@@ -28,7 +28,10 @@ use crate::swp::SourcePos;
 ///   attributes with per-vertex indices.
 /// - Element `face`: the list `vertex_indices` (or `vertex_index`) of any integer types;
 ///   polygons of any size are kept as they are (faces with fewer than three corners too, for
-///   [`TopologyReport`](splinekit::mesh::TopologyReport) to report).
+///   [`TopologyReport`](splinekit::mesh::TopologyReport) to report). A list `texcoord` (two
+///   numbers a corner, as MeshLab writes per-corner texture coordinates) gives face-varying
+///   UVs, in place of the vertices' own: the corners of a vertex with equal UVs share one
+///   value, so a UV seam is where a vertex's corners differ.
 /// - Element `tristrips` (triangle strips, as old scanners' files and some MeshLab files
 ///   have them: usually `element tristrips 1` and `property list int int vertex_indices`):
 ///   the list `vertex_indices` (or `vertex_index`) holds strips separated by `-1`. Triangle k
@@ -536,6 +539,52 @@ impl Faces {
     }
 }
 
+/// The `texcoord` lists of the faces as read: two numbers a corner.
+#[derive(Default)]
+struct FaceUvs {
+    /// Each face's list length.
+    lengths: Vec<usize>,
+    values: Vec<f64>,
+}
+
+impl FaceUvs {
+    /// The UVs as a face-varying attribute: the corners of one vertex with the same UV share
+    /// its value (so the UV mesh is joined across edges and split only at seams).
+    fn into_face_varying(
+        self,
+        offsets: &[u32],
+        vertices: &[u32],
+        origin: &str,
+    ) -> Result<FaceVarying<DVec2>, MeshIoError> {
+        let mut ids: std::collections::HashMap<(u32, u64, u64), u32> = std::collections::HashMap::new();
+        let mut uvs = FaceVarying { values: Vec::new(), indices: Vec::with_capacity(vertices.len()) };
+        let mut at = 0;
+        for (f, (w, &len)) in offsets.windows(2).zip(&self.lengths).enumerate() {
+            let corners = (w[1] - w[0]) as usize;
+            if len != 2 * corners {
+                let kind = MeshIoErrorKind::UnexpectedToken {
+                    found: format!("{len} numbers"),
+                    expected: format!(
+                        "two texture coordinates for each of the {corners} corners of face {f} (texcoord)"
+                    ),
+                };
+                return Err(load::error_in(origin, kind));
+            }
+            for (c, &v) in vertices[w[0] as usize..w[1] as usize].iter().enumerate() {
+                let uv = DVec2::new(self.values[at + 2 * c], self.values[at + 2 * c + 1]);
+                let next = uvs.values.len() as u32;
+                let id = *ids.entry((v, uv.x.to_bits(), uv.y.to_bits())).or_insert(next);
+                if id == next {
+                    uvs.values.push(uv);
+                }
+                uvs.indices.push(id);
+            }
+            at += len;
+        }
+        Ok(uvs)
+    }
+}
+
 fn too_many_corners(origin: &str) -> MeshIoError {
     load::error_in(
         origin,
@@ -583,6 +632,7 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
     let mut colors = Vec::new();
     let mut tex = Vec::new();
     let mut faces = Faces { offsets: vec![0], ..Faces::default() };
+    let mut face_uvs = FaceUvs::default();
     let mut warnings = Warnings::default();
 
     for (e, element) in header.elements.iter().enumerate() {
@@ -608,6 +658,10 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
             Use::Faces | Use::Strips => index_list(element, origin)?,
             Use::Vertices | Use::Skipped => None,
         };
+        // a face's UVs, corner by corner (MeshLab's per-wedge texture coordinates)
+        let texcoord = (role == Use::Faces)
+            .then(|| element.props.iter().position(|p| p.name == "texcoord" && matches!(p.ty, PropType::List { .. })))
+            .flatten();
         if element.count > 0 {
             if role == Use::Skipped {
                 warnings.push(
@@ -616,7 +670,7 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
                 );
             } else {
                 for (k, prop) in element.props.iter().enumerate() {
-                    if roles[k] == Role::Ignored && Some(k) != indices {
+                    if roles[k] == Role::Ignored && Some(k) != indices && Some(k) != texcoord {
                         let (element, name) = (element.name.clone(), prop.name.clone());
                         warnings.push(prop.line, ReadWarningKind::SkippedProperty { element, name });
                     }
@@ -646,9 +700,16 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
                             return Err(data.value_error(&text, format!("a non-negative length ({})", len_what())));
                         }
                         let list = if Some(k) == indices { role } else { Use::Skipped };
+                        let uv_list = Some(k) == texcoord;
+                        if uv_list {
+                            face_uvs.lengths.push(len as usize);
+                        }
                         for i in 0..len as usize {
                             let item_what = || format!("item {i} of list {} of {} {r}", prop.name, element.name);
                             let v = data.value(item, &item_what)?;
+                            if uv_list {
+                                face_uvs.values.push(v);
+                            }
                             if list == Use::Skipped {
                                 continue;
                             }
@@ -711,7 +772,11 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
     }
     let Faces { offsets: face_offsets, vertices: face_vertices, .. } = faces;
     let normals = (!normals.is_empty()).then(|| FaceVarying { values: normals, indices: face_vertices.clone() });
-    let uvs = (!tex.is_empty()).then(|| FaceVarying { values: tex, indices: face_vertices.clone() });
+    let uvs = if face_uvs.lengths.is_empty() {
+        (!tex.is_empty()).then(|| FaceVarying { values: tex, indices: face_vertices.clone() })
+    } else {
+        Some(face_uvs.into_face_varying(&face_offsets, &face_vertices, origin)?)
+    };
     let mesh = PolyMesh { positions, colors, face_offsets, face_vertices, normals, uvs };
     Ok(LoadedMesh { mesh, warnings: warnings.finish(), creases: Creases::default() })
 }
