@@ -74,7 +74,7 @@ pub enum SurfaceFrames {
     RotationMinimizing,
 }
 
-/// The default of [`SurfaceOptions::max_triangles`] and [`RebuildOptions`](crate::mesh::RebuildOptions):
+/// The default of [`SurfaceOptions::max_triangles`] and [`crate::mesh::RebuildOptions`]:
 /// a mesh of this size takes a few gigabytes in memory and as OBJ text.
 pub const DEFAULT_MAX_TRIANGLES: usize = 50_000_000;
 

@@ -145,8 +145,9 @@ impl Tags {
     }
 }
 
-/// Reads a crease side file: `t crease` and `t corner` tags (see the [module docs](self)),
-/// comments and empty lines, for a mesh of `num_vertices` vertices; `origin` names it in errors.
+/// Reads a crease side file: `t crease` and `t corner` tags (OpenSubdiv's OBJ extension:
+/// `t crease 2/1 A B S` for the edge A–B with sharpness S, `t crease 3/1 A B C S` for a
+/// chain, `t corner 1/1 V S`), comments and empty lines, for a mesh of `num_vertices` vertices; `origin` names it in errors.
 ///
 /// # Errors
 /// A [`MeshIoError`] at `origin:LINE:COL` for any other statement, a malformed tag or a vertex
