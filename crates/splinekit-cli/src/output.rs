@@ -7,6 +7,8 @@
 
 use std::fmt;
 
+use splinekit_io::mesh::MeshFormat;
+
 /// A float as JSON: shortest round-trip text with a `.0` or exponent (Rust's `{:?}`), or
 /// `null` when not finite; a negative zero is written `0.0`
 /// (JSON has no NaN or infinity).
@@ -76,6 +78,15 @@ pub fn progress_bar(steps: usize) -> Option<indicatif::ProgressBar> {
         bar.enable_steady_tick(std::time::Duration::from_millis(200));
         bar
     })
+}
+
+/// The parser of a mesh format option: the extensions of [`MeshFormat::ALL`], each with its
+/// description in `--help`.
+pub fn mesh_format() -> impl clap::builder::TypedValueParser<Value = MeshFormat> {
+    use clap::builder::TypedValueParser as _;
+    let values = MeshFormat::ALL.map(|f| clap::builder::PossibleValue::new(f.extension()).help(f.description()));
+    clap::builder::PossibleValuesParser::new(values)
+        .try_map(|name: String| MeshFormat::from_extension(&name).ok_or_else(|| format!("unknown mesh format {name}")))
 }
 
 #[cfg(test)]

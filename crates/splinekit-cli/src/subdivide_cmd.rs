@@ -386,13 +386,12 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         bail!("--repeat must be at least 1");
     }
     check_options(args)?;
-    let format =
-        match &args.output {
-            Some(path) => Some(MeshFormat::from_path(path).ok_or_else(|| {
-                anyhow!("{}: unknown output format (expected .obj, .ply, .stl or .glb)", path.display())
-            })?),
-            None => None,
-        };
+    let format = match &args.output {
+        Some(path) => Some(MeshFormat::from_path(path).ok_or_else(|| {
+            anyhow!("{}: unknown output format (expected one of {})", path.display(), MeshFormat::list())
+        })?),
+        None => None,
+    };
     let loaded = crate::mesh_read::load(&args.input)?;
     crate::mesh_read::require_faces(&loaded.mesh, &args.input, "subdivide")?;
     let mut mesh = loaded.mesh;

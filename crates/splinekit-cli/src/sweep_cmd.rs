@@ -63,8 +63,8 @@ pub struct SweepArgs {
     pub force: bool,
 
     /// Mesh file format
-    #[arg(long, value_enum, value_name = "FORMAT", default_value_t = Format::Obj)]
-    pub format: Format,
+    #[arg(long, value_name = "FORMAT", default_value = "obj", value_parser = crate::output::mesh_format())]
+    pub format: MeshFormat,
 
     /// The course program's vertex layout and counts: duplicated seams, repeated poles; for a
     /// sweep-tool OBJ, the tool's own mesh
@@ -104,39 +104,6 @@ pub struct SweepArgs {
     /// fixes the tessellation, so --tolerance and --angle-tolerance are refused
     #[arg(long)]
     pub annotated: bool,
-}
-
-/// Mesh file formats.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Format {
-    /// Wavefront OBJ (text)
-    Obj,
-    /// Binary glTF 2.0
-    Glb,
-    /// Binary little-endian PLY
-    Ply,
-    /// Binary STL
-    Stl,
-}
-
-impl Format {
-    fn extension(self) -> &'static str {
-        match self {
-            Self::Obj => "obj",
-            Self::Glb => "glb",
-            Self::Ply => "ply",
-            Self::Stl => "stl",
-        }
-    }
-
-    fn mesh_format(self) -> MeshFormat {
-        match self {
-            Self::Obj => MeshFormat::Obj,
-            Self::Glb => MeshFormat::Glb,
-            Self::Ply => MeshFormat::Ply,
-            Self::Stl => MeshFormat::Stl,
-        }
-    }
 }
 
 /// Frame methods.
@@ -232,7 +199,7 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
         }
     }
     if args.annotated {
-        if args.format != Format::Obj {
+        if args.format != MeshFormat::Obj {
             bail!("--annotated writes OBJ files; use it with --format obj");
         }
         if args.tolerance.is_some() || args.angle_tolerance.is_some() {
@@ -305,7 +272,7 @@ fn sweep_surfaces(
             let header = doc.annotated_header(k).map_err(|e| anyhow!("{}: {e}", args.file.display()))?;
             splinekit_io::mesh::stage_annotated_obj(&header, mesh, &path)?
         } else {
-            splinekit_io::mesh::stage(mesh, &path, args.format.mesh_format())?
+            splinekit_io::mesh::stage(mesh, &path, args.format)?
         };
         staged.push((file, mesh, path));
     }
@@ -329,7 +296,7 @@ fn write_mesh(args: &SweepArgs, mesh: &TriMesh, path: &Path, out: &mut impl Writ
 /// Saves `mesh` to `path` in the chosen format.
 fn save_mesh(args: &SweepArgs, mesh: &TriMesh, path: &Path) -> anyhow::Result<()> {
     // the error names the path
-    Ok(splinekit_io::mesh::save(mesh, path, args.format.mesh_format())?)
+    Ok(splinekit_io::mesh::save(mesh, path, args.format)?)
 }
 
 /// The report line of a written mesh: its path, vertex count and triangle count.
@@ -388,7 +355,7 @@ fn run_obj(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create output directory {}", args.output.display()))?;
     if args.annotated {
-        if args.format != Format::Obj {
+        if args.format != MeshFormat::Obj {
             bail!("--annotated writes OBJ files; use it with --format obj");
         }
         splinekit_io::mesh::save_annotated_obj(&header, &mesh, &path)?;

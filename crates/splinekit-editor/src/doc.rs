@@ -15,6 +15,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use glam::DVec3;
 use splinekit::subdiv::Creases;
 use splinekit::{AnyCurve, ParamCurve, PolyMesh};
+use splinekit_io::mesh::MeshFormat;
 use splinekit_io::{SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind};
 
 /// Most undo steps kept; older ones are dropped.
@@ -61,8 +62,7 @@ impl DocKind {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         match ext.as_str() {
             "swp" => Some(Self::Swp),
-            "obj" | "glb" | "ply" | "stl" => Some(Self::Mesh),
-            _ => None,
+            _ => MeshFormat::from_extension(&ext).filter(|f| f.capabilities().reads).map(|_| Self::Mesh),
         }
     }
 }

@@ -9,6 +9,7 @@
 use std::path::{Path, PathBuf};
 
 use eframe::egui::{self, Key};
+use splinekit_io::mesh::MeshFormat;
 
 /// The most recent files kept.
 pub const MAX_RECENT: usize = 10;
@@ -48,11 +49,14 @@ impl Purpose {
     /// The extensions the action accepts (lowercase, without the dot); the first is added to
     /// a name typed without one when saving.
     #[must_use]
-    pub fn extensions(self) -> &'static [&'static str] {
+    pub fn extensions(self) -> Vec<&'static str> {
+        let meshes = |keep: fn(MeshFormat) -> bool| {
+            MeshFormat::ALL.into_iter().filter(move |&f| keep(f)).map(MeshFormat::extension)
+        };
         match self {
-            Self::Open => &["swp", "obj", "glb", "ply", "stl"],
-            Self::SaveAs => &["swp", "obj"],
-            Self::Export => &["obj", "glb", "ply", "stl"],
+            Self::Open => std::iter::once("swp").chain(meshes(|f| f.capabilities().reads)).collect(),
+            Self::SaveAs => vec!["swp", "obj"],
+            Self::Export => meshes(|f| f.capabilities().writes).collect(),
         }
     }
 

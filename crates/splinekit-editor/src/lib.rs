@@ -1137,7 +1137,8 @@ impl EditorApp {
             return;
         }
         let Some(format) = MeshFormat::from_path(path) else {
-            self.status = format!("Error: {}: unknown extension (expected .obj, .glb, .ply or .stl)", path.display());
+            self.status =
+                format!("Error: {}: unknown extension (expected one of {})", path.display(), MeshFormat::list());
             return;
         };
         // the mesh shown, or the document to sweep in full if what is shown is a preview or

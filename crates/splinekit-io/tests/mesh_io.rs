@@ -119,29 +119,63 @@ fn tobj_read(bytes: &[u8]) -> tobj::Mesh {
     models.remove(0).mesh
 }
 
-/// Face-varying normals and UVs are written with their own indices: tobj reads back the same
-/// positions, the same corners' indices into each pool, and the same values; the mesh keeps
-/// its vertices (a closed quad cube with flat normals and a UV seam stays 8 vertices).
-#[test]
-fn obj_keeps_face_varying_attributes_with_their_own_indices() {
+/// A cube of quads with flat normals and a UV seam (side 5 has UVs of its own).
+fn seamed_cube() -> splinekit::PolyMesh {
     use splinekit::{FaceVarying, PolyMesh};
     let positions: Vec<DVec3> =
         (0..8).map(|i| DVec3::new(f64::from(i & 1), f64::from((i >> 1) & 1), f64::from(i >> 2))).collect();
     let quads: [[u32; 4]; 6] = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
     let axes = [DVec3::NEG_Z, DVec3::Z, DVec3::NEG_Y, DVec3::Y, DVec3::NEG_X, DVec3::X];
-    let mut mesh = PolyMesh {
+    let uv = |k: u32| DVec2::new(f64::from(k & 1), f64::from(k >> 1));
+    PolyMesh {
         positions,
         face_offsets: (0..=6).map(|f| 4 * f).collect(),
         face_vertices: quads.iter().flatten().copied().collect(),
+        normals: Some(FaceVarying { values: axes.to_vec(), indices: (0..24).map(|c| c / 4).collect() }),
+        uvs: Some(FaceVarying {
+            values: (0..8).map(|k| uv(k % 4) * if k < 4 { 1.0 } else { 0.5 }).collect(),
+            indices: (0..24).map(|c| if c >= 20 { 4 + c % 4 } else { c % 4 }).collect(),
+        }),
         ..PolyMesh::default()
-    };
-    // one normal per side; UVs: four shared corners, but side 5 has its own (a seam)
-    mesh.normals = Some(FaceVarying { values: axes.to_vec(), indices: (0..24).map(|c| c / 4).collect() });
-    let uv = |k: u32| DVec2::new(f64::from(k & 1), f64::from(k >> 1));
-    mesh.uvs = Some(FaceVarying {
-        values: (0..8).map(|k| uv(k % 4) * if k < 4 { 1.0 } else { 0.5 }).collect(),
-        indices: (0..24).map(|c| if c >= 20 { 4 + c % 4 } else { c % 4 }).collect(),
-    });
+    }
+}
+
+/// Each format's capabilities say what its file keeps: written by `save_poly` and read back,
+/// polygons stay polygons where it holds them, an attribute held per corner keeps the 8
+/// vertices, one held per vertex splits the seams (or, for PLY's normals, is left out), and
+/// one not held is gone.
+#[test]
+fn format_capabilities_are_what_the_files_keep() {
+    use splinekit_io::mesh::{Carries, load_mesh, save_poly};
+    let cube = seamed_cube();
+    let dir = Scratch::new("capabilities");
+    for format in MeshFormat::ALL {
+        let caps = format.capabilities();
+        assert!(caps.reads && caps.writes, "{format}");
+        let path = dir.0.join(format!("cube.{format}"));
+        let saved = save_poly(&cube, &path, format, false).unwrap();
+        let back = load_mesh(&path).unwrap().mesh;
+        assert_eq!(back.num_vertices(), saved.vertices, "{format}");
+        assert_eq!(back.num_faces(), if caps.polygons { 6 } else { 12 }, "{format}");
+        let split = caps.uvs == Carries::PerVertex || caps.normals == Carries::PerVertex && format != MeshFormat::Ply;
+        assert_eq!(back.num_vertices() > 8, split, "{format}: {} vertices", back.num_vertices());
+        assert_eq!(back.uvs.is_some(), caps.uvs != Carries::No, "{format}");
+        assert_eq!(
+            back.normals.is_some(),
+            caps.normals == Carries::PerCorner || split && caps.normals != Carries::No,
+            "{format}"
+        );
+        assert_eq!(saved.normals_left_out, format == MeshFormat::Ply, "{format}");
+    }
+}
+
+/// Face-varying normals and UVs are written with their own indices: tobj reads back the same
+/// positions, the same corners' indices into each pool, and the same values; the mesh keeps
+/// its vertices (a closed quad cube with flat normals and a UV seam stays 8 vertices).
+#[test]
+fn obj_keeps_face_varying_attributes_with_their_own_indices() {
+    use splinekit::FaceVarying;
+    let mut mesh = seamed_cube();
     let mut bytes = Vec::new();
     splinekit_io::mesh::write_obj_poly(&mesh, &mut bytes).unwrap();
     let read = tobj_read(&bytes);

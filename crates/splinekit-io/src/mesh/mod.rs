@@ -136,6 +136,78 @@ impl MeshFormat {
     pub fn from_path(path: impl AsRef<Path>) -> Option<Self> {
         path.as_ref().extension().and_then(|e| e.to_str()).and_then(Self::from_extension)
     }
+
+    /// What the format is, in a few words, for lists of formats (`--help`, dialogs).
+    #[must_use]
+    pub const fn description(self) -> &'static str {
+        match self {
+            Self::Obj => "Wavefront OBJ (text)",
+            Self::Glb => "binary glTF 2.0",
+            Self::Ply => "PLY (binary little endian)",
+            Self::Stl => "binary STL",
+        }
+    }
+
+    /// What a file of this format keeps of a mesh, as splinekit writes and reads it.
+    #[must_use]
+    pub const fn capabilities(self) -> FormatCapabilities {
+        let all = FormatCapabilities {
+            reads: true,
+            writes: true,
+            polygons: true,
+            normals: Carries::PerCorner,
+            uvs: Carries::PerCorner,
+            colours: true,
+            creases: false,
+        };
+        match self {
+            Self::Obj => FormatCapabilities { creases: true, ..all },
+            Self::Ply => FormatCapabilities { normals: Carries::PerVertex, ..all },
+            Self::Glb => {
+                FormatCapabilities { polygons: false, normals: Carries::PerVertex, uvs: Carries::PerVertex, ..all }
+            }
+            Self::Stl => {
+                FormatCapabilities { polygons: false, normals: Carries::No, uvs: Carries::No, colours: false, ..all }
+            }
+        }
+    }
+
+    /// `obj, glb, ply, stl`: the formats' extensions, for messages.
+    #[must_use]
+    pub fn list() -> String {
+        Self::ALL.map(Self::extension).join(", ")
+    }
+}
+
+/// What a [`MeshFormat`] holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct FormatCapabilities {
+    /// [`load_mesh`] reads it.
+    pub reads: bool,
+    /// [`save`] and [`save_poly`] write it.
+    pub writes: bool,
+    /// Faces of any number of corners (else triangles: polygons are fanned).
+    pub polygons: bool,
+    /// Normals.
+    pub normals: Carries,
+    /// Texture coordinates.
+    pub uvs: Carries,
+    /// One colour a vertex.
+    pub colours: bool,
+    /// OpenSubdiv's crease tags.
+    pub creases: bool,
+}
+
+/// How a format holds an attribute.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Carries {
+    /// Not at all.
+    No,
+    /// One value a vertex: a vertex whose corners differ is written once per value (a seam).
+    PerVertex,
+    /// A value per face corner, so a vertex on a seam stays one vertex.
+    PerCorner,
 }
 
 impl std::fmt::Display for MeshFormat {
