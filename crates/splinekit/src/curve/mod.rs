@@ -1,7 +1,8 @@
 //! Curves: the [`ParamCurve`] trait, cubic segments, and the spline kinds that compile
 //! into chains of them.
 //!
-//! Every kind (Bézier, uniform B-spline, Catmull-Rom, Hermite) validates its input once
+//! Every kind (Bézier, uniform B-spline, Catmull-Rom, Hermite, Kochanek–Bartels,
+//! Bessel–Overhauser) validates its input once
 //! and compiles into a [`PiecewiseCubic`]: a chain of [`CubicBezier`] segments with the
 //! *concatenated parameter* `u ∈ [0, segments]`, segment `k` covering `[k, k+1]`
 //! with local `t = u − k`. Circles ([`Circle`]), helices ([`Helix`]) and the
@@ -38,6 +39,7 @@ mod helix;
 mod hermite;
 mod piecewise;
 mod planar;
+mod tcb;
 mod trefoil;
 
 pub use any::AnyCurve;
@@ -48,6 +50,7 @@ pub use circle::Circle;
 pub use helix::Helix;
 pub use hermite::Hermite;
 pub use piecewise::{BezierSpline, PiecewiseCubic};
+pub use tcb::{BesselOverhauser, KochanekBartels, Tcb};
 pub use trefoil::Trefoil;
 
 use crate::arclen::ArclenEstimate;
@@ -100,6 +103,24 @@ pub enum SplineError {
     /// A chain with no segments.
     #[error("a curve needs at least one segment")]
     Empty,
+    /// Kochanek–Bartels keys and their shapes differ in number.
+    #[error("kochanek-bartels needs one tension, continuity and bias per key, got {points} keys and {shapes}")]
+    ShapeCount {
+        /// Number of keys.
+        points: usize,
+        /// Number of shapes.
+        shapes: usize,
+    },
+    /// A Kochanek–Bartels tension, continuity or bias outside [−1, 1].
+    #[error("{name} of key {index} must be in [-1, 1], got {value}")]
+    BadShape {
+        /// The key.
+        index: usize,
+        /// `tension`, `continuity` or `bias`.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
 }
 
 /// Axis-aligned bounding box.
