@@ -35,6 +35,8 @@
 use rayon::prelude::*;
 
 use super::counts::{self, Counts};
+use super::crease::{Creases, CreasingMethod};
+use super::general::{General, repeated_vertex};
 use super::loop_scheme::{Attribute, BoundaryRule, SubdivError, child_colors, parent_colors};
 use super::quads::{self, QuadLevel};
 use super::regular;
@@ -67,7 +69,10 @@ pub fn catmull_clark_subdivide(
     if levels == 0 {
         return Ok(PolyMesh { normals: None, uvs: None, ..mesh.clone() });
     }
-    let rings = Rings::new(mesh)?;
+    let rings = match Rings::new(mesh) {
+        Err(SubdivError::Topology(e)) if e.is_nonmanifold() => return general(mesh, levels, options),
+        rings => rings?,
+    };
     counts::catmull_clark_levels(Counts::of_rings(&rings), 0, levels)?;
     let all_quads = mesh.face_vertices.len() == 4 * mesh.num_faces()
         && mesh.face_offsets.iter().enumerate().all(|(f, &o)| o as usize == 4 * f);
@@ -108,7 +113,19 @@ pub fn catmull_clark_step(
     depth: usize,
     options: &CatmullClarkOptions,
 ) -> Result<PolyMesh, SubdivError> {
-    let rings = Rings::new(mesh)?;
+    let rings = match Rings::new(mesh) {
+        Err(SubdivError::Topology(e)) if e.is_nonmanifold() => {
+            // the colours of this level are made from the parent's, by level or not
+            return general(mesh, 1, &CatmullClarkOptions { color_by_level: false, ..*options }).map(|mut fine| {
+                if options.color_by_level {
+                    let parent = parent_colors(mesh, true, depth);
+                    fine.colors = child_colors(true, &parent, fine.positions.len(), depth, |c| c.to_vec());
+                }
+                fine
+            });
+        }
+        rings => rings?,
+    };
     let parent_depth = depth.saturating_sub(1);
     counts::catmull_clark_levels(Counts::of_rings(&rings), parent_depth, parent_depth + 1)?;
     let positions = rings.refine(&mesh.positions, options.boundary);
@@ -119,6 +136,14 @@ pub fn catmull_clark_step(
     Ok(PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs: None })
 }
 
+/// [`catmull_clark_subdivide`] of a non-manifold or degenerate mesh, with OpenSubdiv's rules
+/// (see [`general`](super::general)).
+fn general(mesh: &PolyMesh, levels: usize, options: &CatmullClarkOptions) -> Result<PolyMesh, SubdivError> {
+    let no = Creases::default();
+    let general = General::catmark(options.boundary, &no, CreasingMethod::default());
+    general.subdivide(mesh, levels, options.color_by_level).map(|(m, ..)| m)
+}
+
 /// What one level needs: the mesh's faces and their adjacency, checked to be manifold.
 pub(super) struct Rings<'a> {
     pub(super) mesh: &'a PolyMesh,
@@ -126,9 +151,12 @@ pub(super) struct Rings<'a> {
 }
 
 impl<'a> Rings<'a> {
-    /// The adjacency of `mesh`; an error for the first non-manifold or inconsistently
-    /// oriented edge or vertex.
+    /// The adjacency of `mesh`; an error for the first face that repeats a vertex, else the
+    /// first non-manifold or inconsistently oriented edge or vertex.
     pub(super) fn new(mesh: &'a PolyMesh) -> Result<Self, SubdivError> {
+        if let Some((face, vertex)) = repeated_vertex(mesh) {
+            return Err(TopologyError::RepeatedVertex { face: face as u32, vertex }.into());
+        }
         let adj = Adjacency::build(mesh);
         if let Some(p) = adj.problems.first() {
             let (a, b, corners) = match p {

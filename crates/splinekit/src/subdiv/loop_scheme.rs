@@ -46,6 +46,8 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::counts::{self, Counts};
+use super::crease::{Creases, CreasingMethod};
+use super::general::General;
 use super::grandchild::{grandchild_triangles, grandchild_values};
 use super::great::{great_grandchild_triangles, great_grandchild_values};
 use super::topology::{MIN_LEN, MIN_RINGS, Table, Topology, TopologyError, child_level, next, prev};
@@ -868,5 +870,12 @@ fn derive_topology<T>(channel: &mut Option<Channel<T>>, parent: &Option<Channel<
 /// As [`LoopPyramid::new`], and [`SubdivError::TooLarge`] if the result would not fit `u32`
 /// indices (checked before any level is made).
 pub fn loop_subdivide(mesh: &PolyMesh, levels: u32, options: &LoopOptions) -> Result<PolyMesh, SubdivError> {
-    Ok(LoopPyramid::new(mesh, *options)?.into_refined(levels as usize, |_| {})?.to_mesh())
+    match LoopPyramid::new(mesh, *options) {
+        Err(SubdivError::Topology(e)) if e.is_nonmanifold() => {
+            let no = Creases::default();
+            let general = General::loop_scheme(options, &no, CreasingMethod::default());
+            general.subdivide(mesh, levels as usize, options.color_by_level).map(|(m, ..)| m)
+        }
+        pyramid => Ok(pyramid?.into_refined(levels as usize, |_| {})?.to_mesh()),
+    }
 }
