@@ -207,3 +207,56 @@ fn catmull_clark_matches_opensubdiv_on_nonmanifold_meshes() {
         Ok((fine.positions.clone(), fine))
     });
 }
+
+/// Invariants of the non-manifold path: moving the mesh moves the subdivision (the rules are
+/// affine), colours that are an affine image of the positions stay one, and each level has
+/// `V + E` (Loop) or `V + E + F` (Catmull-Clark) vertices.
+#[test]
+fn nonmanifold_subdivision_is_affine_and_counts_follow() {
+    let shift = |p: DVec3| DVec3::new(0.3 * p.y - 2.0 * p.x + 1.0, p.z + 0.5 * p.x, -p.y + 3.0);
+    for name in CATMARK {
+        let mut mesh = read(&format!("{name}.in.obj"));
+        mesh.colors = mesh.positions.iter().map(|&p| shift(p)).collect();
+        let mut moved = mesh.clone();
+        moved.positions = mesh.colors.clone();
+        let triangles = mesh.is_triangle_mesh();
+        for level in 1..=2u32 {
+            let runs: Vec<(PolyMesh, PolyMesh)> = if triangles {
+                let o = LoopOptions::default();
+                vec![(loop_subdivide(&mesh, level, &o).unwrap(), loop_subdivide(&moved, level, &o).unwrap())]
+            } else {
+                vec![]
+            }
+            .into_iter()
+            .chain([(
+                catmull_clark_subdivide(&mesh, level as usize, &CatmullClarkOptions::default()).unwrap(),
+                catmull_clark_subdivide(&moved, level as usize, &CatmullClarkOptions::default()).unwrap(),
+            )])
+            .collect();
+            for (fine, fine_moved) in runs {
+                assert_eq!(fine.face_vertices, fine_moved.face_vertices, "{name} level {level}");
+                for (k, ((&p, &q), &c)) in
+                    fine.positions.iter().zip(&fine_moved.positions).zip(&fine.colors).enumerate()
+                {
+                    assert!(shift(p).distance(q) < 1e-12, "{name} level {level} vertex {k}: {p} moved is not {q}");
+                    assert!(c.distance(q) < 1e-12, "{name} level {level} vertex {k}: colour {c}, position {q}");
+                }
+            }
+        }
+    }
+}
+
+/// One level's counts: Loop `V + E` vertices and `4F` triangles, Catmull-Clark `V + E + F` and
+/// one quad per corner, where `E` counts OpenSubdiv's edges: the degenerate triangle `a a b` of
+/// `degenerate` has three (`a–a`, `a–b` and `b–a` apart), so its level has two vertices at `a`.
+#[test]
+fn counts_count_opensubdivs_edges() {
+    let mesh = read("degenerate.in.obj");
+    // a 4 x 4 grid: 25 vertices, 56 edges, 32 triangles; then (0-based) 12 12 13 (12–12, and the
+    // grid's edge 12–13 gets a third face and an edge 13–12 of its own), 16 16 16 (three edges
+    // 16–16) and 18 24 18 (18–24 on the grid, 24–18 of its own, 18–18): 7 more edges
+    let fine = loop_subdivide(&mesh, 1, &LoopOptions::default()).unwrap();
+    assert_eq!((fine.num_vertices(), fine.num_faces()), (25 + 63, 4 * 35));
+    let fine = catmull_clark_subdivide(&mesh, 1, &CatmullClarkOptions::default()).unwrap();
+    assert_eq!((fine.num_vertices(), fine.num_faces()), (25 + 63 + 35, 3 * 35));
+}

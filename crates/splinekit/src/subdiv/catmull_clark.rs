@@ -27,10 +27,13 @@
 //! mesh, with positions and colours equal to rounding (a few ulps), and the same on any
 //! number of threads.
 //!
-//! The mesh must be manifold and consistently oriented (split non-manifold edges and
-//! vertices first, e.g. with [`crate::mesh::split_nonmanifold`]); the error names the first
-//! edge or vertex that is not. Face-varying normals and UVs are not carried (a subdivided
-//! surface's normals are computed from it).
+//! **Non-manifold and degenerate meshes** (an edge of more than two faces or of two faces
+//! running the same way, a vertex whose faces form several fans, a face that repeats a vertex)
+//! are subdivided with OpenSubdiv's rules: their non-manifold edges are infinitely sharp
+//! creases and their non-manifold vertices corners (see [`general`](super::general)), level by
+//! level through the subdivision matrices, so more slowly; [`crate::mesh::split_nonmanifold`]
+//! splits such a mesh apart instead, which gives another surface. Face-varying normals and UVs
+//! are not carried (a subdivided surface's normals are computed from it).
 
 use rayon::prelude::*;
 
@@ -58,8 +61,7 @@ pub struct CatmullClarkOptions {
 ///
 /// # Errors
 ///
-/// [`SubdivError::Topology`] for an edge used by more than two faces or twice in the same
-/// direction, or a vertex whose faces form several fans; [`SubdivError::TooLarge`] if the
+/// [`SubdivError::Topology`] for a vertex index out of range; [`SubdivError::TooLarge`] if the
 /// result would not fit `u32` indices (checked before any level is made).
 pub fn catmull_clark_subdivide(
     mesh: &PolyMesh,
@@ -103,7 +105,11 @@ pub fn catmull_clark_subdivide(
 /// One level of [`catmull_clark_subdivide`]: the child of `mesh`, which is level `depth − 1`
 /// of the subdivision (`depth` picks the colour of the new vertices with
 /// [`CatmullClarkOptions::color_by_level`]; at depth 1 the mesh's own vertices get
-/// [`LEVEL_COLORS`](super::LEVEL_COLORS)`[0]`). Refining level by level gives the same meshes as one call.
+/// [`LEVEL_COLORS`](super::LEVEL_COLORS)`[0]`). Refining level by level gives the same meshes as one call,
+/// except on a non-manifold mesh whose levels have faces that repeat a vertex or edges whose
+/// faces run the same way: each call takes its mesh as a base mesh, and OpenSubdiv's tags of
+/// the levels below (which edge halves stay apart, which vertices stay creases) are not in a
+/// mesh.
 ///
 /// # Errors
 ///

@@ -26,7 +26,8 @@
 //! when `v` has other semi-sharp edges, else `s − 1` — so a crease whose sharpness varies
 //! along it tapers smoothly. Edges inside a face are smooth. The subdivision functions return
 //! the child's [`Creases`], so that refining level by level gives the same result as refining
-//! several levels at once.
+//! several levels at once (on a manifold mesh: the tags a non-manifold mesh's levels inherit
+//! are not in their creases, see [`catmull_clark_step`](super::catmull_clark_step)).
 
 use glam::DVec3;
 
