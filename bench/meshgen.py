@@ -9,6 +9,8 @@ library only.
     meshgen.py grid NX NY OUT.obj         2*NX*NY triangles, open (one boundary loop, 4 corners)
     meshgen.py copy IN.obj OUT.obj        the `v` and `f` lines of IN (first three coordinates,
                                           vertex index of each corner), everything else dropped
+    meshgen.py nonmanifold DIR            the non-manifold and degenerate meshes of
+                                          nonmanifold_meshes() as DIR/NAME.in.obj
     meshgen.py crop IN.obj AXIS MAX OUT.obj
                                           the triangles of IN whose three vertices have
                                           coordinate AXIS (x, y or z) below MAX, and the vertices
@@ -157,6 +159,147 @@ def grid(nx, ny):
     return positions, triangles
 
 
+def _jitter(k, scale=0.05):
+    """A small deterministic offset for vertex k, so that distinct vertices of the
+    non-manifold meshes never coincide (a golden-ratio sequence per axis)."""
+    return tuple(scale * (((k + 1) * c) % 1.0 - 0.5) for c in (0.6180339887, 0.7548776662, 0.5698402910))
+
+
+def _jittered(points):
+    return [tuple(x + d for x, d in zip(p, _jitter(k))) for k, p in enumerate(points)]
+
+
+def _fins(nfins, nspine, flip_odd=True):
+    """Fins around a spine on the z axis: spine vertices 0..nspine-1 at z = 0, 1, ..; fin k is a
+    strip of triangles out to a row at radius 1 and angle 2*pi*k/nfins. Every spine edge is used
+    by nfins triangles; odd fins are wound the other way when flip_odd."""
+    pos = [(0.0, 0.0, float(i)) for i in range(nspine)]
+    tris = []
+    for k in range(nfins):
+        a = 2 * math.pi * k / nfins
+        row = len(pos)
+        pos += [(math.cos(a), math.sin(a), float(i) + 0.2 * math.sin(3 * a)) for i in range(nspine)]
+        for i in range(nspine - 1):
+            s0, s1, f0, f1 = i, i + 1, row + i, row + i + 1
+            quad = [(s0, s1, f1), (s0, f1, f0)]
+            if flip_odd and k % 2:
+                quad = [t[::-1] for t in quad]
+            tris += quad
+    return _jittered(pos), tris
+
+
+def _fan(center, ring, z, radius, n, start, phase=0.0, down=False):
+    """A closed fan (cone) of n triangles around vertex `center` over ring vertices start..start+n-1."""
+    pts = [(radius * math.cos(phase + 2 * math.pi * i / n), radius * math.sin(phase + 2 * math.pi * i / n), z)
+           for i in range(n)]
+    tris = [(center, start + i, start + (i + 1) % n) for i in range(n)]
+    if down:
+        tris = [t[::-1] for t in tris]
+    return pts, tris
+
+
+def nonmanifold_meshes():
+    """The non-manifold and degenerate test meshes: name -> (comment, positions, faces, schemes),
+    schemes a subset of "loop" (all triangles) and "catmark"."""
+    out = {}
+    # an edge shared by 3 triangles, two spine edges: the middle spine vertex is an interior
+    # non-manifold crease (more faces than edges, no boundary edge)
+    p, t = _fins(3, 3)
+    out["fins3"] = ("3 fins of 4 triangles on a spine of 2 edges (each used by 3 faces)", p, t, ("loop", "catmark"))
+    p, t = _fins(4, 3, flip_odd=False)
+    out["fins4"] = ("4 fins on a spine of 2 edges, all wound alike (each spine edge used by 4 faces)", p, t,
+                    ("loop", "catmark"))
+    # 100 triangles on one edge
+    pos = [(0.0, 0.0, 0.0), (0.0, 0.0, 1.0)]
+    tris = []
+    for k in range(100):
+        a = 2 * math.pi * k / 100
+        pos.append((math.cos(a), math.sin(a), 0.5 + 0.3 * math.sin(5 * a)))
+        tris.append((0, 1, 2 + k) if k % 2 == 0 else (1, 0, 2 + k))
+    out["edge100"] = ("100 triangles on the edge 1-2, alternately wound", _jittered(pos), tris, ("loop", "catmark"))
+    # two cones touching at their apex (a vertex with two fans), and a bowtie of two triangles
+    p1, t1 = _fan(0, None, 1.0, 1.0, 5, 1)
+    p2, t2 = _fan(0, None, -1.0, 0.8, 6, 6, phase=0.3, down=True)
+    pos = [(0.0, 0.0, 0.0)] + p1 + p2
+    bow = len(pos)
+    pos += [(2.0, 0.0, 0.0), (3.0, 1.0, 0.2), (3.0, -1.0, 0.1), (1.0, 1.0, -0.2), (1.0, -1.0, 0.3)]
+    tris = t1 + t2 + [(bow, bow + 2, bow + 1), (bow, bow + 3, bow + 4)]
+    out["cones"] = ("two cones of 5 and 6 triangles touching at their apex (vertex 1), and a bowtie of two "
+                    "triangles at vertex 12", _jittered(pos), tris, ("loop", "catmark"))
+    # back-to-back triangles: a pillow of two (interior vertices of valence 2), and one glued to an
+    # open grid along an edge (that edge then has 3 faces)
+    pos = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.1), (0.3, 0.9, -0.1)]
+    tris = [(0, 1, 2), (0, 2, 1)]
+    gp = [(2.0 + i * 0.5, j * 0.5, 0.1 * math.sin(i + 2 * j)) for j in range(3) for i in range(3)]
+    g = lambda i, j: 3 + j * 3 + i
+    pos += gp
+    for j in range(2):
+        for i in range(2):
+            tris += [(g(i, j), g(i + 1, j), g(i + 1, j + 1)), (g(i, j), g(i + 1, j + 1), g(i, j + 1))]
+    apex = len(pos)
+    pos.append((2.6, 0.4, 0.8))
+    tris += [(g(1, 1), g(2, 1), apex), (g(1, 1), apex, g(2, 1))]
+    out["backtoback"] = ("a pillow of two back-to-back triangles (valence-2 interior vertices); an open grid with "
+                         "two back-to-back triangles on one of its edges", _jittered(pos), tris, ("loop", "catmark"))
+    # a grid with one triangle wound the other way (a fold-over: its edges are used twice the same way)
+    # and degenerate triangles that repeat a vertex
+    pos, tris = grid(4, 4)
+    tris = [tuple(t) for t in tris]
+    g = lambda i, j: j * 5 + i
+    tris[11] = tris[11][::-1]
+    out["foldgrid"] = ("open 4 x 4 grid of 32 triangles, triangle 12 wound the other way", _jittered(pos), tris,
+                       ("loop", "catmark"))
+    tris = [t for t in tris]
+    tris[11] = tris[11][::-1]
+    tris += [(g(2, 2), g(2, 2), g(3, 2)), (g(1, 3), g(1, 3), g(1, 3)), (g(3, 3), g(4, 4), g(3, 3))]
+    out["degenerate"] = ("open 4 x 4 grid of 32 triangles and three degenerate ones: 13 13 14 (on a grid edge), "
+                         "17 17 17, 19 25 19", _jittered(pos), tris, ("loop", "catmark"))
+    # Catmull-Clark: a cube with two quad poles (faces a b a c) and a quad that repeats a vertex
+    cube = [((i & 1) * 2 - 1, ((i >> 1) & 1) * 2 - 1, (i >> 2) * 2 - 1) for i in range(8)]
+    faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]]
+    pos = [tuple(0.9 * x for x in c) for c in cube] + [(0.0, 0.0, 1.6), (1.6, 0.0, 0.0)]
+    faces += [[4, 8, 4, 5], [8, 5, 8, 7], [3, 9, 3, 7], [1, 9, 1, 1]]
+    out["poles"] = ("cube with quad poles 5 9 5 6 and 9 6 9 8 on its top, 4 10 4 8 on a side, and the quad 2 10 2 2",
+                    _jittered(pos), faces, ("catmark",))
+    # Catmull-Clark: valence-2 interior vertices: a quad pillow, and a cube with a vertex inserted on
+    # two of its edges (two pentagons each)
+    pos = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.1), (1.1, 1.0, 0.0), (-0.1, 0.9, 0.2)]
+    faces = [[0, 1, 2, 3], [0, 3, 2, 1]]
+    off = len(pos)
+    pos += [(3.0 + x, y, z) for (x, y, z) in cube] + [(3.0, -1.0, -1.0), (4.0, 0.0, 1.0)]
+    cf = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]]
+    cf = [[v + off for v in f] for f in cf]
+    m0, m1 = off + 8, off + 9
+    cf[0] = [off + 0, off + 2, off + 3, off + 1, m0]      # edge 1-0 gets m0
+    cf[2] = [off + 0, m0, off + 1, off + 5, off + 4]
+    cf[1] = [off + 4, off + 5, m1, off + 7, off + 6]      # edge 5-7 gets m1
+    cf[5] = [off + 1, off + 3, off + 7, m1, off + 5]
+    faces += cf
+    out["valence2"] = ("a pillow of two back-to-back quads (valence-2 interior vertices) and a cube with a vertex "
+                       "inserted on two edges (valence-2, faces of 5 corners)", _jittered(pos), faces, ("catmark",))
+    # Catmull-Clark: two cubes sharing an edge (4 faces on it), a third touching at a vertex, a triangle fin
+    pos, faces = [], []
+    cube_faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]]
+    for (dx, dy, dz) in [(0, 0, 0), (2, 2, 0), (-2, 0, 2)]:
+        o = len(pos)
+        pos += [(x + dx, y + dy, z + dz) for (x, y, z) in cube]
+        faces += [[v + o for v in f] for f in cube_faces]
+    # cube 2 moved so that its edge 0-4 is cube 1's edge 3-7, cube 3 so that its vertex 3 is cube 1's vertex 6
+    remap = {8: 3, 12: 7}
+    remap3 = {16 + 3: 6}
+    faces = [[remap.get(v, remap3.get(v, v)) for v in f] for f in faces]
+    used = sorted({v for f in faces for v in f})
+    new = {v: k for k, v in enumerate(used)}
+    pos = [pos[v] for v in used]
+    faces = [[new[v] for v in f] for f in faces]
+    fin = len(pos)
+    pos += [(-2.0, -2.0, -0.5)]
+    faces.append([new[0], new[1], fin])
+    out["cubes"] = ("three cubes: two sharing an edge (4 faces on it), one touching the first at a vertex; and a "
+                    "triangle fin on the first cube's edge 1-2 (3 faces on it)", _jittered(pos), faces, ("catmark",))
+    return out
+
+
 def main(argv):
     if len(argv) < 2:
         sys.exit(__doc__)
@@ -202,6 +345,11 @@ def main(argv):
         comment = (f"the {len(t)} triangles of {name} with {argv[3]} < {argv[4]} at all three corners, "
                    f"rewritten with %.17g (bench/meshgen.py crop)")
         out = argv[5]
+    elif kind == "nonmanifold" and len(argv) == 3:
+        for name, (comment, p, faces, schemes) in nonmanifold_meshes().items():
+            write_input(argv[2], name, f"{comment}; for {' and '.join(schemes)} (bench/meshgen.py nonmanifold)",
+                        p, faces)
+        return
     else:
         sys.exit(__doc__)
     write_obj(out, p, t, comment)

@@ -149,6 +149,7 @@ struct Args {
     int repeat = 1;
     bool corners = false;
     bool limit = false;  // OpenSubdiv drivers: write the limit positions of the finest level
+    bool normals = true; // with --limit: also the limit normals (--no-normals: positions only)
     bool uniform_creasing = false;  // OpenSubdiv drivers: --creasing uniform (default chaikin)
     std::string scheme;  // drivers of several schemes: the one of --scheme (default the first)
 };
@@ -170,6 +171,7 @@ inline Args parse_args(int argc, char** argv, const char* usage, bool has_corner
         else if (s == "-o" && i + 1 < argc) a.output = argv[++i];
         else if (s == "--corners" && has_corners) a.corners = true;
         else if (s == "--limit" && has_corners) a.limit = true;
+        else if (s == "--no-normals" && has_corners) a.normals = false;
         else if (s == "--creasing" && has_corners && i + 1 < argc) {
             std::string m = argv[++i];
             scheme_ok = scheme_ok && (m == "uniform" || m == "chaikin");

@@ -1,6 +1,6 @@
 // OpenSubdiv (Far) Catmull-Clark subdivision driver.
 //
-//   osd_catmark IN.obj -n LEVELS [--repeat R] [--corners] [--limit] [-o OUT.obj]
+//   osd_catmark IN.obj -n LEVELS [--repeat R] [--corners] [--limit [--no-normals]] [-o OUT.obj]
 //
 // --limit writes the limit positions (PrimvarRefinerReal::Limit) of the finest level instead.
 //
@@ -15,6 +15,6 @@
 #include "osd_common.hpp"
 
 int main(int argc, char** argv) {
-    Args a = parse_args(argc, argv, "osd_catmark IN.obj -n LEVELS [--repeat R] [--corners] [--limit] [--creasing chaikin|uniform] [-o OUT.obj]", true);
+    Args a = parse_args(argc, argv, "osd_catmark IN.obj -n LEVELS [--repeat R] [--corners] [--limit [--no-normals]] [--creasing chaikin|uniform] [-o OUT.obj]", true);
     return run_osd(a, read_obj(a.input, true), Sdc::SCHEME_CATMARK, "SCHEME_CATMARK");
 }

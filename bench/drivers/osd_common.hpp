@@ -84,10 +84,17 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
         if (a.limit) {
             // the limit positions of the finest level's vertices, and the unit limit normals
             // tan1 x tan2 (not timed)
+            // (--no-normals: positions only. Limit with tangents overruns its mask buffers at
+            // a non-manifold Catmull-Clark vertex of many faces, such as the ends of an edge of
+            // 100 faces; the positions-only Limit does not.)
             std::vector<Vertex> limit(nv), tan1(nv), tan2(nv);
-            Far::PrimvarRefinerReal<double>(*refiner).Limit(&buffer[first], limit, tan1, tan2);
+            if (a.normals) {
+                Far::PrimvarRefinerReal<double>(*refiner).Limit(&buffer[first], limit, tan1, tan2);
+            } else {
+                Far::PrimvarRefinerReal<double>(*refiner).Limit(&buffer[first], limit);
+            }
             std::memcpy(out.xyz.data(), limit.data(), 3 * nv * sizeof(double));
-            for (long v = 0; v < nv; ++v) {
+            for (long v = 0; a.normals && v < nv; ++v) {
                 const double* s = tan1[v].p;
                 const double* t = tan2[v].p;
                 double n[3] = {s[1] * t[2] - s[2] * t[1], s[2] * t[0] - s[0] * t[2], s[0] * t[1] - s[1] * t[0]};

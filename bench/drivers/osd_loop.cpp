@@ -1,6 +1,6 @@
 // OpenSubdiv (Far) Loop subdivision driver.
 //
-//   osd_loop IN.obj -n LEVELS [--repeat R] [--corners] [--limit] [-o OUT.obj]
+//   osd_loop IN.obj -n LEVELS [--repeat R] [--corners] [--limit [--no-normals]] [-o OUT.obj]
 //
 // Loop scheme (Sdc::SCHEME_LOOP), boundary interpolation VTX_BOUNDARY_EDGE_ONLY (boundary
 // edges are sharp creases: midpoint odd vertices, 3/4 1/8 1/8 even vertices, one-face corners
@@ -14,6 +14,6 @@
 #include "osd_common.hpp"
 
 int main(int argc, char** argv) {
-    Args a = parse_args(argc, argv, "osd_loop IN.obj -n LEVELS [--repeat R] [--corners] [--limit] [--creasing chaikin|uniform] [-o OUT.obj]", true);
+    Args a = parse_args(argc, argv, "osd_loop IN.obj -n LEVELS [--repeat R] [--corners] [--limit [--no-normals]] [--creasing chaikin|uniform] [-o OUT.obj]", true);
     return run_osd(a, read_obj(a.input), Sdc::SCHEME_LOOP, "SCHEME_LOOP");
 }

@@ -12,10 +12,11 @@ use splinekit::PolyMesh;
 use splinekit::mesh::FaceVarying;
 use splinekit::subdiv::{
     BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions, LoopLevel,
-    LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, butterfly_subdivide, catmull_clark_limit_creased,
-    catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
-    catmull_clark_subdivide_creased, doo_sabin_subdivide, loop_limit_creased, loop_limit_normals, loop_limit_positions,
-    loop_subdivide, loop_subdivide_creased, sqrt3_subdivide,
+    LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, TopologyError, butterfly_subdivide,
+    catmull_clark_limit_creased, catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
+    catmull_clark_subdivide_creased, catmull_clark_subdivide_limit, doo_sabin_subdivide, is_nonmanifold,
+    loop_limit_creased, loop_limit_normals, loop_limit_positions, loop_subdivide, loop_subdivide_creased,
+    loop_subdivide_limit, sqrt3_subdivide,
 };
 use splinekit_io::mesh::{MeshFormat, SavedPoly, read_creases, save_poly, save_poly_creased};
 
@@ -84,9 +85,14 @@ use crate::output::JsonNum;
 /// another number of vertices (seams split). Shows a progress bar on standard error when it
 /// is a terminal.
 ///
-/// Non-triangle faces, and non-manifold or inconsistently oriented edges and vertices, are
-/// errors naming the face, edge or vertex; `--split-nonmanifold` instead splits
-/// non-manifold edges and vertices apart (see `splinekit info MESH`) and goes on.
+/// Non-manifold and degenerate meshes (an edge of more than two faces or of two faces running
+/// the same way, a vertex whose faces form several fans, a face that repeats a vertex): Loop
+/// and Catmull-Clark subdivide them as OpenSubdiv does, with their non-manifold edges as
+/// infinitely sharp creases and their non-manifold vertices as corners (normals and UVs are
+/// not carried there). √3, Doo-Sabin and butterfly refuse them, naming the face, edge or
+/// vertex. `--split-nonmanifold` instead splits non-manifold edges and vertices apart (see
+/// `splinekit info MESH`) and goes on, with any scheme; it leaves faces that repeat a vertex
+/// as they are. Non-triangle faces are errors for the triangle schemes.
 #[derive(Debug, clap::Args)]
 #[command(after_help = "Examples:\n  \
     splinekit subdivide bunny.obj -n 2 -o bunny2.obj\n  \
@@ -427,14 +433,24 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         }
         mesh = split;
     }
+    // Loop and Catmull-Clark take non-manifold and degenerate meshes with OpenSubdiv's rules,
+    // through their creased path (level by level); the limit is then that of the subdivision's
+    // own vertex rules, made from the input mesh.
+    let general = matches!(args.scheme, Scheme::Loop | Scheme::CatmullClark) && is_nonmanifold(&mesh);
     match args.scheme {
         Scheme::Loop => {}
-        Scheme::CatmullClark if creased => {
+        Scheme::CatmullClark if creased || general => {
             let options = CatmullClarkOptions { boundary: boundary_rule(args), color_by_level: args.color_by_level };
-            let subdivide = |m: &PolyMesh| {
-                catmull_clark_subdivide_creased(m, args.levels as usize, &options, &creases, creasing(args))
+            let levels = args.levels as usize;
+            let subdivide =
+                |m: &PolyMesh| catmull_clark_subdivide_creased(m, levels, &options, &creases, creasing(args));
+            let limit = |m: &PolyMesh, c: &Creases| {
+                if general {
+                    catmull_clark_subdivide_limit(&mesh, levels, &options, &creases, creasing(args))
+                } else {
+                    catmull_clark_limit_creased(m, &options, c)
+                }
             };
-            let limit = |m: &PolyMesh, c: &Creases| catmull_clark_limit_creased(m, &options, c);
             return run_creased(args, &mesh, format, out, subdivide, Some(&limit), "quads");
         }
         Scheme::CatmullClark => return run_catmull_clark(args, &mesh, format, out),
@@ -461,9 +477,15 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         boundary: boundary_rule(args),
         color_by_level: args.color_by_level,
     };
-    if creased {
+    if creased || general {
         let subdivide = |m: &PolyMesh| loop_subdivide_creased(m, args.levels, &options, &creases, creasing(args));
-        let limit = |m: &PolyMesh, c: &Creases| loop_limit_creased(m, &options, c);
+        let limit = |m: &PolyMesh, c: &Creases| {
+            if general {
+                loop_subdivide_limit(&mesh, args.levels, &options, &creases, creasing(args))
+            } else {
+                loop_limit_creased(m, &options, c)
+            }
+        };
         return run_creased(args, &mesh, format, out, subdivide, Some(&limit), "triangles");
     }
     let pool = thread_pool(args)?;
@@ -523,15 +545,23 @@ fn creasing(args: &SubdivideArgs) -> CreasingMethod {
     }
 }
 
-/// A subdivision error naming the input, with the way on for a topology problem.
+/// A subdivision error naming the input, with the way on for a topology problem: Loop and
+/// Catmull-Clark take non-manifold and degenerate meshes, the other schemes need them split
+/// (`--split-nonmanifold`), which mends non-manifold edges and vertices but not a face that
+/// repeats a vertex.
 fn explain(args: &SubdivideArgs, err: SubdivError) -> anyhow::Error {
-    match err {
-        SubdivError::Topology(_) => anyhow!(
-            "{}: {err}; run with --split-nonmanifold to split non-manifold edges and vertices and go on \
-             (`splinekit info` lists every problem)",
-            args.input.display()
+    let input = args.input.display();
+    let (scheme, info) = (args.scheme.title(), "`splinekit info` lists every problem");
+    match &err {
+        SubdivError::Topology(TopologyError::RepeatedVertex { .. }) => anyhow!(
+            "{input}: {err}; {scheme} subdivision cannot take such a face (--split-nonmanifold does not mend it): \
+             --scheme loop (triangles) or --scheme catmull-clark subdivide it as OpenSubdiv does ({info})"
         ),
-        _ => anyhow!("{}: {err}", args.input.display()),
+        SubdivError::Topology(e) if e.is_nonmanifold() => anyhow!(
+            "{input}: {err}; run with --split-nonmanifold to split non-manifold edges and vertices and go on, or use \
+             --scheme loop (triangles) or --scheme catmull-clark, which subdivide it as OpenSubdiv does ({info})"
+        ),
+        _ => anyhow!("{input}: {err}"),
     }
 }
 

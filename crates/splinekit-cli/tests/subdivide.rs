@@ -103,11 +103,9 @@ fn bad_input_fails_cleanly() {
 
     let bowtie = dir.join("bowtie.obj");
     std::fs::write(&bowtie, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n").unwrap();
-    let err =
-        splinekit(&["subdivide", bowtie.to_str().unwrap(), "-n", "1", "-o", out.to_str().unwrap()]).fails().to_owned();
-    assert!(err.contains("vertex 0 is non-manifold"), "{err}");
-    assert!(err.contains("--split-nonmanifold"), "the message says how to go on: {err}");
-    assert!(!out.exists());
+    // Loop takes the bowtie (issue #39): V + E vertices, 4F triangles
+    splinekit(&["subdivide", bowtie.to_str().unwrap(), "-n", "1", "-o", out.to_str().unwrap()]).ok();
+    assert_eq!(obj_counts(&out), (5 + 6, 8));
     let run = splinekit(&[
         "subdivide",
         bowtie.to_str().unwrap(),
@@ -341,6 +339,8 @@ fn sqrt3_and_doo_sabin_refuse_bad_input_and_options() {
             .to_owned();
         assert!(err.contains("vertex 0 is non-manifold") && err.contains("--split-nonmanifold"), "{err}");
         assert!(!out.exists());
+        // the flag the message suggests works
+        splinekit(&["subdivide", bowtie.to_str().unwrap(), "-n", "1", "--scheme", scheme, "--split-nonmanifold"]).ok();
     }
 
     // options that mean nothing for the scheme are refused before anything is read or written
@@ -685,5 +685,50 @@ fn points_only_and_skipped_lines() {
             lines.display()
         )
     );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Issue #39: Loop and Catmull-Clark subdivide non-manifold and degenerate meshes (as
+/// OpenSubdiv does); the other schemes refuse them with a message naming the face, edge or
+/// vertex and a flag that works, which is then tried.
+#[test]
+fn nonmanifold_meshes_and_the_flags_that_work() {
+    let dir = temp_dir("nonmanifold");
+    let out = dir.join("out.obj");
+    let out_s = out.to_str().unwrap();
+    // three triangles on the edge 1–2 and a triangle 4 4 5 that repeats a vertex: 10 edges (the
+    // degenerate one, and the side 4–5 twice)
+    let fin = dir.join("fin.obj");
+    std::fs::write(&fin, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\nf 4 4 5\n").unwrap();
+    let fin_s = fin.to_str().unwrap();
+    for (scheme, counts) in [("loop", (5 + 10, 16)), ("catmull-clark", (5 + 10 + 4, 12))] {
+        for limit in [&[][..], &["--limit"]] {
+            let mut args = vec!["subdivide", fin_s, "-n", "1", "--scheme", scheme, "-o", out_s];
+            args.extend_from_slice(limit);
+            splinekit(&args).ok();
+            assert_eq!(obj_counts(&out), counts, "{scheme} {limit:?}");
+        }
+    }
+    // the repeated vertex: --split-nonmanifold does not mend it, so the message points to the
+    // schemes that take it
+    for scheme in ["sqrt3", "doo-sabin", "butterfly"] {
+        let _ = std::fs::remove_file(&out);
+        let err = splinekit(&["subdivide", fin_s, "-n", "1", "--scheme", scheme, "-o", out_s]).fails().to_owned();
+        assert!(err.contains("face 3 repeats vertex 3"), "{err}");
+        assert!(err.contains("--split-nonmanifold does not mend it") && err.contains("--scheme loop"), "{err}");
+        assert!(!out.exists());
+        let split = ["subdivide", fin_s, "-n", "1", "--scheme", scheme, "--split-nonmanifold", "-o", out_s];
+        assert!(splinekit(&split).fails().contains("face 3 repeats vertex 3"));
+    }
+    splinekit(&["subdivide", fin_s, "-n", "1", "--scheme", "loop", "-o", out_s]).ok();
+    // without the degenerate face, --split-nonmanifold mends the edge, as the message says
+    let edge = dir.join("edge.obj");
+    std::fs::write(&edge, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n").unwrap();
+    let edge_s = edge.to_str().unwrap();
+    for scheme in ["sqrt3", "doo-sabin", "butterfly"] {
+        let err = splinekit(&["subdivide", edge_s, "-n", "1", "--scheme", scheme, "-o", out_s]).fails().to_owned();
+        assert!(err.contains("edge 0–1") && err.contains("--split-nonmanifold"), "{err}");
+        splinekit(&["subdivide", edge_s, "-n", "1", "--scheme", scheme, "--split-nonmanifold", "-o", out_s]).ok();
+    }
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -310,11 +310,21 @@ fn bad_input_is_an_error() {
     quad.face_offsets = vec![0, 4];
     let e = loop_subdivide(&quad, 1, &LoopOptions::default()).unwrap_err();
     assert_eq!(e.to_string(), "face 0 has 4 corners; Loop subdivision needs triangles (triangulate the mesh first)");
-    let bowtie = PolyMesh::from_triangles(vec![DVec3::ZERO; 5], &[[0, 1, 2], [0, 3, 4]]);
-    let e = loop_subdivide(&bowtie, 1, &LoopOptions::default()).unwrap_err();
-    assert!(e.to_string().contains("vertex 0 is non-manifold"), "{e}");
-    let fin = PolyMesh::from_triangles(vec![DVec3::ZERO; 5], &[[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
-    assert!(loop_subdivide(&fin, 1, &LoopOptions::default()).unwrap_err().to_string().contains("edge 0–1"));
+}
+
+/// Issue #39: a bowtie vertex and an edge of three faces are subdivided with OpenSubdiv's
+/// rules (the vertex a corner, the edge infinitely sharp), no longer refused.
+#[test]
+fn non_manifold_input_is_subdivided_with_sharp_edges_and_corners() {
+    let p: Vec<DVec3> = (0..5).map(|i| DVec3::new(f64::from(i), f64::from(i * i % 3), f64::from(i % 2))).collect();
+    let bowtie = PolyMesh::from_triangles(p.clone(), &[[0, 1, 2], [0, 3, 4]]);
+    let fine = loop_subdivide(&bowtie, 1, &LoopOptions::default()).unwrap();
+    assert_eq!((fine.num_vertices(), fine.num_faces(), fine.positions[0]), (11, 8, p[0]));
+    let fin = PolyMesh::from_triangles(p.clone(), &[[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
+    let fine = loop_subdivide(&fin, 1, &LoopOptions::default()).unwrap();
+    // edge 0–1 is the first edge: its odd vertex is its midpoint, and its ends stay
+    assert_eq!(&fine.positions[..2], &p[..2]);
+    assert_eq!(fine.positions[5], (p[0] + p[1]) * 0.5);
 }
 
 #[test]

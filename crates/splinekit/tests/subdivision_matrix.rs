@@ -178,8 +178,22 @@ fn errors() {
     let quads = grid(2, false);
     let err = SubdivisionMatrix::loop_scheme(&quads, 1, &LoopOptions::default()).unwrap_err();
     assert!(matches!(err, SubdivError::NotTriangles { face: 0, corners: 4, .. }), "{err}");
-    // Three faces on one edge.
-    let bad = poly(vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE], &[&[0, 1, 2], &[1, 0, 3], &[0, 1, 4]]);
-    assert!(SubdivisionMatrix::loop_scheme(&bad, 1, &LoopOptions::default()).is_err());
-    assert!(SubdivisionMatrix::catmull_clark(&bad, 1, &CatmullClarkOptions::default()).is_err());
+}
+
+/// Issue #39: three faces on one edge are taken with OpenSubdiv's rules; the matrix gives the
+/// subdivision's vertices.
+#[test]
+fn non_manifold_matrices_give_the_subdivision() {
+    let fin = poly(vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE], &[&[0, 1, 2], &[1, 0, 3], &[0, 1, 4]]);
+    // (the product of the level matrices rounds differently from level by level)
+    let same =
+        |a: Vec<DVec3>, b: Vec<DVec3>| a.len() == b.len() && a.iter().zip(&b).all(|(p, q)| p.distance(*q) < 1e-14);
+    for levels in 1..=2 {
+        let s = SubdivisionMatrix::loop_scheme(&fin, levels, &LoopOptions::default()).unwrap();
+        let direct = loop_subdivide(&fin, levels, &LoopOptions::default()).unwrap();
+        assert!(same(s.apply(&fin.positions).unwrap(), direct.positions), "Loop, {levels} levels");
+        let s = SubdivisionMatrix::catmull_clark(&fin, levels as usize, &CatmullClarkOptions::default()).unwrap();
+        let direct = catmull_clark_subdivide(&fin, levels as usize, &CatmullClarkOptions::default()).unwrap();
+        assert!(same(s.apply(&fin.positions).unwrap(), direct.positions), "Catmull-Clark, {levels} levels");
+    }
 }

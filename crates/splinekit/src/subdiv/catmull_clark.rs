@@ -27,14 +27,19 @@
 //! mesh, with positions and colours equal to rounding (a few ulps), and the same on any
 //! number of threads.
 //!
-//! The mesh must be manifold and consistently oriented (split non-manifold edges and
-//! vertices first, e.g. with [`crate::mesh::split_nonmanifold`]); the error names the first
-//! edge or vertex that is not. Face-varying normals and UVs are not carried (a subdivided
-//! surface's normals are computed from it).
+//! **Non-manifold and degenerate meshes** (an edge of more than two faces or of two faces
+//! running the same way, a vertex whose faces form several fans, a face that repeats a vertex)
+//! are subdivided with OpenSubdiv's rules: their non-manifold edges are infinitely sharp
+//! creases and their non-manifold vertices corners (see [`general`](super::general)), level by
+//! level through the subdivision matrices, so more slowly; [`crate::mesh::split_nonmanifold`]
+//! splits such a mesh apart instead, which gives another surface. Face-varying normals and UVs
+//! are not carried (a subdivided surface's normals are computed from it).
 
 use rayon::prelude::*;
 
 use super::counts::{self, Counts};
+use super::crease::{Creases, CreasingMethod};
+use super::general::{General, repeated_vertex};
 use super::loop_scheme::{Attribute, BoundaryRule, SubdivError, child_colors, parent_colors};
 use super::quads::{self, QuadLevel};
 use super::regular;
@@ -56,8 +61,7 @@ pub struct CatmullClarkOptions {
 ///
 /// # Errors
 ///
-/// [`SubdivError::Topology`] for an edge used by more than two faces or twice in the same
-/// direction, or a vertex whose faces form several fans; [`SubdivError::TooLarge`] if the
+/// [`SubdivError::Topology`] for a vertex index out of range; [`SubdivError::TooLarge`] if the
 /// result would not fit `u32` indices (checked before any level is made).
 pub fn catmull_clark_subdivide(
     mesh: &PolyMesh,
@@ -67,7 +71,10 @@ pub fn catmull_clark_subdivide(
     if levels == 0 {
         return Ok(PolyMesh { normals: None, uvs: None, ..mesh.clone() });
     }
-    let rings = Rings::new(mesh)?;
+    let rings = match Rings::new(mesh) {
+        Err(SubdivError::Topology(e)) if e.is_nonmanifold() => return general(mesh, levels, options),
+        rings => rings?,
+    };
     counts::catmull_clark_levels(Counts::of_rings(&rings), 0, levels)?;
     let all_quads = mesh.face_vertices.len() == 4 * mesh.num_faces()
         && mesh.face_offsets.iter().enumerate().all(|(f, &o)| o as usize == 4 * f);
@@ -98,7 +105,11 @@ pub fn catmull_clark_subdivide(
 /// One level of [`catmull_clark_subdivide`]: the child of `mesh`, which is level `depth − 1`
 /// of the subdivision (`depth` picks the colour of the new vertices with
 /// [`CatmullClarkOptions::color_by_level`]; at depth 1 the mesh's own vertices get
-/// [`LEVEL_COLORS`](super::LEVEL_COLORS)`[0]`). Refining level by level gives the same meshes as one call.
+/// [`LEVEL_COLORS`](super::LEVEL_COLORS)`[0]`). Refining level by level gives the same meshes as one call,
+/// except on a non-manifold mesh whose levels have faces that repeat a vertex or edges whose
+/// faces run the same way: each call takes its mesh as a base mesh, and OpenSubdiv's tags of
+/// the levels below (which edge halves stay apart, which vertices stay creases) are not in a
+/// mesh.
 ///
 /// # Errors
 ///
@@ -108,7 +119,19 @@ pub fn catmull_clark_step(
     depth: usize,
     options: &CatmullClarkOptions,
 ) -> Result<PolyMesh, SubdivError> {
-    let rings = Rings::new(mesh)?;
+    let rings = match Rings::new(mesh) {
+        Err(SubdivError::Topology(e)) if e.is_nonmanifold() => {
+            // the colours of this level are made from the parent's, by level or not
+            return general(mesh, 1, &CatmullClarkOptions { color_by_level: false, ..*options }).map(|mut fine| {
+                if options.color_by_level {
+                    let parent = parent_colors(mesh, true, depth);
+                    fine.colors = child_colors(true, &parent, fine.positions.len(), depth, |c| c.to_vec());
+                }
+                fine
+            });
+        }
+        rings => rings?,
+    };
     let parent_depth = depth.saturating_sub(1);
     counts::catmull_clark_levels(Counts::of_rings(&rings), parent_depth, parent_depth + 1)?;
     let positions = rings.refine(&mesh.positions, options.boundary);
@@ -119,6 +142,14 @@ pub fn catmull_clark_step(
     Ok(PolyMesh { positions, colors, face_offsets, face_vertices, normals: None, uvs: None })
 }
 
+/// [`catmull_clark_subdivide`] of a non-manifold or degenerate mesh, with OpenSubdiv's rules
+/// (see [`general`](super::general)).
+fn general(mesh: &PolyMesh, levels: usize, options: &CatmullClarkOptions) -> Result<PolyMesh, SubdivError> {
+    let no = Creases::default();
+    let general = General::catmark(options.boundary, &no, CreasingMethod::default());
+    general.subdivide(mesh, levels, options.color_by_level).map(|(m, ..)| m)
+}
+
 /// What one level needs: the mesh's faces and their adjacency, checked to be manifold.
 pub(super) struct Rings<'a> {
     pub(super) mesh: &'a PolyMesh,
@@ -126,9 +157,12 @@ pub(super) struct Rings<'a> {
 }
 
 impl<'a> Rings<'a> {
-    /// The adjacency of `mesh`; an error for the first non-manifold or inconsistently
-    /// oriented edge or vertex.
+    /// The adjacency of `mesh`; an error for the first face that repeats a vertex, else the
+    /// first non-manifold or inconsistently oriented edge or vertex.
     pub(super) fn new(mesh: &'a PolyMesh) -> Result<Self, SubdivError> {
+        if let Some((face, vertex)) = repeated_vertex(mesh) {
+            return Err(TopologyError::RepeatedVertex { face: face as u32, vertex }.into());
+        }
         let adj = Adjacency::build(mesh);
         if let Some(p) = adj.problems.first() {
             let (a, b, corners) = match p {

@@ -26,12 +26,14 @@
 //! when `v` has other semi-sharp edges, else `s − 1` — so a crease whose sharpness varies
 //! along it tapers smoothly. Edges inside a face are smooth. The subdivision functions return
 //! the child's [`Creases`], so that refining level by level gives the same result as refining
-//! several levels at once.
+//! several levels at once (on a manifold mesh: the tags a non-manifold mesh's levels inherit
+//! are not in their creases, see [`catmull_clark_step`](super::catmull_clark_step)).
 
 use glam::DVec3;
 
 use super::catmull_clark::{CatmullClarkOptions, Rings, catmull_clark_subdivide};
 use super::counts::{self, Counts};
+use super::general::{General, is_nonmanifold};
 use super::loop_scheme::{LoopOptions, Rules, child_colors, loop_subdivide, parent_colors, triangles_only};
 use super::matrix::{Builder, SubdivisionMatrix};
 use super::topology::{Table, Topology, next, prev};
@@ -92,7 +94,7 @@ pub enum CreasingMethod {
 
 /// What a vertex does in one level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Rule {
+pub(super) enum Rule {
     /// The scheme's smooth rule (also a dart: one sharp edge).
     Smooth,
     /// `3/4·P + 1/8·(a + b)` with `a`, `b` the far ends of the two sharp edges.
@@ -115,7 +117,7 @@ fn decrement(s: f32) -> f32 {
 }
 
 /// The rule of a vertex of sharpness `vertex` whose edges (far end, sharpness) are `edges`.
-fn rule(vertex: f32, edges: impl Iterator<Item = (u32, f32)>) -> Rule {
+pub(super) fn rule(vertex: f32, edges: impl Iterator<Item = (u32, f32)>) -> Rule {
     if vertex > 0.0 {
         return Rule::Corner;
     }
@@ -204,6 +206,11 @@ pub(super) trait Level {
     fn smooth_edge(&self, e: u32, scale: f64, b: &mut Builder);
     /// The rows after the edge points (Catmull-Clark's face points).
     fn more_rows(&self, b: &mut Builder);
+    /// Whether vertex `v` is infinitely sharp by its topology (a non-manifold vertex made a
+    /// corner: see [`general`](super::general)).
+    fn is_corner(&self, _v: u32) -> bool {
+        false
+    }
 }
 
 /// Loop's level: a triangle table and the weights.
@@ -367,12 +374,16 @@ pub(super) fn creased_level(
         parent.clear();
         parent.extend(around.iter().map(|&(e, _)| sharp.edge[e as usize]));
         child_sharpness_around(&parent, method, &mut child);
-        for (&(e, _), &c) in around.iter().zip(&child) {
-            let end = usize::from(level.edge_ends(e)[0] != v);
+        for (k, (&(e, _), &c)) in around.iter().zip(&child).enumerate() {
+            let [a, b] = level.edge_ends(e);
+            // an edge from `v` to itself is listed twice: its first half, then its second
+            let end = if a == b { usize::from(around[..k].iter().any(|&(x, _)| x == e)) } else { usize::from(a != v) };
             halves[e as usize][end] = c;
         }
         // with fixed corners, a vertex of one face (on the boundary) is infinitely sharp
-        let pv = if corners && faces == 1 { INFINITELY_SHARP } else { sharp.vertex[v as usize] };
+        // (and a non-manifold vertex made a corner)
+        let pv =
+            if (corners && faces == 1) || level.is_corner(v) { INFINITELY_SHARP } else { sharp.vertex[v as usize] };
         let cv = decrement(pv);
         let ends = || around.iter().map(|&(_, far)| far);
         let p_rule = rule(pv, ends().zip(parent.iter().copied()));
@@ -528,7 +539,12 @@ pub(super) fn loop_levels(
     triangles_only(mesh, "Loop")?;
     let mut triangles: Vec<[u32; 3]> = mesh.face_vertices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
     let rules = Rules::new(options);
-    let mut topology = Topology::build(&triangles, mesh.num_vertices())?;
+    let mut topology = match Topology::build(&triangles, mesh.num_vertices()) {
+        Err(e) if e.is_nonmanifold() => {
+            return General::loop_scheme(options, creases, method).levels(mesh, levels as usize, visit).map(|(c, _)| c);
+        }
+        topology => topology?,
+    };
     counts::loop_levels("Loop", "vertices", Counts::of_triangles(&topology, triangles.len()), 0, levels as usize)?;
     let mut creases = creases.clone();
     for level in 0..levels {
@@ -556,6 +572,10 @@ pub(super) fn catmull_clark_levels(
     method: CreasingMethod,
     mut visit: impl FnMut(SubdivisionMatrix),
 ) -> Result<(Creases, Option<PolyMesh>), SubdivError> {
+    if levels > 0 && is_nonmanifold(mesh) {
+        let (child, level) = General::catmark(options.boundary, creases, method).levels(mesh, levels, visit)?;
+        return Ok((child, Some(level.to_mesh(vec![DVec3::ZERO; level.num_vertices()], Vec::new()))));
+    }
     let mut creases = creases.clone();
     let mut current: Option<PolyMesh> = None;
     for depth in 0..levels {
@@ -576,7 +596,7 @@ pub(super) fn catmull_clark_levels(
 }
 
 /// Carries positions and colours (by the level matrices, or by level) through the levels.
-struct Values {
+pub(super) struct Values {
     positions: Vec<DVec3>,
     colors: Vec<DVec3>,
     color_by_level: bool,
@@ -584,12 +604,17 @@ struct Values {
 }
 
 impl Values {
-    fn new(mesh: &PolyMesh, color_by_level: bool) -> Self {
+    pub(super) fn new(mesh: &PolyMesh, color_by_level: bool) -> Self {
         let colors = parent_colors(mesh, color_by_level, 1).into_owned();
         Self { positions: mesh.positions.clone(), colors, color_by_level, depth: 0 }
     }
 
-    fn step(&mut self, matrix: &SubdivisionMatrix) {
+    /// The positions and colours.
+    pub(super) fn finish(self) -> (Vec<DVec3>, Vec<DVec3>) {
+        (self.positions, self.colors)
+    }
+
+    pub(super) fn step(&mut self, matrix: &SubdivisionMatrix) {
         self.depth += 1;
         self.positions = matrix.apply(&self.positions).expect("one value per column");
         let apply = |c: &[DVec3]| matrix.apply(c).expect("one value per column");
@@ -612,6 +637,10 @@ pub fn loop_subdivide_creased(
     creases: &Creases,
     method: CreasingMethod,
 ) -> Result<(PolyMesh, Creases), SubdivError> {
+    if is_nonmanifold(mesh) {
+        let general = General::loop_scheme(options, creases, method);
+        return general.subdivide(mesh, levels as usize, options.color_by_level).map(|(m, c, _)| (m, c));
+    }
     let mut values = Values::new(mesh, options.color_by_level);
     let child = loop_levels(mesh, levels, options, creases, method, |m| values.step(&m))?;
     // the faces and the face-varying channels (and colours by level) of the plain subdivision
@@ -637,6 +666,10 @@ pub fn catmull_clark_subdivide_creased(
     creases: &Creases,
     method: CreasingMethod,
 ) -> Result<(PolyMesh, Creases), SubdivError> {
+    if levels > 0 && is_nonmanifold(mesh) {
+        let general = General::catmark(options.boundary, creases, method);
+        return general.subdivide(mesh, levels, options.color_by_level).map(|(m, c, _)| (m, c));
+    }
     let mut values = Values::new(mesh, options.color_by_level);
     let (child, faces) = catmull_clark_levels(mesh, levels, options, creases, method, |m| values.step(&m))?;
     let Some(mut fine) = faces else {

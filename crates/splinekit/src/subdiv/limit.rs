@@ -56,7 +56,8 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::catmull_clark::{CatmullClarkOptions, Rings};
-use super::crease::{Creases, Sharpness, sharpness};
+use super::crease::{Creases, CreasingMethod, Sharpness, sharpness};
+use super::general::{General, is_nonmanifold};
 use super::loop_scheme::{BoundaryRule, LoopOptions, Rules, SubdivError, triangles_only};
 use super::topology::MIN_LEN;
 use crate::mesh::{NONE, PolyMesh};
@@ -151,7 +152,9 @@ fn sharp_position(rings: &Rings<'_>, p: &[DVec3], v: usize, feature: Feature) ->
 pub fn loop_limit_positions(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<DVec3>, SubdivError> {
     triangles_only(mesh, "Loop")?;
     let rules = Rules::new(options);
-    each_vertex(mesh, options.boundary, &Creases::default(), |rings, v, f| Ok(loop_position(rings, &rules, v, f)))
+    let manifold =
+        each_vertex(mesh, options.boundary, &Creases::default(), |rings, v, f| Ok(loop_position(rings, &rules, v, f)));
+    or_general(manifold, || loop_general(mesh, options, &Creases::default()).map(|(p, _)| p))
 }
 
 /// The unit Loop limit normals of the vertices of the triangle mesh `mesh` (see the [module
@@ -163,7 +166,8 @@ pub fn loop_limit_positions(mesh: &PolyMesh, options: &LoopOptions) -> Result<Ve
 /// As [`loop_limit_positions`].
 pub fn loop_limit_normals(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<DVec3>, SubdivError> {
     triangles_only(mesh, "Loop")?;
-    each_vertex(mesh, options.boundary, &Creases::default(), |rings, v, f| Ok(loop_normal(rings, v, f)))
+    let manifold = each_vertex(mesh, options.boundary, &Creases::default(), |rings, v, f| Ok(loop_normal(rings, v, f)));
+    or_general(manifold, || loop_general(mesh, options, &Creases::default()).map(|(_, n)| n))
 }
 
 /// The Loop limit positions and unit limit normals of the vertices of the triangle mesh
@@ -184,8 +188,8 @@ pub fn loop_limit_creased(
     let rules = Rules::new(options);
     let limits = each_vertex(mesh, options.boundary, creases, |rings, v, f| {
         Ok((loop_position(rings, &rules, v, f), loop_normal(rings, v, f)))
-    })?;
-    Ok(limits.into_iter().unzip())
+    });
+    or_general(limits.map(|l| l.into_iter().unzip()), || loop_general(mesh, options, creases))
 }
 
 /// The Loop limit position of vertex `v` (see the [module docs](self)).
@@ -252,7 +256,8 @@ pub fn catmull_clark_limit_positions(
     mesh: &PolyMesh,
     options: &CatmullClarkOptions,
 ) -> Result<Vec<DVec3>, SubdivError> {
-    each_vertex(mesh, options.boundary, &Creases::default(), catmull_clark_position)
+    let manifold = each_vertex(mesh, options.boundary, &Creases::default(), catmull_clark_position);
+    or_general(manifold, || catmark_general(mesh, options, &Creases::default()).map(|(p, _)| p))
 }
 
 /// The unit Catmull-Clark limit normals of the vertices of `mesh` (see the [module
@@ -265,7 +270,8 @@ pub fn catmull_clark_limit_positions(
 /// boundary vertex with one face), [`SubdivError::Topology`] for a non-manifold or
 /// inconsistently oriented edge or vertex.
 pub fn catmull_clark_limit_normals(mesh: &PolyMesh, options: &CatmullClarkOptions) -> Result<Vec<DVec3>, SubdivError> {
-    each_vertex(mesh, options.boundary, &Creases::default(), catmull_clark_normal)
+    let manifold = each_vertex(mesh, options.boundary, &Creases::default(), catmull_clark_normal);
+    or_general(manifold, || catmark_general(mesh, options, &Creases::default()).map(|(_, n)| n))
 }
 
 /// The Catmull-Clark limit positions and unit limit normals of the vertices of `mesh` with
@@ -284,8 +290,86 @@ pub fn catmull_clark_limit_creased(
 ) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
     let limits = each_vertex(mesh, options.boundary, creases, |rings, v, f| {
         Ok((catmull_clark_position(rings, v, f)?, catmull_clark_normal(rings, v, f)?))
-    })?;
-    Ok(limits.into_iter().unzip())
+    });
+    or_general(limits.map(|l| l.into_iter().unzip()), || catmark_general(mesh, options, creases))
+}
+
+/// `manifold`, or `general()` where `manifold` failed on a non-manifold or degenerate mesh.
+fn or_general<T>(
+    manifold: Result<T, SubdivError>,
+    general: impl FnOnce() -> Result<T, SubdivError>,
+) -> Result<T, SubdivError> {
+    match manifold {
+        Err(SubdivError::Topology(e)) if e.is_nonmanifold() => general(),
+        result => result,
+    }
+}
+
+/// The Loop limit positions and normals of the non-manifold `mesh` as a base level, with
+/// OpenSubdiv's rules (see [`general`](super::general)).
+fn loop_general(
+    mesh: &PolyMesh,
+    options: &LoopOptions,
+    creases: &Creases,
+) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
+    General::loop_scheme(options, creases, CreasingMethod::default()).subdivide_limit(mesh, 0)
+}
+
+/// [`loop_general`] for Catmull-Clark.
+fn catmark_general(
+    mesh: &PolyMesh,
+    options: &CatmullClarkOptions,
+    creases: &Creases,
+) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
+    General::catmark(options.boundary, creases, CreasingMethod::default()).subdivide_limit(mesh, 0)
+}
+
+/// `levels` levels of Loop subdivision of `mesh` with `creases` carried by `method`, as
+/// [`loop_subdivide_creased`](super::loop_subdivide_creased), then the limit positions and unit
+/// limit normals of the subdivided mesh's vertices, as [`loop_limit_creased`] gives them for
+/// its creases. For a non-manifold or degenerate mesh (see
+/// [`is_nonmanifold`](super::is_nonmanifold)) the limit rules are those the vertices have at
+/// that level of the subdivision (OpenSubdiv's: a vertex that came from a non-manifold edge
+/// keeps that edge's crease, which the subdivided mesh alone does not show), and the normals
+/// are the area-weighted normals of the faces around each vertex at the limit positions.
+///
+/// # Errors
+///
+/// As [`loop_subdivide_creased`](super::loop_subdivide_creased).
+pub fn loop_subdivide_limit(
+    mesh: &PolyMesh,
+    levels: u32,
+    options: &LoopOptions,
+    creases: &Creases,
+    method: CreasingMethod,
+) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
+    triangles_only(mesh, "Loop")?;
+    if is_nonmanifold(mesh) {
+        return General::loop_scheme(options, creases, method).subdivide_limit(mesh, levels as usize);
+    }
+    let (fine, child) = super::loop_subdivide_creased(mesh, levels, options, creases, method)?;
+    loop_limit_creased(&fine, options, &child)
+}
+
+/// `levels` levels of Catmull-Clark subdivision of `mesh`, then the limit positions and unit
+/// limit normals of the subdivided mesh's vertices: as [`loop_subdivide_limit`] for Loop.
+///
+/// # Errors
+///
+/// As [`catmull_clark_subdivide_creased`](super::catmull_clark_subdivide_creased), and
+/// [`SubdivError::NotQuads`] without levels for a mesh that is not all quads.
+pub fn catmull_clark_subdivide_limit(
+    mesh: &PolyMesh,
+    levels: usize,
+    options: &CatmullClarkOptions,
+    creases: &Creases,
+    method: CreasingMethod,
+) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
+    if is_nonmanifold(mesh) {
+        return General::catmark(options.boundary, creases, method).subdivide_limit(mesh, levels);
+    }
+    let (fine, child) = super::catmull_clark_subdivide_creased(mesh, levels, options, creases, method)?;
+    catmull_clark_limit_creased(&fine, options, &child)
 }
 
 /// The vertex across corner `c`'s quad from its vertex, or an error naming vertex `v` if the
@@ -308,6 +392,10 @@ fn catmull_clark_position(rings: &Rings<'_>, v: u32, feature: Feature) -> Result
         return Ok(position);
     }
     let corners = rings.adj.corners_of(v);
+    if corners.len() == 2 {
+        // valence 2: OpenSubdiv's limit mask keeps the vertex where it is, as a corner's
+        return Ok(p[v as usize]);
+    }
     let (mut edges, mut diagonals) = (DVec3::ZERO, DVec3::ZERO);
     for &c in corners {
         edges += p[rings.adj.to[c as usize] as usize];

@@ -28,6 +28,13 @@
 //! [`LoopOptions::color_by_level`], vertices are instead coloured by the level that created
 //! them ([`LEVEL_COLORS`]).
 //!
+//! **Non-manifold and degenerate meshes** (an edge of more than two triangles or of two running
+//! the same way, a vertex whose triangles form several fans, a triangle that repeats a vertex)
+//! are subdivided by [`loop_subdivide`] with OpenSubdiv's rules: their non-manifold edges are
+//! infinitely sharp creases and their non-manifold vertices corners (see
+//! [`general`](super::general)), level by level through the subdivision matrices, so more
+//! slowly, carrying positions and colours (not normals and UVs). [`LoopPyramid`] refuses them.
+//!
 //! **Speed.** The base level's adjacency is built once ([`Topology::build`]); every further
 //! level's adjacency follows in closed form ([`topology`](super::topology)), and each pass is
 //! a parallel map (rayon) over vertices, edges or faces writing its own output slot, so
@@ -47,6 +54,8 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::counts::{self, Counts};
+use super::crease::{Creases, CreasingMethod};
+use super::general::General;
 use super::grandchild::{grandchild_triangles, grandchild_values};
 use super::great::{great_grandchild_triangles, great_grandchild_values};
 use super::topology::{MIN_LEN, MIN_RINGS, Table, Topology, TopologyError, child_level, next, prev};
@@ -519,8 +528,9 @@ impl LoopPyramid {
     /// Level 0 of `mesh`.
     ///
     /// # Errors
-    /// Non-triangle faces, non-manifold or inconsistently oriented topology, malformed
-    /// attributes — naming the face, edge or vertex.
+    /// Non-triangle faces, non-manifold or inconsistently oriented topology or a triangle that
+    /// repeats a vertex (which [`loop_subdivide`] takes), malformed attributes — naming the
+    /// face, edge or vertex.
     pub fn new(mesh: &PolyMesh, options: LoopOptions) -> Result<Self, SubdivError> {
         // Triangles and positions are copied in parallel: the copy is cheap, the fresh pages
         // it writes are not (each is cleared by the one thread that touches it first). With
@@ -883,5 +893,12 @@ fn derive_topology<T>(channel: &mut Option<Channel<T>>, parent: &Option<Channel<
 /// As [`LoopPyramid::new`], and [`SubdivError::TooLarge`] if the result would not fit `u32`
 /// indices (checked before any level is made).
 pub fn loop_subdivide(mesh: &PolyMesh, levels: u32, options: &LoopOptions) -> Result<PolyMesh, SubdivError> {
-    Ok(LoopPyramid::new(mesh, *options)?.into_refined(levels as usize, |_| {})?.to_mesh())
+    match LoopPyramid::new(mesh, *options) {
+        Err(SubdivError::Topology(e)) if e.is_nonmanifold() => {
+            let no = Creases::default();
+            let general = General::loop_scheme(options, &no, CreasingMethod::default());
+            general.subdivide(mesh, levels as usize, options.color_by_level).map(|(m, ..)| m)
+        }
+        pyramid => Ok(pyramid?.into_refined(levels as usize, |_| {})?.to_mesh()),
+    }
 }

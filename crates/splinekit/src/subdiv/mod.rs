@@ -23,6 +23,7 @@ mod catmull_clark;
 mod counts;
 pub mod crease;
 pub mod doo_sabin;
+mod general;
 mod grandchild;
 mod great;
 mod limit;
@@ -39,9 +40,10 @@ pub use crease::{
     Creases, CreasingMethod, EdgeCrease, VertexCrease, catmull_clark_subdivide_creased, loop_subdivide_creased,
 };
 pub use doo_sabin::{DooSabinOptions, doo_sabin_subdivide};
+pub use general::is_nonmanifold;
 pub use limit::{
-    catmull_clark_limit_creased, catmull_clark_limit_normals, catmull_clark_limit_positions, loop_limit_creased,
-    loop_limit_normals, loop_limit_positions,
+    catmull_clark_limit_creased, catmull_clark_limit_normals, catmull_clark_limit_positions,
+    catmull_clark_subdivide_limit, loop_limit_creased, loop_limit_normals, loop_limit_positions, loop_subdivide_limit,
 };
 pub use loop_scheme::{
     Attribute, BoundaryRule, LEVEL_COLORS, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, SubdivError,

@@ -67,6 +67,15 @@ pub enum TopologyError {
         /// Number of fans.
         fans: usize,
     },
+    /// A face names a vertex at more than one corner (a degenerate face such as `a a b`, or a
+    /// quad pole `a b a c`).
+    #[error("face {face} repeats vertex {vertex}")]
+    RepeatedVertex {
+        /// The face.
+        face: u32,
+        /// The vertex it names twice.
+        vertex: u32,
+    },
     /// A triangle refers to a vertex that does not exist.
     #[error("triangle {face} refers to vertex {vertex}, but there are {count} vertices")]
     Index {
@@ -77,6 +86,16 @@ pub enum TopologyError {
         /// Number of vertices.
         count: usize,
     },
+}
+
+impl TopologyError {
+    /// Whether this is non-manifold or degenerate topology, which Loop and Catmull-Clark
+    /// subdivision take (with OpenSubdiv's rules) and the other schemes refuse: a non-manifold
+    /// or inconsistently oriented edge, a non-manifold vertex, a face that repeats a vertex.
+    #[must_use]
+    pub fn is_nonmanifold(&self) -> bool {
+        matches!(self, Self::Edge { .. } | Self::Vertex { .. } | Self::RepeatedVertex { .. })
+    }
 }
 
 /// The next corner of a triangle.
@@ -113,11 +132,21 @@ impl Topology {
     /// The base level's topology of `triangles` over `num_vertices` vertices.
     ///
     /// # Errors
-    /// The first non-manifold or inconsistently oriented edge, or non-manifold vertex.
+    /// The first triangle that repeats a vertex, else the first non-manifold or inconsistently
+    /// oriented edge, or non-manifold vertex.
     pub fn build(triangles: &[[u32; 3]], num_vertices: usize) -> Result<Self, TopologyError> {
         match Self::build_manifold(triangles, num_vertices) {
             Some(topo) => Ok(topo),
-            None => Self::build_checked(triangles, num_vertices),
+            None => {
+                let repeated =
+                    |t: &[u32; 3]| [t[0], t[1]].into_iter().find(|&v| v == t[2]).or((t[0] == t[1]).then_some(t[0]));
+                if let Some((face, vertex)) =
+                    triangles.iter().enumerate().find_map(|(f, t)| repeated(t).map(|v| (f, v)))
+                {
+                    return Err(TopologyError::RepeatedVertex { face: face as u32, vertex });
+                }
+                Self::build_checked(triangles, num_vertices)
+            }
         }
     }
 
