@@ -386,6 +386,16 @@ fn known(finding: &Finding) -> Option<&'static str> {
 
 /// Panic messages caught while a case runs (any thread: rayon's workers too).
 static PANICS: Mutex<Vec<String>> = Mutex::new(Vec::new());
+/// The case running, for the panic hook's line.
+static LABEL: Mutex<String> = Mutex::new(String::new());
+
+/// The panic hook while cases run: keeps the message for the report, and says it on standard
+/// error with the case (a panic that cannot unwind aborts the process before any report).
+fn hook(info: &std::panic::PanicHookInfo<'_>) {
+    let label = LABEL.lock().unwrap_or_else(PoisonError::into_inner).clone();
+    eprintln!("splinekit-fuzz: panic in {label}: {info}");
+    PANICS.lock().unwrap_or_else(PoisonError::into_inner).push(info.to_string());
+}
 
 /// The case the watchdog watches.
 struct Watch {
@@ -490,9 +500,7 @@ pub fn run(config: &Config) -> Summary {
         std::thread::spawn(move || watch.watch())
     };
     let previous_hook = std::panic::take_hook();
-    std::panic::set_hook(Box::new(|info| {
-        PANICS.lock().unwrap_or_else(PoisonError::into_inner).push(info.to_string());
-    }));
+    std::panic::set_hook(Box::new(hook));
     let start = Instant::now();
     let mut last_progress = Instant::now();
     let limit_seconds = match (config.cases, config.seconds, config.case) {
@@ -519,7 +527,9 @@ pub fn run(config: &Config) -> Summary {
         }
         let time_bound = config.time_base + config.time_per_byte * len as f64;
         let memory_bound = config.memory_base.saturating_add(config.memory_per_byte.saturating_mul(len));
-        alloc::set_label(&format!("{label}; replay: splinekit-fuzz --seed {} --case {index}", config.seed));
+        let replay = format!("{label}; replay: splinekit-fuzz --seed {} --case {index}", config.seed);
+        alloc::set_label(&replay);
+        *LABEL.lock().unwrap_or_else(PoisonError::into_inner) = replay;
         alloc::set_cap(alloc::live().saturating_add(config.memory_cap));
         *watch.current.lock().unwrap_or_else(PoisonError::into_inner) = (label, case.format, case.input.clone());
         watch.limit.store((1000.0 * (config.hang_factor * time_bound).max(30.0)) as u64, Ordering::Relaxed);
@@ -651,9 +661,7 @@ pub fn replay_file(path: &Path, times: u64) -> Result<Vec<Finding>, String> {
         Format::from_path(path).ok_or_else(|| format!("{}: not .swp, .obj, .ply, .stl or .glb", path.display()))?;
     let input = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let previous_hook = std::panic::take_hook();
-    std::panic::set_hook(Box::new(|info| {
-        PANICS.lock().unwrap_or_else(PoisonError::into_inner).push(info.to_string());
-    }));
+    std::panic::set_hook(Box::new(hook));
     let mut findings = Vec::new();
     for k in 0..times {
         let mut case = Case {
