@@ -520,6 +520,53 @@ fn errors_name_file_line_and_column() {
     assert_eq!(m.warnings[0].kind, ReadWarningKind::TrailingBytes { count: 6 });
 }
 
+/// Issue #38 (found by the fuzz harness, `fuzz/`): binary PLY and glb files can hold
+/// infinite or NaN normals, texture coordinates and colours; the readers kept them (only
+/// positions were refused), and every writer then refused the mesh as invalid. Now they are
+/// refused when read, as non-finite positions are.
+#[test]
+fn regression_38_non_finite_attributes_are_refused() {
+    let header = |extra: &str| {
+        format!(
+            "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+             property float z\n{extra}element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+        )
+    };
+    let file = |extra: &str, per_vertex: usize, bad: f32| {
+        let mut bytes = header(extra).into_bytes();
+        for v in 0..3 {
+            for k in 0..3 + per_vertex {
+                let x = if v == 1 && k == 4 {
+                    bad
+                } else if k == v {
+                    1.0
+                } else {
+                    0.0
+                };
+                bytes.extend(x.to_le_bytes());
+            }
+        }
+        bytes.push(3);
+        for i in 0..3i32 {
+            bytes.extend(i.to_le_bytes());
+        }
+        bytes
+    };
+    let cases = [
+        ("property float nx\nproperty float ny\nproperty float nz\n", 3, "vertex 2 has normal y = inf"),
+        ("property float u\nproperty float v\n", 2, "vertex 2 has v = NaN"),
+        ("property float red\nproperty float green\nproperty float blue\n", 3, "vertex 2 has green = -inf"),
+    ];
+    for ((extra, per_vertex, expected), bad) in cases.into_iter().zip([f32::INFINITY, f32::NAN, f32::NEG_INFINITY]) {
+        let bytes = file(extra, per_vertex, bad);
+        let err = read_mesh(bytes.as_slice(), MeshFormat::Ply, "a.ply").unwrap_err();
+        assert_eq!(err.to_string(), format!("a.ply: {expected}, expected a finite number"));
+        // the same file with a finite value reads
+        let good = file(extra, per_vertex, 0.5);
+        assert!(read_mesh(good.as_slice(), MeshFormat::Ply, "a.ply").is_ok());
+    }
+}
+
 // ---------------------------------------------------------------------------------------
 // Files as people have them (#39)
 

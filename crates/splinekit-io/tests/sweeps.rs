@@ -365,3 +365,30 @@ fn the_triangle_limit_is_checked_before_the_mesh_is_built() {
     }
     assert_eq!(doc.surface_mesh(0, &limited(capped, 2 * 12 * 3 + 2 * 12)).unwrap(), m);
 }
+
+/// Issue #38 (found by the fuzz harness, `fuzz/`): a `zrev` swept with a distance tolerance
+/// far finer than its profile made every profile point (about a million a segment, hundreds
+/// of megabytes for a 100-byte file) before the triangle limit was checked. Now the points
+/// are counted first, as for `srev` and `gcyl`, and the surface is refused at once.
+#[test]
+fn regression_38_zrev_counts_its_profile_before_making_it() {
+    use splinekit_io::surface::SurfaceError;
+    let text = "bsp2 p 10 16 [0.2 0] [1.4 1] [0.5 -1.2] [1.1 0.5] [1.5 -0.2] [0.9 1.3] [0.3 0.7] [1.2 -0.6] \
+                [0.8 0.1] [1.3 1.1] [0.4 -0.8] [1 0.6] [0.6 -0.3] [1.4 0.9] [0.7 -1] [0.5 0.2]\nzrev vase p\n";
+    let doc = SwpDocument::parse(text, "vase.swp").unwrap();
+    let fine = SurfaceOptions {
+        tessellation: SurfaceTessellation::Distance(1e-300),
+        max_triangles: Some(200_000),
+        ..SurfaceOptions::default()
+    };
+    let start = std::time::Instant::now();
+    match doc.surface_mesh(0, &fine) {
+        Err(SurfaceError::TooLarge { why, .. }) => assert!(why.contains("cross-section alone"), "{why}"),
+        other => panic!("{other:?}"),
+    }
+    // it used to take seconds and gigabytes in a debug build
+    assert!(start.elapsed().as_secs_f64() < 2.0, "{:?}", start.elapsed());
+    // an ordinary tolerance still sweeps
+    let ordinary = SurfaceOptions { tessellation: SurfaceTessellation::Distance(1e-3), ..fine };
+    assert!(doc.surface_mesh(0, &ordinary).unwrap().num_triangles() > 0);
+}

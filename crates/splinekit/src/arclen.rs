@@ -43,6 +43,12 @@ pub const MAX_INTERVALS: usize = 1 << 14;
 /// accuracy below this cannot be met in `f64` arithmetic, so asking for less stops here.
 pub const RELATIVE_FLOOR: f64 = 1e-15;
 
+/// The smallest accuracy an inverse query ([`ArclenIndex::u_at`]) asks of its root finder,
+/// relative to the curve's length: ten times [`RELATIVE_FLOOR`], so that the integrals of its
+/// steps (each within `RELATIVE_FLOOR` of its own length) can meet their share and the root
+/// finder converges instead of stopping at its first step.
+pub const QUERY_FLOOR: f64 = 10.0 * RELATIVE_FLOOR;
+
 /// A length with an estimate of its absolute error.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ArclenEstimate {
@@ -431,7 +437,12 @@ impl ArclenIndex {
         self.accuracy
     }
 
-    /// `u` such that `|s_true(u) − s| ≤ accuracy`; `s` is clamped to `[0, length]`.
+    /// `u` such that `|s_true(u) − s| ≤ accuracy`; `s` is clamped to `[0, length]`. An
+    /// accuracy below what `f64` resolves (below `2·error` when
+    /// [`meets_accuracy`](Self::meets_accuracy) is false, or below [`QUERY_FLOOR`] times the
+    /// length) is raised to it: asking the root finder for more made every integral near a
+    /// cusp run to its interval limit, a quarter of a second a query, and stopped the root
+    /// finder after its first step, far from the answer (issue #38).
     #[must_use]
     pub fn u_at<P: Vector, C: ParamCurve<P> + ?Sized>(&self, curve: &C, s: f64) -> f64 {
         let m = self.prefix.len() - 1;
@@ -451,7 +462,7 @@ impl ArclenIndex {
             0.0,
             1.0,
             local,
-            0.5 * self.accuracy,
+            0.5 * self.accuracy.max(2.0 * self.error).max(QUERY_FLOOR * self.length()),
         );
         base + t
     }

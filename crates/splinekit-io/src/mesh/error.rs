@@ -187,13 +187,16 @@ pub enum MeshIoErrorKind {
         /// What was expected.
         expected: String,
     },
-    /// A vertex read from a file has a coordinate that is NaN or infinite (binary files; text
-    /// files report the token with its line and column instead).
+    /// A vertex read from a file has a coordinate, normal, texture coordinate or colour that
+    /// is NaN or infinite (binary files; text files report the token with its line and
+    /// column instead).
     #[error("vertex {} has {axis} = {value}, expected a finite number", vertex + 1)]
     NonFiniteVertex {
-        /// The vertex, from 0 (messages count from 1).
+        /// The vertex, from 0 (messages count from 1); for normals and texture coordinates,
+        /// the index of the value (one per vertex in PLY and glb files).
         vertex: usize,
-        /// `x`, `y` or `z`.
+        /// `x`, `y` or `z`; `normal x`, `normal y` or `normal z`; `u` or `v`; `red`, `green`
+        /// or `blue`.
         axis: &'static str,
         /// The value read.
         value: f64,

@@ -468,11 +468,24 @@ fn parse_mesh(bytes: &[u8], format: MeshFormat, origin: &str) -> Result<LoadedMe
         MeshFormat::Stl => super::stl_read::parse_stl(bytes, origin),
         MeshFormat::Glb => super::glb_read::parse_glb(bytes, origin),
     }?;
-    // binary floats can be NaN or infinite; nothing downstream can use such a vertex
-    let bad = loaded.mesh.positions.iter().enumerate().find_map(|(vertex, p)| {
-        let axis = (0..3).find(|&k| !p[k].is_finite())?;
-        Some(MeshIoErrorKind::NonFiniteVertex { vertex, axis: ["x", "y", "z"][axis], value: p[axis] })
-    });
+    // binary floats can be NaN or infinite; nothing downstream can use such a vertex, nor
+    // such a normal, texture coordinate or colour (the writers refuse them: issue #38)
+    fn first_bad<const N: usize>(
+        values: impl Iterator<Item = [f64; N]>,
+        names: [&'static str; N],
+    ) -> Option<MeshIoErrorKind> {
+        values.enumerate().find_map(|(vertex, v)| {
+            let k = (0..N).find(|&k| !v[k].is_finite())?;
+            Some(MeshIoErrorKind::NonFiniteVertex { vertex, axis: names[k], value: v[k] })
+        })
+    }
+    let m = &loaded.mesh;
+    let normals = m.normals.iter().flat_map(|n| &n.values);
+    let uvs = m.uvs.iter().flat_map(|t| &t.values);
+    let bad = first_bad(m.positions.iter().map(|p| p.to_array()), ["x", "y", "z"])
+        .or_else(|| first_bad(normals.map(|n| n.to_array()), ["normal x", "normal y", "normal z"]))
+        .or_else(|| first_bad(uvs.map(|t| t.to_array()), ["u", "v"]))
+        .or_else(|| first_bad(m.colors.iter().map(|c| c.to_array()), ["red", "green", "blue"]));
     match bad {
         Some(kind) => Err(error_in(origin, kind)),
         None => Ok(loaded),

@@ -68,7 +68,7 @@
 //! [`MAX_ANGLE_DEPTH`]: splinekit::flatten::MAX_ANGLE_DEPTH
 
 use glam::{DVec2, DVec3};
-use splinekit::flatten::{Tessellation, flatten_params};
+use splinekit::flatten::{Tessellation, flatten_count, flatten_params};
 use splinekit::frame::Frame;
 use splinekit::sweep::surface::{
     Lathe, LatheOptions, RevolveOptions, SurfaceError, UvMode, revolve_z, revolve_z_counts,
@@ -77,7 +77,7 @@ use splinekit::sweep::{
     self, MeshCounts, MeshLayout, Profile, SweepError, SweepOptions, SweepPath, generalized_cylinder,
     generalized_cylinder_counts, revolve_counts,
 };
-use splinekit::{BSpline, CatmullRom, ParamCurve, PiecewiseCubic, SplineError, TriMesh};
+use splinekit::{AnyCurve, BSpline, CatmullRom, ParamCurve, PiecewiseCubic, SplineError, TriMesh};
 
 use super::revolution_obj::{HeaderSpline, RevolutionHeader, SplineHeader, SweepHeader};
 use crate::surface::DEFAULT_MAX_TRIANGLES;
@@ -382,6 +382,15 @@ pub(crate) fn revolve_spline_z<B: Built>(
     options: &RebuildOptions,
 ) -> Result<B, RebuildError> {
     let closed = curve.is_closed();
+    if let Tessellation::Distance { .. } = mode {
+        // counted before the points are made (issue #38): a distance tolerance far finer than
+        // the profile asks for millions of points per segment (the angle mode has at most
+        // 1024 a segment); every point makes at least two triangles with the slices
+        let bound = flatten_count(&AnyCurve::Piecewise(curve.clone()), mode);
+        options.check(2u64.saturating_mul(bound.saturating_sub(1)), || {
+            format!("its cross-section alone would have up to {bound} points")
+        })?;
+    }
     let mut samples = sample_by(curve, mode, closed, true);
     // which side of the axis: mirror a profile drawn at x < 0, refuse one across it
     let (lo, hi) =
