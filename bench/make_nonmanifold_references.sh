@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Non-manifold and degenerate reference data for crates/splinekit/tests/nonmanifold.rs: the input
 # meshes of bench/meshgen.py's nonmanifold_meshes() (edges of 3, 4 and 100 faces, vertices with
-# several fans, back-to-back faces, interior vertices of valence 2, a fold-over, faces that repeat
+# several fans, back-to-back faces (alone: manifold, but its levels have two edges between the
+# same two vertices), interior vertices of valence 2, a fold-over, faces that repeat
 # a vertex, quad poles, triangles and quads mixed) and OpenSubdiv 3.5's refinement of each
 # (bench/drivers/osd_loop.cpp for the all-triangle ones, osd_catmark.cpp for all): levels 1 to 3,
 # and with --limit --no-normals the limit positions of levels 1 and 2, and three meshes with
@@ -14,7 +15,7 @@ source "$(dirname "$0")/references_common.sh" nonmanifold
 data="$tests/nonmanifold"
 rm -f "$data"/*.obj
 python3 "$here/meshgen.py" nonmanifold "$data"
-loop=(fins3 fins4 edge100 cones backtoback foldgrid degenerate)
+loop=(fins3 fins4 edge100 cones backtoback pillow foldgrid degenerate)
 catmark=("${loop[@]}" poles valence2 cubes)
 run() { # driver mesh tag levels...
     local driver="$1" m="$2" tag="$3"
