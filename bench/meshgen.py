@@ -241,6 +241,11 @@ def nonmanifold_meshes():
     tris += [(g(1, 1), g(2, 1), apex), (g(1, 1), apex, g(2, 1))]
     out["backtoback"] = ("a pillow of two back-to-back triangles (valence-2 interior vertices); an open grid with "
                          "two back-to-back triangles on one of its edges", _jittered(pos), tris, ("loop", "catmark"))
+    # the pillow alone is manifold, but each level of it has two triangles on the same three
+    # vertices, so two edges between the same two vertices
+    out["pillow"] = ("two back-to-back triangles alone: manifold, valence-2 interior vertices",
+                     _jittered([(0.0, 0.0, 0.0), (1.0, 0.0, 0.1), (0.3, 0.9, -0.1)]), [(0, 1, 2), (0, 2, 1)],
+                     ("loop", "catmark"))
     # a grid with one triangle wound the other way (a fold-over: its edges are used twice the same way)
     # and degenerate triangles that repeat a vertex
     pos, tris = grid(4, 4)

@@ -11,8 +11,8 @@ use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::mesh::FaceVarying;
 use splinekit::subdiv::{
-    BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions, LoopLevel,
-    LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, TopologyError, butterfly_subdivide,
+    BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions, LimitMesh,
+    LoopLevel, LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, TopologyError, butterfly_subdivide,
     catmull_clark_limit_creased, catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
     catmull_clark_subdivide_creased, catmull_clark_subdivide_limit, doo_sabin_subdivide, is_nonmanifold,
     loop_limit_creased, loop_limit_normals, loop_limit_positions, loop_subdivide, loop_subdivide_creased,
@@ -445,10 +445,10 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
             let subdivide =
                 |m: &PolyMesh| catmull_clark_subdivide_creased(m, levels, &options, &creases, creasing(args));
             let limit = |m: &PolyMesh, c: &Creases| {
-                if general {
+                if general || is_nonmanifold(m) {
                     catmull_clark_subdivide_limit(&mesh, levels, &options, &creases, creasing(args))
                 } else {
-                    catmull_clark_limit_creased(m, &options, c)
+                    catmull_clark_limit_creased(m, &options, c).map(|(p, n)| (m.clone(), p, n))
                 }
             };
             return run_creased(args, &mesh, format, out, subdivide, Some(&limit), "quads");
@@ -480,10 +480,10 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     if creased || general {
         let subdivide = |m: &PolyMesh| loop_subdivide_creased(m, args.levels, &options, &creases, creasing(args));
         let limit = |m: &PolyMesh, c: &Creases| {
-            if general {
+            if general || is_nonmanifold(m) {
                 loop_subdivide_limit(&mesh, args.levels, &options, &creases, creasing(args))
             } else {
-                loop_limit_creased(m, &options, c)
+                loop_limit_creased(m, &options, c).map(|(p, n)| (m.clone(), p, n))
             }
         };
         return run_creased(args, &mesh, format, out, subdivide, Some(&limit), "triangles");
@@ -520,9 +520,18 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
             // vertex: the limit surface is smooth there); UVs stay as they are
             let limit = |e: SubdivError| anyhow!("{}: {e}", args.input.display());
             let bare = PolyMesh { normals: None, uvs: None, colors: Vec::new(), ..fine.clone() };
-            let normals = loop_limit_normals(&bare, &options).map_err(limit)?;
-            fine.positions = loop_limit_positions(&bare, &options).map_err(limit)?;
-            fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
+            if is_nonmanifold(&bare) {
+                // two edges of a level between the same two vertices (back-to-back triangles):
+                // the limit needs the subdivision's own edges, which its triangles alone join
+                let no = Creases::default();
+                let (limit_mesh, positions, normals) =
+                    loop_subdivide_limit(&mesh, args.levels, &options, &no, CreasingMethod::Chaikin).map_err(limit)?;
+                fine = with_limit(limit_mesh, positions, normals);
+            } else {
+                let normals = loop_limit_normals(&bare, &options).map_err(limit)?;
+                fine.positions = loop_limit_positions(&bare, &options).map_err(limit)?;
+                fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
+            }
         }
         written = Some(saved(path, save_poly(&fine, path, format, args.split_seams)?));
     }
@@ -642,7 +651,18 @@ fn run_catmull_clark(
     let (mut fine, seconds) = timed(args, &pool, |m| catmull_clark_subdivide(m, args.levels as usize, &options), mesh)?;
     let mut written = None;
     if let (Some(path), Some(format)) = (&args.output, format) {
-        if args.limit {
+        if args.limit && is_nonmanifold(&fine) {
+            // a level with two edges between the same two vertices: see `run`
+            let (limit_mesh, positions, normals) = catmull_clark_subdivide_limit(
+                mesh,
+                args.levels as usize,
+                &options,
+                &Creases::default(),
+                creasing(args),
+            )
+            .map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
+            fine = with_limit(limit_mesh, positions, normals);
+        } else if args.limit {
             let limit = |e: SubdivError| anyhow!("{}: {e}", args.input.display());
             let normals = catmull_clark_limit_normals(&fine, &options).map_err(limit)?;
             fine.positions = catmull_clark_limit_positions(&fine, &options).map_err(limit)?;
@@ -666,8 +686,15 @@ fn run_polygons(
     run_creased(args, mesh, format, out, |m| subdivide(m).map(|fine| (fine, Creases::default())), None, noun)
 }
 
-/// Limit positions and normals of a subdivided mesh with its creases.
-type LimitFn<'a> = dyn Fn(&PolyMesh, &Creases) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> + Sync + 'a;
+/// The mesh to write with `--limit`, its limit positions and normals, from a subdivided mesh
+/// with its creases.
+type LimitFn<'a> = dyn Fn(&PolyMesh, &Creases) -> Result<LimitMesh, SubdivError> + Sync + 'a;
+
+/// `mesh` at its limit `positions`, with its limit `normals` (one per vertex).
+fn with_limit(mesh: PolyMesh, positions: Vec<DVec3>, normals: Vec<DVec3>) -> PolyMesh {
+    let indices = mesh.face_vertices.clone();
+    PolyMesh { positions, normals: Some(FaceVarying { values: normals, indices }), ..mesh }
+}
 
 /// Time `--repeat` runs of `subdivide` (a polygon mesh and its creases: Loop or
 /// Catmull-Clark with creases, or none), write the last with its creases; with `--limit`, moved
@@ -686,10 +713,9 @@ fn run_creased(
     let mut written = None;
     if let (Some(path), Some(format)) = (&args.output, format) {
         if let (true, Some(limit)) = (args.limit, limit) {
-            let (positions, normals) =
+            let (limit_mesh, positions, normals) =
                 pool.install(|| limit(&fine, &creases)).map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
-            fine.positions = positions;
-            fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
+            fine = with_limit(limit_mesh, positions, normals);
         }
         if format != MeshFormat::Obj && !creases.is_empty() {
             eprintln!("note: {} cannot hold crease tags; write .obj to keep the child creases", path.display());

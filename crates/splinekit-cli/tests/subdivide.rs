@@ -730,5 +730,29 @@ fn nonmanifold_meshes_and_the_flags_that_work() {
         assert!(err.contains("edge 0–1") && err.contains("--split-nonmanifold"), "{err}");
         splinekit(&["subdivide", edge_s, "-n", "1", "--scheme", scheme, "--split-nonmanifold", "-o", out_s]).ok();
     }
+    // `--limit` equals OpenSubdiv's limit after the same levels (the core's reference data), also
+    // on a manifold pillow whose levels have two edges between the same two vertices
+    let data = format!("{}/../splinekit/tests/data/nonmanifold", env!("CARGO_MANIFEST_DIR"));
+    let points = |path: &str| -> Vec<[f64; 3]> {
+        let text = std::fs::read_to_string(path).unwrap();
+        let v = text.lines().filter_map(|l| l.strip_prefix("v "));
+        v.map(|l| {
+            let c: Vec<f64> = l.split_whitespace().map(|w| w.parse().unwrap()).collect();
+            [c[0], c[1], c[2]]
+        })
+        .collect()
+    };
+    for (name, scheme, peer) in
+        [("pillow", "loop", "loop"), ("fins3", "catmull-clark", "catmark"), ("poles", "catmull-clark", "catmark")]
+    {
+        let input = format!("{data}/{name}.in.obj");
+        splinekit(&["subdivide", &input, "-n", "2", "--scheme", scheme, "--limit", "-o", out_s]).ok();
+        let (ours, theirs) = (points(out_s), points(&format!("{data}/{name}.osd-{peer}.limit.l2.obj")));
+        assert_eq!(ours.len(), theirs.len(), "{name}");
+        let far = |p: &[f64; 3]| {
+            theirs.iter().map(|q| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>()).fold(f64::INFINITY, f64::min)
+        };
+        assert!(ours.iter().all(|p| far(p) < 1e-24), "{name} {scheme}: a vertex is off OpenSubdiv's limit");
+    }
     let _ = std::fs::remove_dir_all(dir);
 }

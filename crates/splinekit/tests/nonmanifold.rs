@@ -2,8 +2,9 @@
 //! Catmull-Clark subdivision of edges of 3, 4 and 100 faces, vertices with several fans,
 //! back-to-back faces, interior vertices of valence 2, a fold-over, faces that repeat a vertex
 //! (degenerate triangles, quad poles) and triangles and quads mixed, at levels 1 to 3 and at the
-//! limit of levels 1 and 2, in `tests/data/nonmanifold/` (made by
-//! `bench/make_nonmanifold_references.sh` from `bench/meshgen.py nonmanifold`).
+//! limit of levels 1 and 2 (and three of them with one-face corners fixed), in
+//! `tests/data/nonmanifold/` (made by `bench/make_nonmanifold_references.sh` from
+//! `bench/meshgen.py nonmanifold`).
 //!
 //! OpenSubdiv keeps the two halves of an edge that a face uses twice as two edges, so some of
 //! its vertices coincide (the middles of such halves; the face points of back-to-back faces).
@@ -18,8 +19,8 @@ use std::fmt::Write as _;
 use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
-    CatmullClarkOptions, Creases, CreasingMethod, LoopOptions, catmull_clark_subdivide, catmull_clark_subdivide_limit,
-    is_nonmanifold, loop_subdivide, loop_subdivide_limit,
+    BoundaryRule, CatmullClarkOptions, Creases, CreasingMethod, LoopOptions, catmull_clark_subdivide,
+    catmull_clark_subdivide_limit, is_nonmanifold, loop_subdivide, loop_subdivide_limit,
 };
 
 /// Largest distance between a vertex of ours and its reference vertex, relative to the
@@ -28,9 +29,20 @@ const MATCH_TOL: f64 = 1e-12;
 
 /// The Loop meshes (all triangles) and the Catmull-Clark ones; the edge of 100 faces has no
 /// level 3.
-const LOOP: [&str; 7] = ["fins3", "fins4", "edge100", "cones", "backtoback", "foldgrid", "degenerate"];
-const CATMARK: [&str; 10] =
-    ["fins3", "fins4", "edge100", "cones", "backtoback", "foldgrid", "degenerate", "poles", "valence2", "cubes"];
+const LOOP: [&str; 8] = ["fins3", "fins4", "edge100", "cones", "backtoback", "pillow", "foldgrid", "degenerate"];
+const CATMARK: [&str; 11] = [
+    "fins3",
+    "fins4",
+    "edge100",
+    "cones",
+    "backtoback",
+    "pillow",
+    "foldgrid",
+    "degenerate",
+    "poles",
+    "valence2",
+    "cubes",
+];
 
 /// The `v` and `f` lines of `tests/data/nonmanifold/<file>`.
 fn read(file: &str) -> PolyMesh {
@@ -155,8 +167,9 @@ fn sweep(scheme: &str, meshes: &[&str], case: impl Fn(&PolyMesh, u32, bool) -> R
     let mut table = String::new();
     for &name in meshes {
         let input = read(&format!("{name}.in.obj"));
-        // (the valence-2 mesh is manifold: it checks the manifold path's valence-2 vertices)
-        assert_eq!(is_nonmanifold(&input), name != "valence2", "{name}");
+        // (two are manifold: valence-2 vertices on the manifold path, and a pillow whose levels
+        // have two edges between the same two vertices, whose limit needs the subdivision's edges)
+        assert_eq!(is_nonmanifold(&input), !["valence2", "pillow"].contains(&name), "{name}");
         for limit in [false, true] {
             let top = if limit { 2 } else { levels(name) };
             for level in 1..=top {
@@ -185,9 +198,9 @@ fn loop_matches_opensubdiv_on_nonmanifold_meshes() {
     sweep("loop", &LOOP, |input, level, limit| {
         let fine = loop_subdivide(input, level, &options).map_err(|e| e.to_string())?;
         if limit {
-            let (p, _) = loop_subdivide_limit(input, level, &options, &Creases::default(), CreasingMethod::default())
-                .map_err(|e| e.to_string())?;
-            return Ok((p, fine));
+            let no = (&Creases::default(), CreasingMethod::default());
+            let (mesh, p, _) = loop_subdivide_limit(input, level, &options, no.0, no.1).map_err(|e| e.to_string())?;
+            return Ok((p, mesh));
         }
         Ok((fine.positions.clone(), fine))
     });
@@ -200,9 +213,9 @@ fn catmull_clark_matches_opensubdiv_on_nonmanifold_meshes() {
         let fine = catmull_clark_subdivide(input, level as usize, &options).map_err(|e| e.to_string())?;
         if limit {
             let c = (&Creases::default(), CreasingMethod::default());
-            let (p, _) =
+            let (mesh, p, _) =
                 catmull_clark_subdivide_limit(input, level as usize, &options, c.0, c.1).map_err(|e| e.to_string())?;
-            return Ok((p, fine));
+            return Ok((p, mesh));
         }
         Ok((fine.positions.clone(), fine))
     });
@@ -259,4 +272,32 @@ fn counts_count_opensubdivs_edges() {
     assert_eq!((fine.num_vertices(), fine.num_faces()), (25 + 63, 4 * 35));
     let fine = catmull_clark_subdivide(&mesh, 1, &CatmullClarkOptions::default()).unwrap();
     assert_eq!((fine.num_vertices(), fine.num_faces()), (25 + 63 + 35, 3 * 35));
+}
+
+/// One-face corners kept fixed (`BoundaryRule::Corners`, OpenSubdiv's
+/// `VTX_BOUNDARY_EDGE_AND_CORNER`) next to non-manifold features: a bowtie, a fold-over and
+/// degenerate triangles on a grid with two one-face corners, levels 1 and 2.
+#[test]
+fn fixed_corners_match_opensubdiv_on_nonmanifold_meshes() {
+    let mut failures = String::new();
+    for name in ["cones", "foldgrid", "degenerate"] {
+        let input = read(&format!("{name}.in.obj"));
+        for level in 1..=2u32 {
+            let loop_options = LoopOptions { boundary: BoundaryRule::Corners, ..LoopOptions::default() };
+            let catmark_options =
+                CatmullClarkOptions { boundary: BoundaryRule::Corners, ..CatmullClarkOptions::default() };
+            let runs = [
+                ("loop", loop_subdivide(&input, level, &loop_options)),
+                ("catmark", catmull_clark_subdivide(&input, level as usize, &catmark_options)),
+            ];
+            for (scheme, fine) in runs {
+                let file = format!("{name}.osd-{scheme}-corners.l{level}.obj");
+                let result = fine.map_err(|e| e.to_string()).and_then(|f| compare(&f.positions, &f, &read(&file)));
+                if let Err(e) = result {
+                    writeln!(failures, "{file}: {e}").unwrap();
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "against OpenSubdiv (EDGE_AND_CORNER):\n{failures}");
 }

@@ -574,15 +574,17 @@ impl<'a> General<'a> {
         Ok((level.to_mesh(positions, colors), child, level))
     }
 
-    /// Subdivides `mesh` `levels` times and gives the limit positions and normals of the finest
-    /// level's vertices ([`Self::limit`]).
+    /// Subdivides `mesh` `levels` times ([`Self::subdivide`]) and gives the limit positions and
+    /// normals of the finest level's vertices ([`Self::limit`]).
     pub(super) fn subdivide_limit(
         &self,
         mesh: &PolyMesh,
         levels: usize,
-    ) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
-        let (fine, child, level) = self.subdivide(mesh, levels, false)?;
-        self.limit(&level, &fine.positions, &child)
+        color_by_level: bool,
+    ) -> Result<(PolyMesh, Vec<DVec3>, Vec<DVec3>), SubdivError> {
+        let (fine, child, level) = self.subdivide(mesh, levels, color_by_level)?;
+        let (positions, normals) = self.limit(&level, &fine.positions, &child)?;
+        Ok((fine, positions, normals))
     }
 
     /// The limit positions of the vertices of `level` at `positions` with `creases` (on its

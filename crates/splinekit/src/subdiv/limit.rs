@@ -312,7 +312,9 @@ fn loop_general(
     options: &LoopOptions,
     creases: &Creases,
 ) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
-    General::loop_scheme(options, creases, CreasingMethod::default()).subdivide_limit(mesh, 0)
+    General::loop_scheme(options, creases, CreasingMethod::default())
+        .subdivide_limit(mesh, 0, false)
+        .map(|(_, p, n)| (p, n))
 }
 
 /// [`loop_general`] for Catmull-Clark.
@@ -321,17 +323,27 @@ fn catmark_general(
     options: &CatmullClarkOptions,
     creases: &Creases,
 ) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
-    General::catmark(options.boundary, creases, CreasingMethod::default()).subdivide_limit(mesh, 0)
+    General::catmark(options.boundary, creases, CreasingMethod::default())
+        .subdivide_limit(mesh, 0, false)
+        .map(|(_, p, n)| (p, n))
 }
 
+/// A subdivided mesh with the limit positions and unit limit normals of its vertices.
+pub type LimitMesh = (PolyMesh, Vec<DVec3>, Vec<DVec3>);
+
 /// `levels` levels of Loop subdivision of `mesh` with `creases` carried by `method`, as
-/// [`loop_subdivide_creased`](super::loop_subdivide_creased), then the limit positions and unit
+/// [`loop_subdivide_creased`](super::loop_subdivide_creased), and the limit positions and unit
 /// limit normals of the subdivided mesh's vertices, as [`loop_limit_creased`] gives them for
-/// its creases. For a non-manifold or degenerate mesh (see
-/// [`is_nonmanifold`](super::is_nonmanifold)) the limit rules are those the vertices have at
-/// that level of the subdivision (OpenSubdiv's: a vertex that came from a non-manifold edge
-/// keeps that edge's crease, which the subdivided mesh alone does not show), and the normals
-/// are the area-weighted normals of the faces around each vertex at the limit positions.
+/// its creases — with the vertex rules and the edges the vertices have at that level of the
+/// subdivision, as OpenSubdiv's limit after refining has them. They differ from the rules of
+/// the subdivided mesh taken alone where a level's faces, written as a list, join what the
+/// subdivision keeps apart: on a non-manifold mesh (see [`is_nonmanifold`](super::is_nonmanifold);
+/// a vertex born on a non-manifold edge keeps that edge's crease), and on meshes whose levels
+/// have two edges between the same two vertices (back-to-back triangles: two triangles on the
+/// same three vertices). The subdivided mesh is then made by OpenSubdiv's rules for such meshes
+/// (as [`loop_subdivide`](super::loop_subdivide) makes a non-manifold one: the same positions,
+/// no normals or UVs) and its normals are the area-weighted normals of the faces around each
+/// vertex at the limit positions.
 ///
 /// # Errors
 ///
@@ -342,17 +354,29 @@ pub fn loop_subdivide_limit(
     options: &LoopOptions,
     creases: &Creases,
     method: CreasingMethod,
-) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
+) -> Result<LimitMesh, SubdivError> {
     triangles_only(mesh, "Loop")?;
-    if is_nonmanifold(mesh) {
-        return General::loop_scheme(options, creases, method).subdivide_limit(mesh, levels as usize);
+    let general = General::loop_scheme(options, creases, method);
+    if !is_nonmanifold(mesh) {
+        let (fine, child) = super::loop_subdivide_creased(mesh, levels, options, creases, method)?;
+        let rules = Rules::new(options);
+        let limits = each_vertex(&fine, options.boundary, &child, |rings, v, f| {
+            Ok((loop_position(rings, &rules, v, f), loop_normal(rings, v, f)))
+        });
+        match limits {
+            Err(SubdivError::Topology(e)) if e.is_nonmanifold() => {}
+            limits => {
+                let (positions, normals) = limits?.into_iter().unzip();
+                return Ok((fine, positions, normals));
+            }
+        }
     }
-    let (fine, child) = super::loop_subdivide_creased(mesh, levels, options, creases, method)?;
-    loop_limit_creased(&fine, options, &child)
+    general.subdivide_limit(mesh, levels as usize, options.color_by_level)
 }
 
-/// `levels` levels of Catmull-Clark subdivision of `mesh`, then the limit positions and unit
-/// limit normals of the subdivided mesh's vertices: as [`loop_subdivide_limit`] for Loop.
+/// `levels` levels of Catmull-Clark subdivision of `mesh` and the limit positions and unit
+/// limit normals of the subdivided mesh's vertices, as [`loop_subdivide_limit`] for Loop (two
+/// back-to-back quads make levels with two edges between the same two vertices).
 ///
 /// # Errors
 ///
@@ -364,12 +388,22 @@ pub fn catmull_clark_subdivide_limit(
     options: &CatmullClarkOptions,
     creases: &Creases,
     method: CreasingMethod,
-) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
-    if is_nonmanifold(mesh) {
-        return General::catmark(options.boundary, creases, method).subdivide_limit(mesh, levels);
+) -> Result<LimitMesh, SubdivError> {
+    let general = General::catmark(options.boundary, creases, method);
+    if !is_nonmanifold(mesh) {
+        let (fine, child) = super::catmull_clark_subdivide_creased(mesh, levels, options, creases, method)?;
+        let limits = each_vertex(&fine, options.boundary, &child, |rings, v, f| {
+            Ok((catmull_clark_position(rings, v, f)?, catmull_clark_normal(rings, v, f)?))
+        });
+        match limits {
+            Err(SubdivError::Topology(e)) if e.is_nonmanifold() => {}
+            limits => {
+                let (positions, normals) = limits?.into_iter().unzip();
+                return Ok((fine, positions, normals));
+            }
+        }
     }
-    let (fine, child) = super::catmull_clark_subdivide_creased(mesh, levels, options, creases, method)?;
-    catmull_clark_limit_creased(&fine, options, &child)
+    general.subdivide_limit(mesh, levels, options.color_by_level)
 }
 
 /// The vertex across corner `c`'s quad from its vertex, or an error naming vertex `v` if the

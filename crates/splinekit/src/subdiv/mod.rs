@@ -42,7 +42,7 @@ pub use crease::{
 pub use doo_sabin::{DooSabinOptions, doo_sabin_subdivide};
 pub use general::is_nonmanifold;
 pub use limit::{
-    catmull_clark_limit_creased, catmull_clark_limit_normals, catmull_clark_limit_positions,
+    LimitMesh, catmull_clark_limit_creased, catmull_clark_limit_normals, catmull_clark_limit_positions,
     catmull_clark_subdivide_limit, loop_limit_creased, loop_limit_normals, loop_limit_positions, loop_subdivide_limit,
 };
 pub use loop_scheme::{
