@@ -379,3 +379,26 @@ fn info_counts_surfaces_without_building_them() {
     assert_eq!(json["surfaces"][0]["welded"], counts);
     assert_eq!(json["surfaces"][0]["compat"], counts);
 }
+
+/// A flat helix of 10 000 turns (26 bytes) once made tiny-skia fail an assertion and abort the
+/// process: its projected points lay 10¹² pixels away. Lines are clipped to the picture and
+/// stroked a piece at a time, so the picture is drawn.
+#[test]
+fn render_draws_a_curve_far_outside_the_picture() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("flat.swp");
+    fs::write(&file, "helix c 20 1 0 10000\n").unwrap();
+    for size in ["64x48", "800x600"] {
+        let png = dir.path().join(format!("flat-{size}.png"));
+        let run = within_a_minute(&[
+            "render".as_ref(),
+            file.as_os_str(),
+            "-o".as_ref(),
+            png.as_os_str(),
+            "--size".as_ref(),
+            size.as_ref(),
+        ]);
+        assert_eq!(run.code, Some(0), "{}", run.stderr);
+        assert!(fs::metadata(&png).unwrap().len() > 0);
+    }
+}

@@ -148,6 +148,30 @@ pub fn plot_curves(curves: &[PlotCurve], curve_options: &CurveOptions, options: 
     draw_marks(&camera, &marks, options)
 }
 
+/// The most segments stroked as one path (see [`draw_marks`]).
+const STROKE_PIECE: usize = 256;
+
+/// The part of the segment `a`–`b` inside the box `lo`–`hi` (Liang–Barsky), or `None`.
+fn clip_segment(a: [f64; 2], b: [f64; 2], lo: [f64; 2], hi: [f64; 2]) -> Option<([f64; 2], [f64; 2])> {
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for k in 0..2 {
+        let d = b[k] - a[k];
+        for (p, q) in [(-d, a[k] - lo[k]), (d, hi[k] - a[k])] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return None;
+                }
+            } else if p < 0.0 {
+                t0 = t0.max(q / p);
+            } else {
+                t1 = t1.min(q / p);
+            }
+        }
+    }
+    let at = |t: f64| [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+    (t0 <= t1).then(|| (if t0 == 0.0 { a } else { at(t0) }, if t1 == 1.0 { b } else { at(t1) }))
+}
+
 /// Draws `marks` seen by `camera` with tiny-skia (anti-aliased).
 #[must_use]
 pub fn draw_marks(camera: &Camera, marks: &[Mark], options: &PlotOptions) -> Image {
@@ -166,22 +190,43 @@ pub fn draw_marks(camera: &Camera, marks: &[Mark], options: &PlotOptions) -> Ima
     for flat in flatten_marks(camera, marks) {
         match flat {
             Flat::Line { points, colour, width, dash } => {
-                let mut pb = PathBuilder::new();
-                for (i, p) in points.iter().enumerate() {
-                    if !(p[0].is_finite() && p[1].is_finite()) {
-                        continue;
-                    }
-                    if i == 0 { pb.move_to(p[0] as f32, p[1] as f32) } else { pb.line_to(p[0] as f32, p[1] as f32) }
-                }
-                let Some(path) = pb.finish() else { continue };
-                let stroke = Stroke {
+                let stroke = |travelled: f64| Stroke {
                     width: width as f32,
                     line_cap: if dash.is_some() { LineCap::Butt } else { LineCap::Round },
                     line_join: LineJoin::Round,
-                    dash: dash.and_then(|[on, off]| StrokeDash::new(vec![on as f32, off as f32], 0.0)),
+                    dash: dash.and_then(|[on, off]| {
+                        StrokeDash::new(vec![on as f32, off as f32], (travelled % (on + off)) as f32)
+                    }),
                     ..Stroke::default()
                 };
-                pixmap.stroke_path(&path, &paint(colour), &stroke, Transform::identity(), None);
+                // Handed to tiny-skia clipped to the picture (with a margin for the stroke's
+                // width) and a piece at a time: its scan converter fails an assertion, and the
+                // process aborts, on coordinates far outside the picture or on one path of a
+                // great many edges piled on the same pixels (a helix of 10 000 turns).
+                let margin = width + 2.0;
+                let (lo, hi) = ([-margin; 2], [f64::from(size.width) + margin, f64::from(size.height) + margin]);
+                let (mut pb, mut edges, mut last, mut travelled, mut start) =
+                    (PathBuilder::new(), 0, None::<[f64; 2]>, 0.0, 0.0);
+                let finite = points.iter().filter(|p| p[0].is_finite() && p[1].is_finite());
+                for (a, b) in finite.clone().zip(finite.skip(1)) {
+                    if let Some((p, q)) = clip_segment(*a, *b, lo, hi) {
+                        if last != Some(p) {
+                            pb.move_to(p[0] as f32, p[1] as f32);
+                        }
+                        pb.line_to(q[0] as f32, q[1] as f32);
+                        (last, edges) = (Some(q), edges + 1);
+                    }
+                    travelled += (b[0] - a[0]).hypot(b[1] - a[1]);
+                    if edges >= STROKE_PIECE {
+                        if let Some(path) = std::mem::take(&mut pb).finish() {
+                            pixmap.stroke_path(&path, &paint(colour), &stroke(start), Transform::identity(), None);
+                        }
+                        (edges, last, start) = (0, None, travelled);
+                    }
+                }
+                if let Some(path) = pb.finish() {
+                    pixmap.stroke_path(&path, &paint(colour), &stroke(start), Transform::identity(), None);
+                }
             }
             Flat::Dot { at, radius, fill, outline } => {
                 let circle = |r: f64| PathBuilder::from_circle(at[0] as f32, at[1] as f32, r as f32);
