@@ -1362,23 +1362,12 @@ impl Gpu {
     }
 }
 
-/// The part of the segment `ab` inside `rect` (Liang–Barsky), or `None`.
+/// The part of the segment `ab` inside `rect`, or `None` (the renderer's clip, in f64).
 fn clip_segment(a: egui::Pos2, b: egui::Pos2, rect: Rect) -> Option<[egui::Pos2; 2]> {
-    let d = b - a;
-    let (mut t0, mut t1) = (0f32, 1f32);
-    for (p, q) in [(-d.x, a.x - rect.min.x), (d.x, rect.max.x - a.x), (-d.y, a.y - rect.min.y), (d.y, rect.max.y - a.y)]
-    {
-        if p == 0.0 {
-            if q < 0.0 {
-                return None;
-            }
-        } else if p < 0.0 {
-            t0 = t0.max(q / p);
-        } else {
-            t1 = t1.min(q / p);
-        }
-    }
-    (t0 <= t1).then(|| [a + d * t0, a + d * t1])
+    let f = |p: egui::Pos2| [f64::from(p.x), f64::from(p.y)];
+    let (p, q) = splinekit_render::plot::clip_segment(f(a), f(b), f(rect.min), f(rect.max))?;
+    let back = |p: [f64; 2]| pos2(p[0] as f32, p[1] as f32);
+    Some([back(p), back(q)])
 }
 
 /// `len` cut down to a multiple of `unit` bytes that fits in `max` bytes.

@@ -152,7 +152,8 @@ pub fn plot_curves(curves: &[PlotCurve], curve_options: &CurveOptions, options: 
 const STROKE_PIECE: usize = 256;
 
 /// The part of the segment `a`–`b` inside the box `lo`–`hi` (Liang–Barsky), or `None`.
-fn clip_segment(a: [f64; 2], b: [f64; 2], lo: [f64; 2], hi: [f64; 2]) -> Option<([f64; 2], [f64; 2])> {
+#[must_use]
+pub fn clip_segment(a: [f64; 2], b: [f64; 2], lo: [f64; 2], hi: [f64; 2]) -> Option<([f64; 2], [f64; 2])> {
     let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
     for k in 0..2 {
         let d = b[k] - a[k];
