@@ -116,7 +116,7 @@ pub fn write_ply_poly<W: Write + ?Sized>(mesh: &PolyMesh, out: &mut W) -> Result
     }
     let mut w = BufWriter::with_capacity(super::BUFFER_SIZE, out);
     let body = |w: &mut BufWriter<&mut W>| -> std::io::Result<()> {
-        let faces = Faces { mesh, uvs: corner_uvs };
+        let faces = Faces { corners: &mesh.face_vertices, offsets: Some(&mesh.face_offsets), uvs: corner_uvs };
         write_records(&tri, &faces, w)
     };
     body(&mut w).map_err(MeshIoError::write)?;
@@ -138,16 +138,31 @@ fn one_per_vertex<T: Copy + Default + PartialEq>(mesh: &PolyMesh, attribute: &Fa
     Some(out.into_iter().map(Option::unwrap_or_default).collect())
 }
 
-/// The faces to write: polygons, and UVs per corner if any.
+/// The faces to write: every corner's vertex, where each face starts (`None`: triangles),
+/// and UVs per corner if any.
 struct Faces<'m> {
-    mesh: &'m PolyMesh,
+    corners: &'m [u32],
+    offsets: Option<&'m [u32]>,
     uvs: Option<&'m FaceVarying<DVec2>>,
+}
+
+impl Faces<'_> {
+    fn count(&self) -> usize {
+        self.offsets.map_or(self.corners.len() / 3, |o| o.len() - 1)
+    }
+
+    /// The corners of face `f`.
+    fn range(&self, f: usize) -> std::ops::Range<usize> {
+        match self.offsets {
+            Some(o) => o[f] as usize..o[f + 1] as usize,
+            None => 3 * f..3 * f + 3,
+        }
+    }
 }
 
 /// Writes the header and the records.
 fn write_body<W: Write>(mesh: &TriMesh, w: &mut W) -> std::io::Result<()> {
-    let poly = PolyMesh::from_triangles(Vec::new(), &mesh.triangles);
-    write_records(mesh, &Faces { mesh: &poly, uvs: None }, w)
+    write_records(mesh, &Faces { corners: mesh.triangles.as_flattened(), offsets: None, uvs: None }, w)
 }
 
 /// Writes the header, the vertex records of `mesh` (positions and its per-vertex normals, UVs
@@ -166,7 +181,7 @@ fn write_records<W: Write>(mesh: &TriMesh, faces: &Faces<'_>, w: &mut W) -> std:
     if has_colors {
         header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
     }
-    header += &format!("element face {}\n", faces.mesh.num_faces());
+    header += &format!("element face {}\n", faces.count());
     header += "property list uchar int vertex_indices\n";
     if faces.uvs.is_some() {
         header += "property list uchar float texcoord\n";
@@ -194,12 +209,12 @@ fn write_records<W: Write>(mesh: &TriMesh, faces: &Faces<'_>, w: &mut W) -> std:
         }
     }
     let mut record = Vec::new();
-    for range in faces.mesh.face_offsets.windows(2) {
-        let corners = range[0] as usize..range[1] as usize;
+    for f in 0..faces.count() {
+        let corners = faces.range(f);
         record.clear();
         // Checked by the callers: at most 255 corners, every index fits an i32.
         record.push(u8::try_from(corners.len()).unwrap_or(u8::MAX));
-        for &v in &faces.mesh.face_vertices[corners.clone()] {
+        for &v in &faces.corners[corners.clone()] {
             record.extend_from_slice(&i32::try_from(v).unwrap_or(i32::MAX).to_le_bytes());
         }
         if let Some(uvs) = faces.uvs {
