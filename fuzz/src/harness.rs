@@ -173,8 +173,6 @@ pub struct FormatStats {
     pub overflow: u64,
     /// Cases that failed the oracle.
     pub failures: u64,
-    /// Cases whose picture was not drawn (curves of more than [`feed::MAX_DRAWN`] points).
-    pub render_skipped: u64,
     /// Input bytes fed.
     pub bytes: u64,
     /// The slowest case: seconds, index.
@@ -315,10 +313,6 @@ impl Summary {
                 );
             }
         }
-        let skipped: u64 = self.stats.iter().map(|st| st.render_skipped).sum();
-        if skipped > 0 {
-            let _ = writeln!(s, "renders skipped: {skipped} (known crash: {KNOWN_CRASH})");
-        }
         let groups = self.groups();
         let _ = writeln!(s, "failures: {} cases in {} groups", self.failures.len(), groups.len());
         for ((kind, _), members) in &groups {
@@ -367,30 +361,10 @@ fn signature(f: &Finding) -> String {
     out.replace("-#", "#").chars().take(100).collect()
 }
 
-/// Not a finding of the oracle but a crash that ends the process: `render` of the 26-byte
-/// `helix c 20 1 0 10000` (a circle traced 10 000 times) panics in tiny-skia 0.12
-/// (`alpha_runs.rs:170`), and a second panic while unwinding aborts. Documents whose curves
-/// need more than [`feed::MAX_DRAWN`] points are not drawn (counted as `renders skipped`).
-pub const KNOWN_CRASH: &str = "render of a curve drawn with hundreds of thousands of overlapping points aborts in \
-     tiny-skia 0.12 (alpha_runs.rs:170, then a panic in a destructor): `helix c 20 1 0 10000`";
-
 /// Findings reported with issue #38 and not fixed yet, by kind and the start of their
 /// text: `(kind, text, what it is)`. They are listed in the summary, not failed, unless
 /// `strict`.
-pub const KNOWN: [(FindingKind, &str, &str); 2] = [
-    (
-        FindingKind::Memory,
-        "reached in: render",
-        "the renderer draws every curve with up to MAX_DRAWN_POINTS = 1 000 000 points whatever the picture \
-         size: `helix . 1 1 0 10000` (20 bytes) takes 0.7 s and 250 MB to draw at 64×48",
-    ),
-    (
-        FindingKind::RoundTrip,
-        "a polygon OBJ the writer made does not read back",
-        "a face without corners (a PLY face list of length 0, which the PLY reader keeps) is written by \
-         write_obj_poly as a bare `f` line, which the OBJ reader refuses",
-    ),
-];
+pub const KNOWN: [(FindingKind, &str, &str); 0] = [];
 
 /// The known finding `finding` is, if any: its description.
 fn known(finding: &Finding) -> Option<&'static str> {
@@ -604,7 +578,6 @@ pub fn run(config: &Config) -> Summary {
                     st.refused += 1;
                 }
                 st.overflow += u64::from(outcome.overflow);
-                st.render_skipped += u64::from(outcome.render_skipped);
                 if !outcome.located {
                     st.unlocated += 1;
                     if summary.unlocated_examples.len() < 5 {

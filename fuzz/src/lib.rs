@@ -184,9 +184,6 @@ pub struct Outcome {
     pub overflow: bool,
     /// The reader's error message, if it refused the input.
     pub message: Option<String>,
-    /// The picture was not drawn: its curves need more than [`feed::MAX_DRAWN`] points (a
-    /// known crash, see [`harness::KNOWN`]).
-    pub render_skipped: bool,
 }
 
 impl Outcome {

@@ -620,6 +620,9 @@ fn report(
     } else {
         let target = args.output.as_ref().map_or_else(|| String::from("(not written)"), |p| p.display().to_string());
         let scheme = args.scheme.title();
+        // no level made: the input's faces, whatever they are
+        let noun = if args.levels == 0 { "faces" } else { noun };
+        let noun = if faces == 1 { noun.strip_suffix('s').unwrap_or(noun) } else { noun };
         let split = match written {
             Some(n) if n != vertices => {
                 format!("; the file has {n} vertices (a vertex on a UV seam or a sharp normal once per side)")

@@ -402,3 +402,41 @@ fn render_draws_a_curve_far_outside_the_picture() {
         assert!(fs::metadata(&png).unwrap().len() > 0);
     }
 }
+
+/// #38: a face of fewer than three corners is refused by name by Catmull-Clark and Doo-Sabin
+/// at every number of levels, and nothing is written (an empty face gave a face point of
+/// 0/0 and an output the writer refused; `-n 0` wrote a bare `f` and called the faces quads).
+#[test]
+fn faces_of_fewer_than_three_corners_are_refused_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let ply = dir.path().join("empty-face.ply");
+    fs::write(
+        &ply,
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+         element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0\n",
+    )
+    .unwrap();
+    let obj = dir.path().join("two.obj");
+    fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n").unwrap();
+    let out = dir.path().join("out.obj");
+    for (file, corners) in [(&ply, "0 corners"), (&obj, "2 corners")] {
+        for scheme in ["catmull-clark", "doo-sabin"] {
+            for levels in ["0", "1", "2"] {
+                let args = [
+                    "subdivide".as_ref(),
+                    file.as_os_str(),
+                    "-n".as_ref(),
+                    levels.as_ref(),
+                    "--scheme".as_ref(),
+                    scheme.as_ref(),
+                    "-o".as_ref(),
+                    out.as_os_str(),
+                ];
+                let stderr = splinekit(&args).fails_with_error().to_string();
+                let says = format!("face 1 has {corners}; every face needs at least 3 (remove it from the file)");
+                assert!(stderr.contains(&says), "{scheme} -n {levels} {}: {stderr}", file.display());
+                assert!(!out.exists());
+            }
+        }
+    }
+}

@@ -789,3 +789,22 @@ fn a_cancelled_save_writes_nothing() {
     }
     assert!(dir.entries().is_empty(), "{:?}", dir.entries());
 }
+
+/// #38: an OBJ `f` line without corners is no face to a reader, so a mesh with an empty face
+/// (a PLY face list may be empty) is refused by the OBJ writer, by name, before anything is
+/// written; PLY keeps it, and reads it back.
+#[test]
+fn a_face_without_corners_is_not_written_as_a_bare_f() {
+    let ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+               element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0\n";
+    let mesh = splinekit_io::mesh::read_ply(Cursor::new(ply), "empty-face.ply").unwrap().mesh;
+    assert_eq!(mesh.face_offsets, [0, 3, 3]);
+    let mut out = Vec::new();
+    let err = splinekit_io::mesh::write_obj_poly(&mesh, &mut out).unwrap_err();
+    assert!(out.is_empty());
+    assert_eq!(err.to_string(), "face 1, with no corners, does not fit in OBJ");
+    let mut bytes = Vec::new();
+    splinekit_io::mesh::write_ply_poly(&mesh, &mut bytes).unwrap();
+    let back = splinekit_io::mesh::read_ply(Cursor::new(&bytes), "back.ply").unwrap().mesh;
+    assert_eq!((back.face_offsets, back.face_vertices), (mesh.face_offsets, mesh.face_vertices));
+}

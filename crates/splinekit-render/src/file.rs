@@ -351,7 +351,7 @@ pub fn render_swp_document(
     let radius = bounding_radius(
         meshes.iter().flat_map(|m| m.positions.iter().copied()).chain(curves.iter().flat_map(PlotCurve::bound_points)),
     );
-    let marks: Vec<Mark> = curve_marks(&curves, &options.curves, Theme::Dark, radius);
+    let marks: Vec<Mark> = curve_marks(&curves, &options.curves, Theme::Dark, radius, None);
     let refs: Vec<&TriMesh> = meshes.iter().collect();
     let (image, legend) = Renderer::new().render_with_legend(&refs, &marks, &render_options(options, view));
     Ok(Rendered {

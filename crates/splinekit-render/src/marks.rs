@@ -8,10 +8,10 @@
 use glam::DVec3;
 use splinekit::flatten::{Tessellation, flatten_at_most};
 use splinekit::frame::{self, FrameOptions};
-use splinekit::{AnyCurve, ArclenIndex, ParamCurve};
+use splinekit::{Aabb, AnyCurve, ArclenIndex, ParamCurve};
 use splinekit_io::{SwpCurve, SwpGeometry};
 
-use crate::Rgb;
+use crate::{ImageSize, Rgb};
 
 /// Colours of consecutive curve segments (as the editor's 2D view).
 pub const SEGMENT_COLOURS: [Rgb; 6] =
@@ -32,8 +32,13 @@ pub const MAX_MARKERS: usize = 5000;
 /// Relative accuracy of the arc lengths that place markers.
 const MARKER_ACCURACY: f64 = 1e-9;
 
-/// Curve tessellation tolerance, as a fraction of the scene's radius.
+/// Curve tessellation tolerance, as a fraction of the scene's radius ...
 const CURVE_TOLERANCE: f64 = 1e-4;
+/// ... or, in 2D plots, in pixels, whichever is coarser: a picture framing the scene's
+/// diameter in its smaller side draws curves no closer than this to the pixel (a small picture
+/// of a fine curve, such as a helix of 10 000 turns at 64×48, needs far fewer points than a
+/// large one). Not in 3D pictures, where a curve on a surface must not sink into it.
+const PIXEL_TOLERANCE: f64 = 0.1;
 
 /// A curve to draw, with its control polygon.
 #[derive(Clone, Debug)]
@@ -61,15 +66,23 @@ impl PlotCurve {
         Ok(Self { name: curve.display_name(index), curve: curve.to_curve()?, control_points, closed: curve.closed })
     }
 
-    /// Points for framing: the control points and samples of the curve.
+    /// Points for framing: the control points, samples of the curve and the corners of its box.
     pub(crate) fn bound_points(&self) -> impl Iterator<Item = DVec3> + Clone + '_ {
         let m = self.curve.num_segments().max(1);
         let n = 16 * m;
         let (a, b) = self.curve.domain();
+        // The tight box's corners hold the whole curve, where samples may all fall on the same
+        // points (17 samples of a helix of 10 000 turns are 17 times its start).
+        let Aabb { min, max } = self.curve.bounding_box();
+        let corners = (0..8).map(move |k| {
+            let pick = |bit: usize, lo: f64, hi: f64| if k & bit == 0 { lo } else { hi };
+            DVec3::new(pick(1, min.x, max.x), pick(2, min.y, max.y), pick(4, min.z, max.z))
+        });
         self.control_points
             .iter()
             .copied()
             .chain((0..=n).map(move |i| self.curve.eval(a + (b - a) * i as f64 / n as f64)))
+            .chain(corners)
     }
 }
 
@@ -208,10 +221,19 @@ pub const MARKER_RADIUS: f64 = 2.5;
 /// The marks that draw `curves`: per curve its control polygon (dashed), the curve coloured by
 /// segment ([`SEGMENT_COLOURS`]), frames, markers and control points, in that order.
 /// `radius` is the scene's size (frame arrows are [`FRAME_LENGTH`] of it, and curves are
-/// tessellated to 1e-4 of it).
+/// tessellated to 1e-4 of it). With `plot`, the size of a 2D plot framing the scene, curves
+/// are tessellated to a tenth of its pixel where that is coarser.
 #[must_use]
-pub fn curve_marks(curves: &[PlotCurve], options: &CurveOptions, theme: Theme, radius: f64) -> Vec<Mark> {
+pub fn curve_marks(
+    curves: &[PlotCurve],
+    options: &CurveOptions,
+    theme: Theme,
+    radius: f64,
+    plot: Option<ImageSize>,
+) -> Vec<Mark> {
     let radius = if radius.is_finite() && radius > 0.0 { radius } else { 1.0 };
+    let pixel = plot.map_or(0.0, |size| 2.0 * radius / f64::from(size.width.min(size.height).max(1)));
+    let tolerance = (CURVE_TOLERANCE * radius).max(PIXEL_TOLERANCE * pixel);
     let mut marks = Vec::new();
     for c in curves {
         let polygon = options.polygon && c.control_points.len() > 1;
@@ -222,7 +244,7 @@ pub fn curve_marks(curves: &[PlotCurve], options: &CurveOptions, theme: Theme, r
             }
             marks.push(Mark::Line { points, colour: theme.polygon(), width: 1.0, dash: Some([6.0, 4.0]) });
         }
-        marks.extend(segment_lines(&c.curve, CURVE_TOLERANCE * radius));
+        marks.extend(segment_lines(&c.curve, tolerance));
         if options.frames {
             frame_arrows(&c.curve, FRAME_LENGTH * radius, &mut marks);
         }
@@ -314,6 +336,7 @@ mod tests {
             &CurveOptions::DEFAULT.with_frames(true).with_marker_spacing(Some(0.5)),
             Theme::Light,
             1.5,
+            None,
         );
         let lines = marks.iter().filter(|m| matches!(m, Mark::Line { dash: None, .. })).count();
         let dashed = marks.iter().filter(|m| matches!(m, Mark::Line { dash: Some(_), .. })).count();
@@ -330,7 +353,7 @@ mod tests {
     fn circles_have_no_polygon() {
         let doc = SwpDocument::parse("circ c 20 1", "t.swp").unwrap();
         let c = PlotCurve::from_swp(&doc.curves[0], 0).unwrap();
-        let marks = curve_marks(&[c], &CurveOptions::DEFAULT, Theme::Dark, 1.0);
+        let marks = curve_marks(&[c], &CurveOptions::DEFAULT, Theme::Dark, 1.0, None);
         assert!(marks.iter().all(|m| matches!(m, Mark::Line { dash: None, .. })));
     }
 }

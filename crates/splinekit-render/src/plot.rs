@@ -94,7 +94,7 @@ fn plan(curves: &[PlotCurve], curve_options: &CurveOptions, options: &PlotOption
             });
         }
     }
-    marks.extend(curve_marks(curves, curve_options, Theme::Light, radius));
+    marks.extend(curve_marks(curves, curve_options, Theme::Light, radius, Some(options.size)));
     (camera, marks)
 }
 

@@ -313,7 +313,8 @@ pub fn flatten_count<P: Vector>(curve: &AnyCurve<P>, mode: Tessellation) -> u64 
 
 /// [`flatten_any`] in `mode` when that gives at most `max_points` points
 /// ([`flatten_count`]); otherwise equal parameter steps, as many as fit `max_points` (at
-/// least one per segment, at most [`MAX_STEPS`] each), and `mode`'s tolerance is not met.
+/// least one per segment, at most [`MAX_STEPS`] each for chains of cubics; all of them for a
+/// circle, helix or knot), and `mode`'s tolerance is not met.
 /// For drawing, where a curve far finer than the picture must still come out in bounded time
 /// and memory.
 #[must_use]
@@ -321,12 +322,17 @@ pub fn flatten_at_most<P: Vector>(curve: &AnyCurve<P>, mode: Tessellation, max_p
     if flatten_count(curve, mode) <= max_points as u64 {
         return flatten_any(curve, mode);
     }
-    let segments = match curve {
-        AnyCurve::Piecewise(c) => c.segments().len().max(1),
-        _ => 1,
-    };
-    let steps = (max_points.saturating_sub(1) / segments).clamp(1, MAX_STEPS);
-    flatten_any(curve, Tessellation::Uniform { steps })
+    let steps = max_points.saturating_sub(1).max(1);
+    match curve {
+        AnyCurve::Piecewise(c) => {
+            let segments = c.segments().len().max(1);
+            flatten_any(curve, Tessellation::Uniform { steps: (steps / segments).clamp(1, MAX_STEPS) })
+        }
+        // one segment each, and equal steps of u are equal steps of angle (or of t): all of
+        // `max_points`, not `MAX_STEPS` (a helix of 10 000 turns in 65 536 steps is a
+        // polygon of 6.6 sides turning slowly, not a circle)
+        _ => (0..=steps).map(|i| i as f64 / steps as f64).collect(),
+    }
 }
 
 /// Number of equal chords for a circle in the given mode.

@@ -301,3 +301,47 @@ fn fixed_corners_match_opensubdiv_on_nonmanifold_meshes() {
     }
     assert!(failures.is_empty(), "against OpenSubdiv (EDGE_AND_CORNER):\n{failures}");
 }
+
+/// #38: a face of fewer than three corners (a PLY face list of length 0, 1 or 2, an OBJ
+/// `f 1 2`) is refused by name by every polygon scheme, at every number of levels, with and
+/// without creases and limits; Catmull-Clark gave a face point of 0/0 for an empty face.
+#[test]
+fn faces_of_fewer_than_three_corners_are_refused() {
+    use splinekit::subdiv::{
+        DooSabinOptions, SubdivError, catmull_clark_limit_positions, catmull_clark_step,
+        catmull_clark_subdivide_creased, doo_sabin_subdivide,
+    };
+    let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE];
+    for short in [vec![], vec![3], vec![1, 3]] {
+        let mut faces = vec![vec![0u32, 1, 2], vec![2, 1, 3]];
+        faces.insert(1, short.clone());
+        let mut mesh = PolyMesh { positions: positions.clone(), ..PolyMesh::default() };
+        mesh.face_offsets = vec![0];
+        for f in &faces {
+            mesh.face_vertices.extend(f);
+            mesh.face_offsets.push(mesh.face_vertices.len() as u32);
+        }
+        let expected = SubdivError::TooFewCorners { face: 1, corners: short.len() };
+        let cc = CatmullClarkOptions::default();
+        for levels in 0..3 {
+            assert_eq!(catmull_clark_subdivide(&mesh, levels, &cc).unwrap_err(), expected, "{levels} levels");
+            assert_eq!(doo_sabin_subdivide(&mesh, levels, &DooSabinOptions::default()).unwrap_err(), expected);
+            let creased =
+                catmull_clark_subdivide_creased(&mesh, levels, &cc, &Creases::default(), CreasingMethod::Chaikin);
+            assert_eq!(creased.unwrap_err(), expected);
+        }
+        assert_eq!(catmull_clark_step(&mesh, 1, &cc).unwrap_err(), expected);
+        assert_eq!(catmull_clark_limit_positions(&mesh, &cc).unwrap_err(), expected);
+        let limit = catmull_clark_subdivide_limit(&mesh, 1, &cc, &Creases::default(), CreasingMethod::Uniform);
+        assert_eq!(limit.unwrap_err(), expected);
+        assert!(!is_nonmanifold(&mesh));
+        assert_eq!(
+            expected.to_string(),
+            format!(
+                "face 1 has {} corner{}; every face needs at least 3 (remove it from the file)",
+                short.len(),
+                if short.len() == 1 { "" } else { "s" }
+            )
+        );
+    }
+}

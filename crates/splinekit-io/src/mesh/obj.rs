@@ -6,7 +6,7 @@ use glam::{DVec2, DVec3};
 use splinekit::mesh::FaceVarying;
 use splinekit::{PolyMesh, TriMesh};
 
-use super::MeshIoError;
+use super::{MeshIoError, MeshIoErrorKind};
 
 /// Writes `mesh` as Wavefront OBJ text.
 ///
@@ -69,10 +69,16 @@ pub fn write_obj<W: Write + ?Sized>(mesh: &TriMesh, out: &mut W) -> Result<(), M
 ///
 /// [`InvalidMesh`](super::MeshIoErrorKind::InvalidMesh) if the fan triangulation fails
 /// [`TriMesh::validate`], or an attribute's indices do not match the corners or its values
-/// (nothing is written then), or an [`Io`](super::MeshIoErrorKind::Io) error from `out`.
+/// (nothing is written then); [`Unrepresentable`](super::MeshIoErrorKind::Unrepresentable)
+/// for a face without corners; or an [`Io`](super::MeshIoErrorKind::Io) error from `out`.
 pub fn write_obj_poly<W: Write + ?Sized>(mesh: &PolyMesh, out: &mut W) -> Result<(), MeshIoError> {
     // the checks of a triangle mesh, on the fan triangulation (same vertices and indices)
     super::check(&mesh.to_tri_mesh())?;
+    // a bare `f` line is no face to a reader (a PLY face list may be empty)
+    if let Some(face) = mesh.faces().position(<[u32]>::is_empty) {
+        let what = format!("face {face}, with no corners,");
+        return Err(MeshIoError::new(MeshIoErrorKind::Unrepresentable { format: "OBJ", what }));
+    }
     let normals = channel(mesh, mesh.normals.as_ref(), "normals")?;
     let uvs = channel(mesh, mesh.uvs.as_ref(), "UVs")?;
     let n = mesh.positions.len();
@@ -128,7 +134,7 @@ pub(super) fn channel<'m, T: FiniteValue>(
         Some(format!("{} indices for {corners} face corners", a.indices.len()))
     };
     match problem {
-        Some(problem) => Err(MeshIoError::new(super::MeshIoErrorKind::InvalidAttribute { attribute: what, problem })),
+        Some(problem) => Err(MeshIoError::new(MeshIoErrorKind::InvalidAttribute { attribute: what, problem })),
         None => Ok(Some(a)),
     }
 }

@@ -40,7 +40,7 @@ use rayon::prelude::*;
 use super::counts::{self, Counts};
 use super::crease::{Creases, CreasingMethod};
 use super::general::{General, repeated_vertex};
-use super::loop_scheme::{Attribute, BoundaryRule, SubdivError, child_colors, parent_colors};
+use super::loop_scheme::{Attribute, BoundaryRule, SubdivError, child_colors, parent_colors, polygons_only};
 use super::quads::{self, QuadLevel};
 use super::regular;
 use super::topology::{MIN_LEN, MIN_RINGS, TopologyError};
@@ -69,6 +69,7 @@ pub fn catmull_clark_subdivide(
     options: &CatmullClarkOptions,
 ) -> Result<PolyMesh, SubdivError> {
     if levels == 0 {
+        polygons_only(mesh)?;
         return Ok(PolyMesh { normals: None, uvs: None, ..mesh.clone() });
     }
     let rings = match Rings::new(mesh) {
@@ -157,9 +158,11 @@ pub(super) struct Rings<'a> {
 }
 
 impl<'a> Rings<'a> {
-    /// The adjacency of `mesh`; an error for the first face that repeats a vertex, else the
-    /// first non-manifold or inconsistently oriented edge or vertex.
+    /// The adjacency of `mesh`; an error for the first face of fewer than three corners, else
+    /// the first face that repeats a vertex, else the first non-manifold or inconsistently
+    /// oriented edge or vertex.
     pub(super) fn new(mesh: &'a PolyMesh) -> Result<Self, SubdivError> {
+        polygons_only(mesh)?;
         if let Some((face, vertex)) = repeated_vertex(mesh) {
             return Err(TopologyError::RepeatedVertex { face: face as u32, vertex }.into());
         }

@@ -54,6 +54,7 @@ pub struct DooSabinOptions {}
 pub fn doo_sabin_subdivide(mesh: &PolyMesh, levels: usize, options: &DooSabinOptions) -> Result<PolyMesh, SubdivError> {
     let _ = options;
     if levels == 0 {
+        super::loop_scheme::polygons_only(mesh)?;
         return Ok(PolyMesh { normals: None, ..mesh.clone() });
     }
     let rings = Rings::new(mesh)?;

@@ -123,6 +123,15 @@ pub enum SubdivError {
         /// The scheme: `Loop`, `√3` or `butterfly`.
         scheme: &'static str,
     },
+    /// A face of fewer than three corners (a PLY face list of length 0, 1 or 2, an OBJ
+    /// `f 1 2`): no scheme takes it.
+    #[error("face {face} has {corners} corner{}; every face needs at least 3 (remove it from the file)", plural(.corners))]
+    TooFewCorners {
+        /// The face.
+        face: usize,
+        /// Its number of corners.
+        corners: usize,
+    },
     /// Catmull-Clark's limit mask needs quads around an interior vertex.
     #[error(
         "vertex {vertex} lies on face {face} with {corners} corners; Catmull-Clark limit positions need quads \
@@ -179,6 +188,14 @@ pub enum SubdivError {
 /// `s` unless `n` is 1.
 fn plural(n: &usize) -> &'static str {
     if *n == 1 { "" } else { "s" }
+}
+
+/// [`SubdivError::TooFewCorners`] for the first face of `mesh` with fewer than three corners.
+pub(super) fn polygons_only(mesh: &PolyMesh) -> Result<(), SubdivError> {
+    match mesh.faces().enumerate().find(|(_, f)| f.len() < 3) {
+        Some((face, f)) => Err(SubdivError::TooFewCorners { face, corners: f.len() }),
+        None => Ok(()),
+    }
 }
 
 /// [`SubdivError::NotTriangles`] for the first face of `mesh` that is not a triangle, naming
