@@ -252,7 +252,11 @@ pub fn bounding_radius(points: impl Iterator<Item = DVec3>) -> f64 {
 
 /// Half the diagonal of the box `lo..hi` (1 when that is empty, zero or not finite).
 pub(crate) fn box_radius(lo: DVec3, hi: DVec3) -> f64 {
-    let r = 0.5 * (hi - lo).length();
+    // halved first and scaled by the largest side: no overflow for any finite box (a box of
+    // 1e304 is not "not finite" and drawn at the tolerances of a unit box)
+    let half = 0.5 * hi - 0.5 * lo;
+    let m = half.abs().max_element();
+    let r = if m > 0.0 && m.is_finite() { m * (half / m).length() } else { m };
     if r.is_finite() && r > 0.0 { r } else { 1.0 }
 }
 

@@ -6,7 +6,7 @@
 //! list.
 
 use glam::DVec3;
-use splinekit::flatten::{Tessellation, flatten_at_most};
+use splinekit::flatten::{Tessellation, flatten_at_most, flatten_count};
 use splinekit::frame::{self, FrameOptions};
 use splinekit::{Aabb, AnyCurve, ArclenIndex, ParamCurve};
 use splinekit_io::{SwpCurve, SwpGeometry};
@@ -234,8 +234,15 @@ pub fn curve_marks(
     let radius = if radius.is_finite() && radius > 0.0 { radius } else { 1.0 };
     let pixel = plot.map_or(0.0, |size| 2.0 * radius / f64::from(size.width.min(size.height).max(1)));
     let tolerance = (CURVE_TOLERANCE * radius).max(PIXEL_TOLERANCE * pixel);
+    let mode = Tessellation::Distance { tolerance };
+    // curves that need more points than the picture's budget share it by their need
+    let budget = if plot.is_some() { MAX_DRAWN_POINTS } else { MAX_DRAWN_POINTS_3D };
+    let needs: Vec<u64> = curves.iter().map(|c| flatten_count(&c.curve, mode)).collect();
+    let total = needs.iter().fold(0u64, |sum, &n| sum.saturating_add(n));
     let mut marks = Vec::new();
-    for c in curves {
+    for (c, &need) in curves.iter().zip(&needs) {
+        let share = if total <= budget as u64 { need } else { (need as f64 / total as f64 * budget as f64) as u64 };
+        let at_most = usize::try_from(share).unwrap_or(usize::MAX).max(c.curve.num_segments() + 1);
         let polygon = options.polygon && c.control_points.len() > 1;
         if polygon {
             let mut points = c.control_points.clone();
@@ -244,7 +251,7 @@ pub fn curve_marks(
             }
             marks.push(Mark::Line { points, colour: theme.polygon(), width: 1.0, dash: Some([6.0, 4.0]) });
         }
-        marks.extend(segment_lines(&c.curve, tolerance));
+        marks.extend(segment_lines(&c.curve, mode, at_most));
         if options.frames {
             frame_arrows(&c.curve, FRAME_LENGTH * radius, &mut marks);
         }
@@ -264,13 +271,17 @@ pub fn curve_marks(
     marks
 }
 
-/// The most points a curve is drawn with (a curve finer than that, such as a helix of
-/// thousands of turns, is drawn with equal steps instead of to the picture's tolerance).
+/// The most points the curves of a 2D plot are drawn with, all together (curves finer than
+/// that, such as a helix of thousands of turns, are drawn with equal steps instead of to the
+/// picture's tolerance, each with a share of the points in proportion to its need).
 pub const MAX_DRAWN_POINTS: usize = 1_000_000;
 
-/// One polyline per segment, in that segment's colour.
-fn segment_lines(c: &AnyCurve<DVec3>, tolerance: f64) -> Vec<Mark> {
-    let params = flatten_at_most(c, Tessellation::Distance { tolerance }, MAX_DRAWN_POINTS);
+/// The same for a 3D picture, whose marks take about 350 bytes a point (about 90 MB).
+pub const MAX_DRAWN_POINTS_3D: usize = 250_000;
+
+/// One polyline per segment, in that segment's colour: `mode`'s points, or `at_most` equal steps.
+fn segment_lines(c: &AnyCurve<DVec3>, mode: Tessellation, at_most: usize) -> Vec<Mark> {
+    let params = flatten_at_most(c, mode, at_most);
     let segments = c.num_segments().max(1);
     let mut lines = Vec::new();
     let mut start = 0;

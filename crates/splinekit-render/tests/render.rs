@@ -374,3 +374,71 @@ fn glb_meshes_render_like_their_obj() {
     let trimesh = io_data("glb/trimesh_scene.glb");
     assert!(render(&trimesh, &options).num_triangles > 0);
 }
+
+/// The curve points of `marks` (solid lines only: the curves, not their polygons).
+fn curve_points(marks: &[splinekit_render::Mark]) -> usize {
+    marks
+        .iter()
+        .map(|m| match m {
+            splinekit_render::Mark::Line { points, dash: None, .. } => points.len(),
+            _ => 0,
+        })
+        .sum()
+}
+
+/// #38: a circle traced 10 000 times (`helix c 20 1 0 10000`, 20 bytes) is framed by its box
+/// (17 samples of it are 17 times its start, which framed a point) and drawn as a ring with
+/// all of the point budget, not 6.6 chords a turn; a small picture draws it with fewer points.
+#[test]
+fn a_helix_of_ten_thousand_turns_is_drawn_as_its_ring() {
+    use splinekit_render::{Theme, curve_marks, marks::MAX_DRAWN_POINTS};
+    let doc = splinekit_io::SwpDocument::parse("helix c 20 1 0 10000\n", "ring.swp").unwrap();
+    let curves = [splinekit_render::PlotCurve::from_swp(&doc.curves[0], 0).unwrap()];
+    let plot = PlotOptions::DEFAULT.with_size(size(200, 150)).with_view(View::Front);
+    let image = plot_curves(&curves, &CurveOptions::DEFAULT, &plot);
+    // the coloured pixels: a ring about the centre, as wide as the framed picture allows
+    let colour = splinekit_render::SEGMENT_COLOURS[0];
+    let (mut lo, mut hi, mut at_centre) = ([u32::MAX; 2], [0u32; 2], 0);
+    for y in 0..150 {
+        for x in 0..200 {
+            let p = image.pixel(x, y).unwrap();
+            if diff(p, [colour[0], colour[1], colour[2], 255]) <= 40 {
+                (lo, hi) = ([lo[0].min(x), lo[1].min(y)], [hi[0].max(x), hi[1].max(y)]);
+                at_centre += u32::from((x as i32 - 100).pow(2) + (y as i32 - 75).pow(2) < 20 * 20);
+            }
+        }
+    }
+    let (w, h) = (hi[0] - lo[0], hi[1] - lo[1]);
+    assert!(w > 100 && h > 100 && w.abs_diff(h) <= 3, "ring box {lo:?}..{hi:?}");
+    assert_eq!(at_centre, 0, "chords across the ring");
+    // the budget in full at 800×600; far fewer points at 64×48 (a tenth of a pixel)
+    let count = |s: ImageSize| curve_points(&curve_marks(&curves, &CurveOptions::DEFAULT, Theme::Light, 1.0, Some(s)));
+    assert_eq!(count(ImageSize::DEFAULT), MAX_DRAWN_POINTS);
+    assert!(count(size(64, 48)) < MAX_DRAWN_POINTS / 2);
+}
+
+/// #38: curves of size 1e304 are tessellated to their own scale (the scene's radius
+/// overflowed to infinity and was taken as 1, so each was drawn with the whole budget), and
+/// curves that need more than the budget share it.
+#[test]
+fn huge_scenes_and_many_fine_curves_stay_within_the_point_budget() {
+    use splinekit_render::camera::bounding_radius;
+    use splinekit_render::{Theme, curve_marks, marks::MAX_DRAWN_POINTS_3D};
+    let doc = splinekit_io::SwpDocument::parse("trefoil k 84 2.6e304\ncirc r 30 3e304\n", "huge.swp").unwrap();
+    let curves: Vec<_> =
+        doc.curves.iter().enumerate().map(|(i, c)| splinekit_render::PlotCurve::from_swp(c, i).unwrap()).collect();
+    let corners = [DVec3::splat(-9e304), DVec3::splat(9e304)];
+    let radius = bounding_radius(corners.into_iter());
+    assert!((radius / (9e304 * 3f64.sqrt()) - 1.0).abs() < 1e-12, "{radius}");
+    let marks = curve_marks(&curves, &CurveOptions::DEFAULT, Theme::Dark, radius, None);
+    assert!(curve_points(&marks) < 5000, "{} points", curve_points(&marks));
+    // ten helices of 10 000 turns in a 3D picture, drawn to 1e-4 (2.2 million points each):
+    // the 3D budget, shared
+    let text: String = (0..10).map(|k| format!("helix h{k} 20 1 0.{k} 10000\n")).collect();
+    let doc = splinekit_io::SwpDocument::parse(&text, "helices.swp").unwrap();
+    let curves: Vec<_> =
+        doc.curves.iter().enumerate().map(|(i, c)| splinekit_render::PlotCurve::from_swp(c, i).unwrap()).collect();
+    let marks = curve_marks(&curves, &CurveOptions::DEFAULT, Theme::Dark, 1.0, None);
+    let n = curve_points(&marks);
+    assert!(n <= MAX_DRAWN_POINTS_3D + 10 && n > MAX_DRAWN_POINTS_3D / 2, "{n} points");
+}

@@ -427,3 +427,26 @@ fn regression_38_inverse_below_the_rounding_level_is_fast_and_honest() {
     let seconds = start.elapsed().as_secs_f64();
     assert!(seconds < 5.0, "101 queries took {seconds:.1} s");
 }
+
+/// #38: a 3D line that goes out and back twice, `P(t) = p + (2t³ − 3t² + t)·m` (a Hermite
+/// segment whose ends and tangents are all `m`), has two true cusps where its computed speed
+/// is all rounding. An accuracy far below that rounding (1e-300) is raised to it: the length
+/// still matches the closed form `|m|·∫|6t² − 6t + 1|` to rounding (it took 3.9 s of splitting
+/// the pieces at the cusps to the work limit for 13 such segments).
+#[test]
+fn accuracy_below_the_speeds_rounding_is_raised_to_it() {
+    let m = DVec3::new(1.0090236439607185, 2.0, 0.7430166114941441);
+    let p = DVec3::new(0.5, -1.0, 2.0);
+    // Hermite to Bézier: p, p + m/3, p − m/3, p
+    let c = CubicBezier::new(p, p + m / 3.0, p - m / 3.0, p);
+    let (r1, r2) = ((3.0 - 3f64.sqrt()) / 6.0, (3.0 + 3f64.sqrt()) / 6.0);
+    let f = |t: f64| 2.0 * t * t * t - 3.0 * t * t + t;
+    let want = m.length() * ((f(r1) - f(0.0)).abs() + (f(r2) - f(r1)).abs() + (f(1.0) - f(r2)).abs());
+    for acc in [1e-300, 1e-15, 1e-9] {
+        let e = c.arclen_range(0.0, 1.0, acc);
+        assert!((e.length - want).abs() <= 1e-14 * want + acc, "accuracy {acc}: {} vs {want}", e.length);
+        assert!(e.error.is_finite() && e.error <= 1e-13 * want + acc, "accuracy {acc}: error {}", e.error);
+    }
+    let index = ArclenIndex::new(&c, 1e-300);
+    assert!((index.length() - want).abs() <= 1e-14 * want);
+}

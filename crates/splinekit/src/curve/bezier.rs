@@ -164,7 +164,8 @@ impl<P: Vector> CubicBezier<P> {
     /// bound of the error. A twisted 3D segment is first cut at the local minima of the
     /// speed `|P′|` (the roots of `P′·P″`, a cubic), where cusps and near-cusps put a kink
     /// into the integrand, and each piece goes to [`arclen::integrate_speed`] with a share of
-    /// the budget in proportion to its width.
+    /// the budget in proportion to its width. An accuracy below the rounding of the speed
+    /// itself, `4ε·(|a| + |b| + |c|)·(t1 − t0)` for `P′(t) = a + b·t + c·t²`, is raised to it.
     #[must_use]
     pub fn arclen_range(&self, t0: f64, t1: f64, accuracy: f64) -> ArclenEstimate {
         if t1 < t0 {
@@ -172,6 +173,11 @@ impl<P: Vector> CubicBezier<P> {
             return ArclenEstimate { length: -e.length, error: e.error };
         }
         let (a, b, c) = self.deriv_coefficients();
+        // The speed is computed to about 4ε·(|a| + |b| + |c|) on [0, 1]: no integral of it is
+        // better than that times its width, and asking for more (1e-300) would only split
+        // the pieces around a near-cusp, where the speed is all rounding, to the work limit.
+        let noise = 4.0 * f64::EPSILON * (a.length() + b.length() + c.length());
+        let accuracy = if accuracy > noise * (t1 - t0) { accuracy } else { noise * (t1 - t0) };
         if let Some(planar) = PlanarSpeed::new(a, b, c) {
             return planar.arclen(t0, t1, accuracy);
         }
