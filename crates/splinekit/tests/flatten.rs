@@ -461,3 +461,25 @@ fn point_counts_are_known_before_the_points_are_made() {
     assert_eq!((drawn[0], *drawn.last().unwrap()), (0.0, 1.0));
     assert!(drawn.windows(2).all(|w| w[0] < w[1]));
 }
+
+/// #38: the angle mode's chord count of a helix depends on its shape, not its size: a radius
+/// of 1e-300 (whose chords underflowed to length 0, so that the count crept up by one to its
+/// cap of 4096 a turn: 2.3 s) gives the count of radius 1.
+#[test]
+fn helix_angle_chords_do_not_depend_on_size() {
+    use splinekit::Helix;
+    use splinekit::flatten::{flatten_any, flatten_count};
+    let mode = Tessellation::Angle { tolerance: 0.11 };
+    for (pitch, turns) in [(0.0, 10_000.0), (0.3, 7.5), (-2.0, 3.0), (50.0, 1.0)] {
+        let unit = flatten_count(&AnyCurve::<DVec3>::Helix(Helix::new(1.0, pitch, turns)), mode);
+        for scale in [1e-300, 1e-9, 1e9, 1e300] {
+            let h = AnyCurve::<DVec3>::Helix(Helix::new(scale, pitch * scale, turns));
+            assert_eq!(flatten_count(&h, mode), unit, "pitch {pitch}, turns {turns}, scale {scale}");
+        }
+        // at least 3 chords a turn, and the points made are the points counted
+        let n = unit - 1;
+        assert!(n as f64 >= 3.0 * turns, "{n} chords for {turns} turns");
+        let params = flatten_any(&AnyCurve::<DVec3>::Helix(Helix::new(1.0, pitch, turns)), mode);
+        assert_eq!(params.len() as u64, unit);
+    }
+}

@@ -134,17 +134,20 @@ impl Helix {
                 let turns = big_theta / TAU;
                 let cap = ((4usize << MAX_ANGLE_DEPTH) as f64 * turns.ceil()).max(1.0);
                 let at_least = (3.0 * turns).ceil().max(1.0);
-                // first-order estimate: the tangent turns by (r/L)·θ in all
-                let ell = r.hypot(c);
-                let mut n = (big_theta * r / ell / eps).ceil().clamp(at_least, cap);
-                let turn = |n: f64| chord_tangent_angle(r, c, 0.5 * big_theta / n);
-                while n < cap && turn(n) > 0.5 * eps {
-                    n += 1.0;
+                // the fewest chords in [at_least, cap] within the angle (which falls as n grows),
+                // or cap: bisection, about 26 tests (stepping by one from an estimate took
+                // tens of millions where the estimate was far off)
+                let ok = |n: f64| chord_tangent_angle(r, c, 0.5 * big_theta / n) <= 0.5 * eps;
+                let (mut lo, mut hi) = (at_least - 1.0, cap);
+                while hi - lo > 1.0 {
+                    let mid = (0.5 * (lo + hi)).floor();
+                    if ok(mid) {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
                 }
-                while n > at_least && turn(n - 1.0) <= 0.5 * eps {
-                    n -= 1.0;
-                }
-                n as usize
+                hi as usize
             }
             Tessellation::Distance { tolerance } => {
                 if !(r > 0.0 && big_theta > 0.0 && big_theta.is_finite() && r.is_finite() && c.is_finite()) {
@@ -170,6 +173,10 @@ impl Helix {
 /// (the same at both, by symmetry), for radius `r` and rise per radian `c`; π when the
 /// chord has no direction.
 fn chord_tangent_angle(r: f64, c: f64, delta: f64) -> f64 {
+    // the angle does not depend on the helix's size: scaled to 1, so that a radius of 1e-300
+    // does not underflow to a chord of length 0
+    let size = r.abs().max(c.abs());
+    let (r, c) = if size > 0.0 && size.is_finite() { (r / size, c / size) } else { (r, c) };
     // with θm = 0: chord ∥ (0, r·sin δ, c·δ), end tangent ∥ (−r·sin δ, r·cos δ, c)
     let chord = DVec3::new(0.0, r * delta.sin(), c * delta);
     let tangent = DVec3::new(-r * delta.sin(), r * delta.cos(), c);

@@ -495,7 +495,12 @@ fn add_cap(mesh: &mut TriMesh, ring: &[DVec2], frame: Frame, centre: DVec3, scal
 }
 
 /// Ear-clipping triangulation of a simple polygon (either orientation); indices into
-/// `points`. A polygon that is not simple falls back to a fan from its first vertex.
+/// `points`. A polygon that is not simple falls back to a fan over what is left when no ear
+/// is found in a whole turn.
+///
+/// The ring is a linked list, and only reflex (or flat) corners can lie in an ear of a simple
+/// polygon, so each ear test looks at those in a grid of cells over the triangle's box
+/// (a cap of 20 000 points took minutes when every clip started over and tested every point).
 #[must_use]
 pub fn triangulate_polygon(points: &[DVec2]) -> Vec<[usize; 3]> {
     let n = points.len();
@@ -504,46 +509,88 @@ pub fn triangulate_polygon(points: &[DVec2]) -> Vec<[usize; 3]> {
     }
     let area: f64 = (0..n).map(|i| points[i].perp_dot(points[(i + 1) % n])).sum();
     let sign = if area < 0.0 { -1.0 } else { 1.0 };
-    let mut idx: Vec<usize> = (0..n).collect();
+    let cross = |a: usize, b: usize, c: usize| sign * (points[b] - points[a]).perp_dot(points[c] - points[a]);
+    let mut prev: Vec<usize> = (0..n).map(|i| (i + n - 1) % n).collect();
+    let mut next: Vec<usize> = (0..n).map(|i| (i + 1) % n).collect();
+    // reflex or flat corners (never clipped; a corner only turns convex as ears go)
+    let mut reflex: Vec<bool> = (0..n).map(|i| cross(prev[i], i, next[i]) <= 0.0).collect();
+    let grid = ReflexGrid::new(points, &reflex);
+    let mut alive = vec![true; n];
     let mut out = Vec::with_capacity(n - 2);
-    let cross = |a: DVec2, b: DVec2, c: DVec2| sign * (b - a).perp_dot(c - a);
-    let mut guard = 0;
-    while idx.len() > 3 && guard < idx.len() {
-        let m = idx.len();
-        let mut clipped = false;
-        for k in 0..m {
-            let (ia, ib, ic) = (idx[(k + m - 1) % m], idx[k], idx[(k + 1) % m]);
-            let (a, b, c) = (points[ia], points[ib], points[ic]);
-            if cross(a, b, c) <= 0.0 {
-                continue; // reflex or flat corner
-            }
-            let inside = idx.iter().any(|&j| {
-                j != ia && j != ib && j != ic && {
-                    let q = points[j];
-                    cross(a, b, q) >= 0.0 && cross(b, c, q) >= 0.0 && cross(c, a, q) >= 0.0
+    let (mut remaining, mut i, mut tried) = (n, 0, 0);
+    while remaining > 3 && tried < remaining {
+        let (a, c) = (prev[i], next[i]);
+        let ear = !reflex[i]
+            && !grid.any_in([points[a], points[i], points[c]], |j| {
+                alive[j] && reflex[j] && j != a && j != i && j != c && {
+                    cross(a, i, j) >= 0.0 && cross(i, c, j) >= 0.0 && cross(c, a, j) >= 0.0
                 }
             });
-            if !inside {
-                out.push([ia, ib, ic]);
-                idx.remove(k);
-                clipped = true;
-                break;
-            }
+        if !ear {
+            (i, tried) = (c, tried + 1);
+            continue;
         }
-        guard = if clipped { 0 } else { guard + 1 };
-        if !clipped {
-            break;
-        }
+        out.push([a, i, c]);
+        alive[i] = false;
+        (next[a], prev[c]) = (c, a);
+        remaining -= 1;
+        reflex[a] = cross(prev[a], a, c) <= 0.0;
+        reflex[c] = cross(a, c, next[c]) <= 0.0;
+        // the corner before the ear changed: try it first
+        (i, tried) = (a, 0);
     }
-    if idx.len() == 3 {
-        out.push([idx[0], idx[1], idx[2]]);
-    } else {
-        // not simple: a fan over what is left
-        for w in 1..idx.len() - 1 {
-            out.push([idx[0], idx[w], idx[w + 1]]);
-        }
+    // three left, or not simple: a fan over what is left
+    let ring: Vec<usize> = core::iter::successors(Some(i), |&v| Some(next[v])).take(remaining).collect();
+    for w in 1..ring.len() - 1 {
+        out.push([ring[0], ring[w], ring[w + 1]]);
     }
     out
+}
+
+/// The reflex corners of a polygon in a uniform grid of about one corner per cell, for ear
+/// tests.
+struct ReflexGrid {
+    lo: DVec2,
+    /// Cells per unit length.
+    inv: DVec2,
+    side: usize,
+    cells: Vec<Vec<usize>>,
+}
+
+impl ReflexGrid {
+    fn new(points: &[DVec2], reflex: &[bool]) -> Self {
+        let corners: Vec<usize> = (0..points.len()).filter(|&i| reflex[i] && points[i].is_finite()).collect();
+        let (lo, hi) = corners
+            .iter()
+            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &i| (lo.min(points[i]), hi.max(points[i])));
+        let side = ((corners.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
+        let span = hi - lo;
+        let inv = DVec2::new(
+            if span.x > 0.0 && span.x.is_finite() { side as f64 / span.x } else { 0.0 },
+            if span.y > 0.0 && span.y.is_finite() { side as f64 / span.y } else { 0.0 },
+        );
+        let mut grid = Self { lo, inv, side, cells: vec![Vec::new(); side * side] };
+        for i in corners {
+            let [x, y] = grid.cell(points[i]);
+            grid.cells[y * side + x].push(i);
+        }
+        grid
+    }
+
+    /// The cell of `p`, clamped to the grid.
+    fn cell(&self, p: DVec2) -> [usize; 2] {
+        let q = (p - self.lo) * self.inv;
+        let at = |v: f64| if v > 0.0 { (v as usize).min(self.side - 1) } else { 0 };
+        [at(q.x), at(q.y)]
+    }
+
+    /// Whether `hit` holds for a corner in a cell over the box of `tri`.
+    fn any_in(&self, tri: [DVec2; 3], hit: impl Fn(usize) -> bool) -> bool {
+        let lo = tri[0].min(tri[1]).min(tri[2]);
+        let hi = tri[0].max(tri[1]).max(tri[2]);
+        let ([x0, y0], [x1, y1]) = (self.cell(lo), self.cell(hi));
+        (y0..=y1).any(|y| (x0..=x1).any(|x| self.cells[y * self.side + x].iter().any(|&j| hit(j))))
+    }
 }
 
 /// Vertex normals from the area-weighted normals of the faces around each vertex.
