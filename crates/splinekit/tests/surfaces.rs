@@ -466,7 +466,7 @@ fn sweeps_too_large_for_32_bit_indices_are_refused_before_any_allocation() {
 
 /// Checks a triangulation of the simple polygon `ring`: n − 2 triangles, each turning as the
 /// polygon does, together covering its area, every corner used.
-fn check_triangulation(ring: &[glam::DVec2], tris: &[[usize; 3]]) {
+fn check_triangulation(ring: &[DVec2], tris: &[[usize; 3]]) {
     let n = ring.len();
     assert_eq!(tris.len(), n - 2);
     let area: f64 = (0..n).map(|i| ring[i].perp_dot(ring[(i + 1) % n])).sum::<f64>() / 2.0;
@@ -489,12 +489,11 @@ fn check_triangulation(ring: &[glam::DVec2], tris: &[[usize; 3]]) {
 /// points); here a star and a comb of 20 000 points each, both orientations.
 #[test]
 fn large_caps_triangulate_completely() {
-    use glam::DVec2;
     use splinekit::sweep::triangulate_polygon;
     let n = 20_000;
     let star: Vec<DVec2> = (0..n)
         .map(|i| {
-            let t = std::f64::consts::TAU * i as f64 / n as f64;
+            let t = TAU * i as f64 / n as f64;
             DVec2::from_angle(t) * if i % 2 == 0 { 1.0 } else { 0.6 }
         })
         .collect();
