@@ -270,24 +270,43 @@ pub fn marks_svg(camera: &Camera, marks: &[Mark], options: &PlotOptions) -> Stri
     for flat in flatten_marks(camera, marks) {
         match flat {
             Flat::Line { points, colour, width, dash } => {
-                let pts: Vec<String> = points
-                    .iter()
-                    .filter(|p| p[0].is_finite() && p[1].is_finite())
-                    .map(|p| format!("{},{}", num(p[0]), num(p[1])))
-                    .collect();
-                if pts.len() < 2 {
-                    continue;
+                // clipped to the picture (with a margin for the stroke), as in the PNG: an axis
+                // of a scene of size 1e-300 reaches 1e300 pixels, numbers of 300 digits
+                let margin = width + 2.0;
+                let (lo, hi) = ([-margin; 2], [f64::from(w) + margin, f64::from(h) + margin]);
+                let mut runs: Vec<(Vec<[f64; 2]>, f64)> = Vec::new();
+                let mut travelled = 0.0;
+                let finite = points.iter().filter(|p| p[0].is_finite() && p[1].is_finite());
+                for (a, b) in finite.clone().zip(finite.skip(1)) {
+                    if let Some((p, q)) = clip_segment(*a, *b, lo, hi) {
+                        let skipped = travelled + (p[0] - a[0]).hypot(p[1] - a[1]);
+                        match runs.last_mut() {
+                            Some((run, _)) if run.last() == Some(&p) => run.push(q),
+                            _ => runs.push((vec![p, q], skipped)),
+                        }
+                    }
+                    travelled += (b[0] - a[0]).hypot(b[1] - a[1]);
                 }
-                let dash =
-                    dash.map_or(String::new(), |[on, off]| format!(r#" stroke-dasharray="{} {}""#, num(on), num(off)));
-                let cap = if dash.is_empty() { "round" } else { "butt" };
-                let _ = writeln!(
-                    out,
-                    r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="{cap}" stroke-linejoin="round"{dash}/>"#,
-                    pts.join(" "),
-                    hex(colour),
-                    num(width)
-                );
+                for (run, start) in runs {
+                    let pts: Vec<String> = run.iter().map(|p| format!("{},{}", num(p[0]), num(p[1]))).collect();
+                    let dash = dash.map_or(String::new(), |[on, off]| {
+                        let offset = start % (on + off);
+                        let offset = if offset > 0.0 {
+                            format!(r#" stroke-dashoffset="{}""#, num(offset))
+                        } else {
+                            String::new()
+                        };
+                        format!(r#" stroke-dasharray="{} {}"{offset}"#, num(on), num(off))
+                    });
+                    let cap = if dash.is_empty() { "round" } else { "butt" };
+                    let _ = writeln!(
+                        out,
+                        r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="{cap}" stroke-linejoin="round"{dash}/>"#,
+                        pts.join(" "),
+                        hex(colour),
+                        num(width)
+                    );
+                }
             }
             Flat::Dot { at, radius, fill, outline } => {
                 if !(at[0].is_finite() && at[1].is_finite()) {

@@ -442,3 +442,26 @@ fn huge_scenes_and_many_fine_curves_stay_within_the_point_budget() {
     let n = curve_points(&marks);
     assert!(n <= MAX_DRAWN_POINTS_3D + 10 && n > MAX_DRAWN_POINTS_3D / 2, "{n} points");
 }
+
+/// #38: the SVG of a circle of radius 1e300 is clipped to the picture, as the PNG is: its axes
+/// reached 1e300 pixels, written as numbers of 300 digits (the fuzzer's 20-second hang).
+#[test]
+fn svg_lines_are_clipped_to_the_picture() {
+    let doc = splinekit_io::SwpDocument::parse("circ c 9 1e300\n", "huge.swp").unwrap();
+    let curves = [splinekit_render::PlotCurve::from_swp(&doc.curves[0], 0).unwrap()];
+    let plot = PlotOptions::DEFAULT.with_size(size(200, 150));
+    let svg = splinekit_render::plot_curves_svg(&curves, &CurveOptions::DEFAULT, &plot);
+    assert!(svg.len() < 10_000, "{} bytes", svg.len());
+    for line in svg.lines().filter(|l| l.starts_with("<polyline")) {
+        let points = line.split("points=\"").nth(1).unwrap().split('"').next().unwrap();
+        for xy in points.split(' ') {
+            for v in xy.split(',') {
+                let v: f64 = v.parse().unwrap();
+                assert!((-10.0..=210.0).contains(&v), "{v} in {line}");
+            }
+        }
+    }
+    // the ring is there: a polyline in the first segment colour
+    let c = splinekit_render::SEGMENT_COLOURS[0];
+    assert!(svg.contains(&format!("stroke=\"#{:02x}{:02x}{:02x}\"", c[0], c[1], c[2])));
+}
