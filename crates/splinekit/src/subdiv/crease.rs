@@ -474,15 +474,23 @@ impl Level for Rings<'_> {
         self.adj.twin[self.adj.edge_corner[e as usize] as usize] == NONE
     }
 
+    /// In OpenSubdiv's order (`Vtr::Level::orderVertexFacesAndEdges`), which its single-precision
+    /// Chaikin sums follow: from the edge leaving `v` in its first face (or the boundary edge
+    /// leaving `v`), counter-clockwise, then the boundary edge arriving at `v`. The children of
+    /// a vertex keep the order: their first face is the child of the parent's first face.
     fn edges_at(&self, v: u32, out: &mut Vec<(u32, u32)>) -> usize {
         out.clear();
         let corners = self.adj.corners_of(v);
-        for &c in corners {
+        let Some(&first) = corners.first() else { return 0 };
+        let start = corners.iter().copied().find(|&c| self.adj.twin[c as usize] == NONE).unwrap_or(first);
+        let mut last = start;
+        for c in self.fan(start) {
             out.push((self.adj.edge_of[c as usize], self.adj.to[c as usize]));
-            let arriving = self.prev(c);
-            if self.adj.twin[arriving as usize] == NONE {
-                out.push((self.adj.edge_of[arriving as usize], self.mesh.face_vertices[arriving as usize]));
-            }
+            last = c;
+        }
+        let arriving = self.prev(last);
+        if self.adj.twin[arriving as usize] == NONE {
+            out.push((self.adj.edge_of[arriving as usize], self.mesh.face_vertices[arriving as usize]));
         }
         corners.len()
     }
