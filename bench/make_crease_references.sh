@@ -38,6 +38,15 @@ tag icosahedron20 loop/icosahedron20 "t crease 4/1 1 2 6 1 1.5" "t crease 2/1 0 
     "t crease 2/1 0 8 3" "t corner 1/1 9 0.5"
 tag grid32 loop/grid32 "t crease 5/4 10 11 12 13 14 1.25 2.5 0.25 1"
 tag torus96 loop/torus96 "t crease 7/1 0 1 2 3 4 5 0 1.75"
+# Chaikin at a vertex with several semi-sharp edges of different sharpness: OpenSubdiv sums
+# their sharpness in single precision in its order of the vertex's edges (issue #39), which
+# differs here from the order of the faces' numbers: the quad torus's vertex 0 has four (1.7,
+# 1.7, 0.6, 3.3: 7.3000002 summed by face numbers, 7.2999997 in OpenSubdiv's order), the
+# triangle torus's vertex 0 five
+tag torus48c4 catmark/torus48 "t crease 2/1 0 1 1.7" "t crease 2/1 0 8 1.7" "t crease 2/1 0 40 0.6" \
+    "t crease 2/1 0 7 3.3"
+tag torus96c5 loop/torus96 "t crease 2/1 0 6 1.7" "t crease 2/1 0 7 1.7" "t crease 2/1 0 5 0.6" \
+    "t crease 2/1 0 1 2.2" "t crease 2/1 0 47 3.3"
 
 run() { # driver name suffix options...
     local driver="$1" name="$2" suffix="$3"
@@ -46,12 +55,12 @@ run() { # driver name suffix options...
         "$peers/$driver" "$data/$name.in.obj" -n "$l" "$@" -o "$data/$name.$suffix.l$l.obj" >/dev/null
     done
 }
-for m in cube6 torus48 prism8 grid16; do
+for m in cube6 torus48 prism8 grid16 torus48c4; do
     run osd_catmark "$m" osd
 done
 run osd_catmark cube6 osd-uniform --creasing uniform
 run osd_catmark grid16 osd-corners --corners
-for m in icosahedron20 grid32 torus96; do
+for m in icosahedron20 grid32 torus96 torus96c5; do
     run osd_loop "$m" osd
 done
 run osd_loop icosahedron20 osd-uniform --creasing uniform

@@ -151,6 +151,8 @@ struct Args {
     bool limit = false;  // OpenSubdiv drivers: write the limit positions of the finest level
     bool normals = true; // with --limit: also the limit normals (--no-normals: positions only)
     bool uniform_creasing = false;  // OpenSubdiv drivers: --creasing uniform (default chaikin)
+    bool smooth_triangles = false;  // osd_catmark: --triangles smooth (TRI_SUB_SMOOTH; default catmark)
+    bool no_boundary = false;       // OpenSubdiv drivers: --boundary-none (VTX_BOUNDARY_NONE)
     std::string scheme;  // drivers of several schemes: the one of --scheme (default the first)
 };
 
@@ -177,6 +179,12 @@ inline Args parse_args(int argc, char** argv, const char* usage, bool has_corner
             scheme_ok = scheme_ok && (m == "uniform" || m == "chaikin");
             a.uniform_creasing = m == "uniform";
         }
+        else if (s == "--triangles" && has_corners && i + 1 < argc) {
+            std::string m = argv[++i];
+            scheme_ok = scheme_ok && (m == "catmark" || m == "smooth");
+            a.smooth_triangles = m == "smooth";
+        }
+        else if (s == "--boundary-none" && has_corners) a.no_boundary = true;
         else if (s == "--json") {
         }  // always JSON
         else if (!a.input && s[0] != '-') a.input = argv[i];

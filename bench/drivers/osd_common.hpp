@@ -1,6 +1,9 @@
 // The OpenSubdiv drivers' shared part: uniform refinement with Far and double-precision
 // primvar interpolation, timed per repeat; the input's crease and corner tags given to the
-// TopologyDescriptor (creasing method CREASE_CHAIKIN, or CREASE_UNIFORM with --creasing uniform); the finest level written as OBJ (with --limit: its
+// TopologyDescriptor (creasing method CREASE_CHAIKIN, or CREASE_UNIFORM with --creasing uniform);
+// boundary interpolation VTX_BOUNDARY_EDGE_ONLY, EDGE_AND_CORNER with --corners or NONE with
+// --boundary-none (its hole faces are not written; every vertex is); triangle subdivision
+// TRI_SUB_CATMARK or TRI_SUB_SMOOTH with --triangles smooth; the finest level written as OBJ (with --limit: its
 // limit positions, and as `vn` the unit limit normals, the normalized cross product of the two
 // limit tangents of PrimvarRefinerReal::Limit).
 #pragma once
@@ -32,9 +35,11 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
     if (in.sizes.empty()) in.sizes.assign(in.num_faces(), 3);
     typedef Far::TopologyDescriptor Descriptor;
     Sdc::Options sdc;
-    sdc.SetVtxBoundaryInterpolation(a.corners ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                              : Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    sdc.SetVtxBoundaryInterpolation(a.no_boundary ? Sdc::Options::VTX_BOUNDARY_NONE
+                                    : a.corners   ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                                  : Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
     sdc.SetCreasingMethod(a.uniform_creasing ? Sdc::Options::CREASE_UNIFORM : Sdc::Options::CREASE_CHAIKIN);
+    sdc.SetTriangleSubdivision(a.smooth_triangles ? Sdc::Options::TRI_SUB_SMOOTH : Sdc::Options::TRI_SUB_CATMARK);
 
     std::vector<double> times;
     std::unique_ptr<Far::TopologyRefiner> refiner;
@@ -106,6 +111,7 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
         }
         bool triangles = true;
         for (int f = 0; f < nf; ++f) {
+            if (last.IsFaceHole(f)) continue;  // VTX_BOUNDARY_NONE: faces at the boundary are holes
             Far::ConstIndexArray fv = last.GetFaceVertices(f);
             out.sizes.push_back(fv.size());
             triangles = triangles && fv.size() == 3;
@@ -113,9 +119,12 @@ inline int run_osd(const Args& a, Tri in, Sdc::SchemeType scheme, const char* sc
         }
         if (triangles) out.sizes.clear();  // the triangle form of write_obj
         char comment[512];
-        std::snprintf(comment, sizeof comment, "OpenSubdiv %d.%d.%d Far, %s, %s, RefineUniform(%d), PrimvarRefinerReal<double>%s%s",
+        std::snprintf(comment, sizeof comment, "OpenSubdiv %d.%d.%d Far, %s, %s%s, RefineUniform(%d), PrimvarRefinerReal<double>%s%s",
                       OPENSUBDIV_VERSION_MAJOR, OPENSUBDIV_VERSION_MINOR, OPENSUBDIV_VERSION_PATCH, scheme_name,
-                      a.corners ? "VTX_BOUNDARY_EDGE_AND_CORNER" : "VTX_BOUNDARY_EDGE_ONLY", a.levels,
+                      a.no_boundary ? "VTX_BOUNDARY_NONE (hole faces left out)"
+                      : a.corners   ? "VTX_BOUNDARY_EDGE_AND_CORNER"
+                                    : "VTX_BOUNDARY_EDGE_ONLY",
+                      a.smooth_triangles ? ", TRI_SUB_SMOOTH" : "", a.levels,
                       a.limit ? ", Limit" : "",
                       in.crease_sharpness.empty() && in.corner_sharpness.empty() ? ""
                       : a.uniform_creasing ? ", creases CREASE_UNIFORM" : ", creases CREASE_CHAIKIN");

@@ -694,7 +694,7 @@ fn subdivide(mesh: &PolyMesh, creases: &Creases, rng: &mut Rng) -> Result<(), Fi
             }
         }
         1 => {
-            let options = CatmullClarkOptions { boundary, color_by_level };
+            let options = CatmullClarkOptions { boundary, color_by_level, ..CatmullClarkOptions::default() };
             let n = levels as usize;
             if creased {
                 let limits = |fine: &PolyMesh, child: &Creases| catmull_clark_limit_creased(fine, &options, child);

@@ -32,7 +32,8 @@ use crate::subdivide_cmd::{Scheme, subdivide_for_render};
 ///
 /// - A mesh (.obj, .glb, .ply, .stl): a 3D picture of the mesh, smooth-shaded with the file's
 ///   vertex normals, flat-shaded without. With --levels N it is first subdivided N times
-///   (--scheme, as `splinekit subdivide` with its default options and the OBJ's crease tags).
+///   (--scheme, as `splinekit subdivide` with its default options and the OBJ's crease and
+///   option tags).
 ///
 /// --color colours surfaces and meshes by what they measure instead of one colour (still
 /// lit; back faces stay orange-red):
@@ -229,7 +230,7 @@ fn render_mesh(args: &RenderArgs, format: PictureFormat, options: &FileOptions) 
     let scheme = args.scheme.unwrap_or(Scheme::Loop);
     let fine = subdivide_for_render(
         &loaded.mesh,
-        &loaded.creases,
+        (&loaded.creases, &loaded.subdiv_tags),
         scheme,
         levels,
         args.color == ColorChoice::Level,

@@ -1,5 +1,5 @@
 //! `splinekit subdivide`: Loop, √3 or modified butterfly subdivision of a triangle mesh file,
-//! Catmull-Clark or Doo-Sabin of a polygon mesh file.
+//! Catmull-Clark, Doo-Sabin or bilinear of a polygon mesh file.
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -11,20 +11,23 @@ use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::mesh::FaceVarying;
 use splinekit::subdiv::{
-    BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions, LimitMesh,
-    LoopLevel, LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, TopologyError, butterfly_subdivide,
-    catmull_clark_limit_creased, catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
+    BilinearOptions, BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions,
+    HoleSplit, LimitMesh, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, TopologyError,
+    TriangleSubdivision, bilinear_subdivide, boundary_holes, butterfly_subdivide, catmull_clark_limit_creased,
+    catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
     catmull_clark_subdivide_creased, catmull_clark_subdivide_limit, doo_sabin_subdivide, is_nonmanifold,
     loop_limit_creased, loop_limit_normals, loop_limit_positions, loop_subdivide, loop_subdivide_creased,
-    loop_subdivide_limit, sqrt3_subdivide,
+    loop_subdivide_limit, remove_holes, sqrt3_subdivide,
 };
-use splinekit_io::mesh::{MeshFormat, SavedPoly, read_creases, save_poly, save_poly_creased};
+use splinekit_io::mesh::{
+    BoundaryInterpolation, MeshFormat, SavedPoly, SubdivTags, read_creases, save_poly, save_poly_creased,
+};
 
 use crate::output::JsonNum;
 
 /// Subdivide a mesh (OBJ, glb, PLY or STL): Loop's scheme (default), √3 (`--scheme sqrt3`) or
-/// modified butterfly (`--scheme butterfly`) for triangle meshes, Catmull-Clark (`--scheme catmull-clark`) or Doo-Sabin (`--scheme
-/// doo-sabin`) for any polygon mesh.
+/// modified butterfly (`--scheme butterfly`) for triangle meshes, Catmull-Clark (`--scheme catmull-clark`), Doo-Sabin (`--scheme
+/// doo-sabin`) or bilinear (`--scheme bilinear`) for any polygon mesh.
 ///
 /// Each level splits every triangle into four; a closed mesh with V vertices,
 /// E edges and F faces becomes V+E, 2E+3F, 4F. Weights: Loop's original β(n) (default; what
@@ -36,7 +39,15 @@ use crate::output::JsonNum;
 /// Catmull-Clark (OpenSubdiv's catmark weights) turns every n-gon into n quads: V+E+F
 /// vertices and one quad per corner; boundaries are creases, `--boundary corners` keeps
 /// single-face corners fixed; colours are carried (normals and UVs are not). OBJ output keeps
-/// the quads, the other formats get two triangles per quad.
+/// the quads, the other formats get two triangles per quad. `--cc-triangles smooth` is
+/// OpenSubdiv's TRI_SUB_SMOOTH: on an edge beside a triangle the face points weigh 0.47 instead
+/// of 1/4 (the ends 0.03), which rounds the surface over triangles; it changes the first level
+/// only (below it every face is a quad).
+///
+/// Bilinear (OpenSubdiv's SCHEME_BILINEAR) splits every n-gon into n quads at its centroid and
+/// edge midpoints and moves nothing: V+E+F vertices, one quad per corner, the surface stays the
+/// polygons (use it to refine a mesh evenly). Colours, normals and UVs are carried linearly;
+/// `--boundary`, `--limit`, `--creases` and `--creasing` are refused.
 ///
 /// √3 (Kobbelt; CGAL's Sqrt3_subdivision) puts a point in every triangle and flips the old
 /// edges: V+F vertices, 3F triangles. Interior vertices move by α(n) = (4 − 2cos(2π/n))/9;
@@ -72,6 +83,13 @@ use crate::output::JsonNum;
 /// subdividing it again goes on where this run stopped. With `--limit`, a vertex on a sharp
 /// crease goes to the crease's limit curve and a sharp corner stays (OpenSubdiv's limit rules).
 ///
+/// An OBJ input may also ask for options with OpenSubdiv's tags: `t interpolateboundary 1/0/0
+/// N` (N = 2: --boundary smooth; 1: --boundary corners; 0: none, OpenSubdiv's VTX_BOUNDARY_NONE,
+/// which leaves the faces at the boundary out as holes — their vertices stay in the file, and
+/// --limit is refused), `t creasemethod 0/0/1 normal|chaikin` (--creasing uniform or chaikin)
+/// and `t smoothtriangles 0/0/1 catmark|smooth` (--cc-triangles). A flag given on the command
+/// line overrides the file's tag; tags a scheme has no use for are ignored with a warning.
+///
 /// Writes the result by the extension of OUT (.obj, .ply, .stl, .glb) through a temporary
 /// file, so an error never leaves a partial file; without -o nothing is written (use it to
 /// measure). OBJ keeps the mesh's vertices and topology, normals and UVs with their own
@@ -100,7 +118,9 @@ use crate::output::JsonNum;
     splinekit subdivide patch.obj -n 4 --boundary corners --color-by-level -o patch4.ply\n  \
     splinekit subdivide bunny.obj -n 3 --scheme sqrt3 -o bunny3.obj\n  \
     splinekit subdivide cube.obj -n 2 --scheme doo-sabin -o cube2.obj\n  \
-    splinekit subdivide box.obj -n 3 --scheme catmull-clark --creases box-creases.txt -o box3.obj")]
+    splinekit subdivide box.obj -n 3 --scheme catmull-clark --creases box-creases.txt -o box3.obj\n  \
+    splinekit subdivide mixed.obj -n 2 --scheme catmull-clark --cc-triangles smooth -o mixed2.obj\n  \
+    splinekit subdivide cage.obj -n 2 --scheme bilinear -o cage2.obj")]
 pub struct SubdivideArgs {
     /// Input mesh (.obj, .glb, .ply, .stl)
     #[arg(value_name = "IN")]
@@ -125,7 +145,8 @@ pub struct SubdivideArgs {
     pub weights: Option<Weights>,
 
     /// Boundary vertices (Loop and Catmull-Clark): crease rule everywhere (smooth) or
-    /// single-face corners fixed [default: smooth]
+    /// single-face corners fixed [default: the input's `t interpolateboundary` tag, else
+    /// smooth]; overrides a tag of none (holes)
     #[arg(long, value_enum)]
     pub boundary: Option<Boundary>,
 
@@ -156,9 +177,15 @@ pub struct SubdivideArgs {
     #[arg(long, value_name = "FILE")]
     pub creases: Option<PathBuf>,
 
-    /// How a crease's sharpness passes to its halves (Loop and Catmull-Clark) [default: chaikin]
+    /// How a crease's sharpness passes to its halves (Loop and Catmull-Clark) [default: the
+    /// input's `t creasemethod` tag, else chaikin]
     #[arg(long, value_enum)]
     pub creasing: Option<Creasing>,
+
+    /// Catmull-Clark's edge points next to triangles (OpenSubdiv's triangle subdivision rule)
+    /// [default: the input's `t smoothtriangles` tag, else catmark]
+    #[arg(long, value_enum, value_name = "RULE")]
+    pub cc_triangles: Option<CcTriangles>,
 
     /// Print one JSON object {"vertices", "faces", "seconds"}
     #[arg(long)]
@@ -191,6 +218,9 @@ pub enum Scheme {
     DooSabin,
     /// Modified butterfly (triangle meshes; interpolating; OpenMesh's rules)
     Butterfly,
+    /// Bilinear (any polygon mesh: every n-gon into n quads at its centroid and edge
+    /// midpoints, nothing moved; OpenSubdiv's rules)
+    Bilinear,
 }
 
 impl Scheme {
@@ -202,6 +232,7 @@ impl Scheme {
             Self::Sqrt3 => "√3",
             Self::DooSabin => "Doo-Sabin",
             Self::Butterfly => "butterfly",
+            Self::Bilinear => "bilinear",
         }
     }
 }
@@ -233,11 +264,24 @@ pub enum Creasing {
     Uniform,
 }
 
+/// Catmull-Clark's edge points next to triangles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum CcTriangles {
+    /// Catmull-Clark's rule everywhere, (v₀ + v₁ + f₀ + f₁)/4 (OpenSubdiv's TRI_SUB_CATMARK)
+    Catmark,
+    /// Face points weigh 0.47 beside a triangle, for rounder surfaces over triangles
+    /// (OpenSubdiv's TRI_SUB_SMOOTH)
+    Smooth,
+}
+
 /// Refuses the options that mean nothing for the chosen scheme.
 fn check_options(args: &SubdivideArgs) -> anyhow::Result<()> {
     let (scheme, name) = (args.scheme, args.scheme.title());
     if scheme != Scheme::Loop && args.weights.is_some() {
         bail!("--weights chooses Loop's even-vertex weights; {name} subdivision has none to choose (drop --weights)");
+    }
+    if scheme == Scheme::Bilinear && args.boundary.is_some() {
+        bail!("--boundary is for Loop and Catmull-Clark; bilinear subdivision moves no vertex (drop --boundary)");
     }
     if matches!(scheme, Scheme::Sqrt3 | Scheme::DooSabin | Scheme::Butterfly) && args.boundary.is_some() {
         let peer = if scheme == Scheme::Butterfly { "OpenMesh's" } else { "CGAL's" };
@@ -245,8 +289,18 @@ fn check_options(args: &SubdivideArgs) -> anyhow::Result<()> {
             "--boundary is for Loop and Catmull-Clark; {name} subdivision has {peer} boundary rule only (drop --boundary)"
         );
     }
+    if scheme == Scheme::Bilinear && args.limit {
+        bail!(
+            "--limit: the bilinear surface is its polygons, so its vertices are at their limit already (drop --limit)"
+        );
+    }
     if matches!(scheme, Scheme::Sqrt3 | Scheme::DooSabin) && args.limit {
         bail!("--limit: limit positions are computed for Loop and Catmull-Clark only, not {name} subdivision");
+    }
+    if scheme != Scheme::CatmullClark && args.cc_triangles.is_some() {
+        bail!(
+            "--cc-triangles chooses Catmull-Clark's edge points next to triangles; {name} subdivision has none to choose"
+        );
     }
     if !matches!(scheme, Scheme::Loop | Scheme::CatmullClark) && (args.creases.is_some() || args.creasing.is_some()) {
         bail!("--creases and --creasing are for Loop and Catmull-Clark; {name} subdivision has no creases");
@@ -279,19 +333,20 @@ fn triangle_bound(mesh: &PolyMesh, scheme: Scheme, levels: u32) -> f64 {
     match scheme {
         Scheme::Loop | Scheme::Butterfly => faces * 4f64.powi(n),
         Scheme::Sqrt3 => faces * 3f64.powi(n),
-        Scheme::CatmullClark => corners * 4f64.powi(n) / 2.0,
+        Scheme::CatmullClark | Scheme::Bilinear => corners * 4f64.powi(n) / 2.0,
         Scheme::DooSabin => corners * 4f64.powi(n),
     }
 }
 
-/// `mesh` subdivided `levels` times by `scheme` with its default options (the mesh's
-/// `creases` for Loop and Catmull-Clark, Chaikin creasing), its vertices coloured by the level
-/// that made them when `color_by_level`: what `splinekit render --levels` draws. Refused,
+/// `mesh` subdivided `levels` times by `scheme` with the options its tags ask for, else the
+/// defaults (the mesh's `creases` for Loop and Catmull-Clark, `tags` for the boundary rule, the
+/// creasing method and Catmull-Clark's triangles; see [`Choices`]), its vertices coloured by the
+/// level that made them when `color_by_level`: what `splinekit render --levels` draws. Refused,
 /// before anything is made, when the result could have more than [`RENDER_MAX_TRIANGLES`]
 /// triangles; `input` names the mesh in errors.
 pub fn subdivide_for_render(
     mesh: &PolyMesh,
-    creases: &Creases,
+    (creases, tags): (&Creases, &SubdivTags),
     scheme: Scheme,
     levels: u32,
     color_by_level: bool,
@@ -311,29 +366,34 @@ pub fn subdivide_for_render(
     }
     let n = levels as usize;
     let creased = !creases.is_empty() && matches!(scheme, Scheme::Loop | Scheme::CatmullClark);
+    let choices = Choices::new((None, None, None), tags, scheme);
+    let Choices { boundary, creasing, triangles, .. } = choices;
     let fail = |e: SubdivError| anyhow!("{}: {e}", input.display());
     let fine = match scheme {
         Scheme::Loop => {
-            let options = LoopOptions { color_by_level, ..LoopOptions::default() };
+            let options = LoopOptions { color_by_level, boundary, ..LoopOptions::default() };
             if creased {
-                loop_subdivide_creased(mesh, levels, &options, creases, CreasingMethod::Chaikin).map(|(m, _)| m)
+                loop_subdivide_creased(mesh, levels, &options, creases, creasing).map(|(m, _)| m)
             } else {
                 loop_subdivide(mesh, levels, &options)
             }
         }
         Scheme::CatmullClark => {
-            let options = CatmullClarkOptions { color_by_level, ..CatmullClarkOptions::default() };
+            let options = CatmullClarkOptions { color_by_level, boundary, triangles };
             if creased {
-                catmull_clark_subdivide_creased(mesh, n, &options, creases, CreasingMethod::Chaikin).map(|(m, _)| m)
+                catmull_clark_subdivide_creased(mesh, n, &options, creases, creasing).map(|(m, _)| m)
             } else {
                 catmull_clark_subdivide(mesh, n, &options)
             }
         }
+        Scheme::Bilinear => bilinear_subdivide(mesh, n, &BilinearOptions { color_by_level }),
         Scheme::Sqrt3 => sqrt3_subdivide(mesh, n, &Sqrt3Options { color_by_level }),
         Scheme::DooSabin => doo_sabin_subdivide(mesh, n, &DooSabinOptions::default()),
         Scheme::Butterfly => butterfly_subdivide(mesh, n, &ButterflyOptions { color_by_level }),
     };
-    fine.map_err(fail)
+    let mut fine = fine.map_err(fail)?;
+    choices.without_holes(&mut fine, mesh, creases, scheme, n);
+    Ok(fine)
 }
 
 /// Parses `--max-memory`: a positive number of gigabytes.
@@ -400,6 +460,7 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     };
     let loaded = crate::mesh_read::load(&args.input)?;
     crate::mesh_read::require_faces(&loaded.mesh, &args.input, "subdivide")?;
+    let choices = Choices::of_args(args, &loaded.subdiv_tags)?;
     let mut mesh = loaded.mesh;
     let mut creases = loaded.creases;
     if let Some(path) = &args.creases {
@@ -439,21 +500,29 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     let general = matches!(args.scheme, Scheme::Loop | Scheme::CatmullClark) && is_nonmanifold(&mesh);
     match args.scheme {
         Scheme::Loop => {}
-        Scheme::CatmullClark if creased || general => {
-            let options = CatmullClarkOptions { boundary: boundary_rule(args), color_by_level: args.color_by_level };
+        Scheme::CatmullClark if creased || general || choices.holes => {
+            let options = CatmullClarkOptions {
+                boundary: choices.boundary,
+                color_by_level: args.color_by_level,
+                triangles: choices.triangles,
+            };
             let levels = args.levels as usize;
-            let subdivide =
-                |m: &PolyMesh| catmull_clark_subdivide_creased(m, levels, &options, &creases, creasing(args));
+            let subdivide = |m: &PolyMesh| {
+                let (mut fine, child) =
+                    catmull_clark_subdivide_creased(m, levels, &options, &creases, choices.creasing)?;
+                choices.without_holes(&mut fine, m, &creases, args.scheme, levels);
+                Ok((fine, child))
+            };
             let limit = |m: &PolyMesh, c: &Creases| {
                 if general || is_nonmanifold(m) {
-                    catmull_clark_subdivide_limit(&mesh, levels, &options, &creases, creasing(args))
+                    catmull_clark_subdivide_limit(&mesh, levels, &options, &creases, choices.creasing)
                 } else {
                     catmull_clark_limit_creased(m, &options, c).map(|(p, n)| (m.clone(), p, n))
                 }
             };
             return run_creased(args, &mesh, format, out, subdivide, Some(&limit), "quads");
         }
-        Scheme::CatmullClark => return run_catmull_clark(args, &mesh, format, out),
+        Scheme::CatmullClark => return run_catmull_clark(args, &choices, &mesh, format, out),
         Scheme::Sqrt3 => {
             let options = Sqrt3Options { color_by_level: args.color_by_level };
             let subdivide = |m: &PolyMesh| sqrt3_subdivide(m, args.levels as usize, &options);
@@ -468,20 +537,29 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
             let subdivide = |m: &PolyMesh| butterfly_subdivide(m, args.levels as usize, &options);
             return run_polygons(args, &mesh, format, out, subdivide, "triangles");
         }
+        Scheme::Bilinear => {
+            let options = BilinearOptions { color_by_level: args.color_by_level };
+            let subdivide = |m: &PolyMesh| bilinear_subdivide(m, args.levels as usize, &options);
+            return run_polygons(args, &mesh, format, out, subdivide, "quads");
+        }
     }
     let options = LoopOptions {
         weights: match args.weights.unwrap_or(Weights::Loop) {
             Weights::Loop => LoopWeights::Loop,
             Weights::Warren => LoopWeights::Warren,
         },
-        boundary: boundary_rule(args),
+        boundary: choices.boundary,
         color_by_level: args.color_by_level,
     };
-    if creased || general {
-        let subdivide = |m: &PolyMesh| loop_subdivide_creased(m, args.levels, &options, &creases, creasing(args));
+    if creased || general || choices.holes {
+        let subdivide = |m: &PolyMesh| {
+            let (mut fine, child) = loop_subdivide_creased(m, args.levels, &options, &creases, choices.creasing)?;
+            choices.without_holes(&mut fine, m, &creases, args.scheme, args.levels as usize);
+            Ok((fine, child))
+        };
         let limit = |m: &PolyMesh, c: &Creases| {
             if general || is_nonmanifold(m) {
-                loop_subdivide_limit(&mesh, args.levels, &options, &creases, creasing(args))
+                loop_subdivide_limit(&mesh, args.levels, &options, &creases, choices.creasing)
             } else {
                 loop_limit_creased(m, &options, c).map(|(p, n)| (m.clone(), p, n))
             }
@@ -538,20 +616,102 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     report(args, out, (vertices, faces, "triangles"), seconds, threads, written)
 }
 
-/// The boundary rule of `--boundary`.
-fn boundary_rule(args: &SubdivideArgs) -> BoundaryRule {
-    match args.boundary.unwrap_or(Boundary::Smooth) {
-        Boundary::Smooth => BoundaryRule::Smooth,
-        Boundary::Corners => BoundaryRule::Corners,
+/// The options of Loop and Catmull-Clark subdivision that a flag or the input's tags set: the
+/// flag when given, else the tag, else the default.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Choices {
+    /// `--boundary`, `t interpolateboundary`.
+    pub boundary: BoundaryRule,
+    /// `t interpolateboundary 1/0/0 0` without `--boundary` (OpenSubdiv's `VTX_BOUNDARY_NONE`):
+    /// the faces at the boundary are holes, left out (Loop and Catmull-Clark).
+    pub holes: bool,
+    /// `--creasing`, `t creasemethod`.
+    pub creasing: CreasingMethod,
+    /// `--cc-triangles`, `t smoothtriangles`.
+    pub triangles: TriangleSubdivision,
+}
+
+impl Choices {
+    /// The choices of the flags `boundary`, `creasing` and `triangles` over the input's `tags`
+    /// for `scheme`.
+    #[must_use]
+    pub fn new(
+        (boundary, creasing, triangles): (Option<Boundary>, Option<Creasing>, Option<CcTriangles>),
+        tags: &SubdivTags,
+        scheme: Scheme,
+    ) -> Self {
+        let (boundary, holes) = match (boundary, tags.boundary) {
+            (Some(Boundary::Smooth), _) | (None, None | Some(BoundaryInterpolation::EdgeOnly)) => {
+                (BoundaryRule::Smooth, false)
+            }
+            (Some(Boundary::Corners), _) | (None, Some(BoundaryInterpolation::EdgeAndCorner)) => {
+                (BoundaryRule::Corners, false)
+            }
+            (None, Some(BoundaryInterpolation::None)) => {
+                (BoundaryRule::Smooth, matches!(scheme, Scheme::Loop | Scheme::CatmullClark))
+            }
+        };
+        let creasing = match creasing {
+            Some(Creasing::Chaikin) => CreasingMethod::Chaikin,
+            Some(Creasing::Uniform) => CreasingMethod::Uniform,
+            None => tags.creasing.unwrap_or(CreasingMethod::Chaikin),
+        };
+        let triangles = match triangles {
+            Some(CcTriangles::Catmark) => TriangleSubdivision::Catmark,
+            Some(CcTriangles::Smooth) => TriangleSubdivision::Smooth,
+            None => tags.triangles.unwrap_or_default(),
+        };
+        Self { boundary, holes, creasing, triangles }
+    }
+
+    /// `fine`, `levels` levels of `scheme` below `base` (with `creases`), without the faces
+    /// that descend from holes of `base` when [`Self::holes`].
+    fn without_holes(&self, fine: &mut PolyMesh, base: &PolyMesh, creases: &Creases, scheme: Scheme, levels: usize) {
+        if self.holes {
+            let split = if scheme == Scheme::Loop { HoleSplit::Triangles } else { HoleSplit::Quads };
+            remove_holes(fine, base, levels, split, &boundary_holes(base, creases));
+        }
+    }
+
+    /// The choices of `args` over the input's `tags`, with a warning on standard error naming
+    /// the tags that mean nothing for the scheme.
+    fn of_args(args: &SubdivideArgs, tags: &SubdivTags) -> anyhow::Result<Self> {
+        let ignored = ignored_tags(tags, args.scheme);
+        if !ignored.is_empty() {
+            eprintln!(
+                "warning: {}: its {} tag{} ignored: {} subdivision has no such option",
+                args.input.display(),
+                ignored.join(", "),
+                if ignored.len() == 1 { " is" } else { "s are" },
+                args.scheme.title()
+            );
+        }
+        let choices = Self::new((args.boundary, args.creasing, args.cc_triangles), tags, args.scheme);
+        if choices.holes && args.limit {
+            bail!(
+                "{}: --limit: its tag `t interpolateboundary 1/0/0 0` leaves the faces at the boundary out as holes, \
+                 and the limit is not computed for such a surface; give --boundary smooth or corners",
+                args.input.display()
+            );
+        }
+        Ok(choices)
     }
 }
 
-/// The creasing method of `--creasing`.
-fn creasing(args: &SubdivideArgs) -> CreasingMethod {
-    match args.creasing.unwrap_or(Creasing::Chaikin) {
-        Creasing::Chaikin => CreasingMethod::Chaikin,
-        Creasing::Uniform => CreasingMethod::Uniform,
+/// The option tags among `tags` that mean nothing for `scheme`.
+pub fn ignored_tags(tags: &SubdivTags, scheme: Scheme) -> Vec<&'static str> {
+    let (loop_or_cc, cc) = (matches!(scheme, Scheme::Loop | Scheme::CatmullClark), scheme == Scheme::CatmullClark);
+    let mut ignored = Vec::new();
+    if tags.boundary.is_some() && !loop_or_cc {
+        ignored.push("interpolateboundary");
     }
+    if tags.creasing.is_some() && !loop_or_cc {
+        ignored.push("creasemethod");
+    }
+    if tags.triangles.is_some() && !cc {
+        ignored.push("smoothtriangles");
+    }
+    ignored
 }
 
 /// A subdivision error naming the input, with the way on for a topology problem: Loop and
@@ -645,11 +805,16 @@ fn report(
 /// `--scheme catmull-clark`: time `--repeat` runs, write the last.
 fn run_catmull_clark(
     args: &SubdivideArgs,
+    choices: &Choices,
     mesh: &PolyMesh,
     format: Option<MeshFormat>,
     out: &mut impl Write,
 ) -> anyhow::Result<()> {
-    let options = CatmullClarkOptions { boundary: boundary_rule(args), color_by_level: args.color_by_level };
+    let options = CatmullClarkOptions {
+        boundary: choices.boundary,
+        color_by_level: args.color_by_level,
+        triangles: choices.triangles,
+    };
     let pool = thread_pool(args)?;
     let (mut fine, seconds) = timed(args, &pool, |m| catmull_clark_subdivide(m, args.levels as usize, &options), mesh)?;
     let mut written = None;
@@ -661,7 +826,7 @@ fn run_catmull_clark(
                 args.levels as usize,
                 &options,
                 &Creases::default(),
-                creasing(args),
+                choices.creasing,
             )
             .map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
             fine = with_limit(limit_mesh, positions, normals);

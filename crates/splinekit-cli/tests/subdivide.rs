@@ -756,3 +756,109 @@ fn nonmanifold_meshes_and_the_flags_that_work() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// The largest distance from a point of `ours` to the nearest point of `theirs`, as a fraction
+/// of the diagonal of `theirs`' bounding box.
+fn relative_distance(ours: &[[f64; 3]], theirs: &[[f64; 3]]) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in theirs {
+        for k in 0..3 {
+            (lo[k], hi[k]) = (lo[k].min(p[k]), hi[k].max(p[k]));
+        }
+    }
+    let diagonal = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    let nearest = |p: &[f64; 3]| {
+        theirs.iter().map(|q| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>()).fold(f64::INFINITY, f64::min)
+    };
+    ours.iter().map(|p| nearest(p).sqrt()).fold(0.0, f64::max) / diagonal
+}
+
+/// Issue #39: OpenSubdiv's options that users set, against OpenSubdiv (the core's reference
+/// data, `bench/make_options_references.sh`) at levels 1 to 3 — `--cc-triangles smooth`
+/// (TRI_SUB_SMOOTH), `--scheme bilinear`, and the tags `t interpolateboundary`,
+/// `t creasemethod` and `t smoothtriangles` read from the input — to 1e-12 of the diagonal;
+/// flags given override the tags.
+#[test]
+fn opensubdiv_options_from_flags_and_tags() {
+    let dir = temp_dir("osd-options");
+    let out = dir.join("out.obj");
+    let out_s = out.to_str().unwrap();
+    let data = format!("{}/../splinekit/tests/data/options", env!("CARGO_MANIFEST_DIR"));
+    let cases: [(&str, &str, &[&str]); 4] = [
+        ("gridmix", "osd-smooth", &["--scheme", "catmull-clark", "--cc-triangles", "smooth"]),
+        ("prism8", "osd-bilinear", &["--scheme", "bilinear"]),
+        ("gridmix", "osd-bilinear", &["--scheme", "bilinear"]),
+        // corners, uniform creasing and smooth triangles from its tags
+        ("tagged", "osd", &["--scheme", "catmull-clark"]),
+    ];
+    for (name, peer, flags) in cases {
+        let input = format!("{data}/{name}.in.obj");
+        for level in ["1", "2", "3"] {
+            splinekit(&[&["subdivide", &input, "-n", level, "-o", out_s][..], flags].concat()).ok();
+            let reference = dir.join("reference.obj");
+            std::fs::copy(format!("{data}/{name}.{peer}.l{level}.obj"), &reference).unwrap();
+            assert_eq!(obj_counts(&out), obj_counts(&reference), "{name} {flags:?} -n {level}");
+            let error = relative_distance(&obj_points(&out), &obj_points(&reference));
+            assert!(error < 1e-12, "{name} {flags:?} -n {level}: {error:.1e} off OpenSubdiv");
+        }
+    }
+    // a flag given overrides the file's tag: each moves the surface off the reference
+    let tagged = format!("{data}/tagged.in.obj");
+    let reference = obj_points(Path::new(&format!("{data}/tagged.osd.l2.obj")));
+    for flag in [["--boundary", "smooth"], ["--creasing", "chaikin"], ["--cc-triangles", "catmark"]] {
+        splinekit(&[&["subdivide", &tagged, "-n", "2", "--scheme", "catmull-clark", "-o", out_s][..], &flag].concat())
+            .ok();
+        let error = relative_distance(&obj_points(&out), &reference);
+        assert!(error > 1e-6, "{flag:?} did not override the tag ({error:.1e} off the tagged reference)");
+    }
+    // options a scheme has no use for are refused, tags it has no use for ignored with a warning
+    let gridmix = format!("{data}/gridmix.in.obj");
+    let refused: [(&[&str], &str); 4] = [
+        (&["--scheme", "loop", "--cc-triangles", "smooth"], "--cc-triangles chooses Catmull-Clark's edge points"),
+        (&["--scheme", "bilinear", "--boundary", "corners"], "bilinear subdivision moves no vertex"),
+        (&["--scheme", "bilinear", "--limit"], "the bilinear surface is its polygons"),
+        (&["--scheme", "bilinear", "--creasing", "uniform"], "bilinear subdivision has no creases"),
+    ];
+    for (flags, message) in refused {
+        let err = splinekit(&[&["subdivide", &gridmix, "-n", "1", "-o", out_s][..], flags].concat()).fails().to_owned();
+        assert!(err.contains(message), "{flags:?}: {err}");
+    }
+    let run = splinekit(&["subdivide", &tagged, "-n", "1", "--scheme", "bilinear", "-o", out_s]);
+    run.ok();
+    assert!(
+        run.stderr.contains("its interpolateboundary, creasemethod, smoothtriangles tags are ignored: bilinear"),
+        "{}",
+        run.stderr
+    );
+    // no boundary interpolation (VTX_BOUNDARY_NONE): the faces at the boundary are left out as
+    // OpenSubdiv leaves them (the vertices stay), for Catmull-Clark with an infinitely sharp
+    // crease along one side (whose faces stay) and for Loop; --limit is refused there
+    let grid32 = dir.join("grid32.obj");
+    let loop_grid = std::fs::read_to_string(format!("{data}/grid32.in.obj")).unwrap();
+    std::fs::write(&grid32, format!("{loop_grid}t interpolateboundary 1/0/0 0\n")).unwrap();
+    let grid32_s = grid32.to_str().unwrap().to_owned();
+    let holes = format!("{data}/holes.in.obj");
+    for (input, scheme, reference) in [(&holes, "catmull-clark", "holes.osd"), (&grid32_s, "loop", "grid32.osd-none")] {
+        for level in ["1", "2", "3"] {
+            splinekit(&["subdivide", input, "-n", level, "--scheme", scheme, "-o", out_s]).ok();
+            let theirs = format!("{data}/{reference}.l{level}.obj");
+            assert_eq!(obj_counts(&out), obj_counts(Path::new(&theirs)), "{reference} -n {level}");
+            let error = relative_distance(&obj_points(&out), &obj_points(Path::new(&theirs)));
+            assert!(error < 1e-12, "{reference} -n {level}: {error:.1e} off OpenSubdiv");
+        }
+        let err =
+            splinekit(&["subdivide", input, "-n", "1", "--scheme", scheme, "--limit", "-o", out_s]).fails().to_owned();
+        assert!(err.contains("--limit") && err.contains("holes"), "{err}");
+        // --boundary overrides it: every face is there
+        splinekit(&["subdivide", input, "-n", "1", "--scheme", scheme, "--boundary", "smooth", "-o", out_s]).ok();
+        let (_, faces) = obj_counts(&out);
+        let (_, holed) = obj_counts(Path::new(&format!("{data}/{reference}.l1.obj")));
+        assert!(faces > holed, "{reference}: --boundary smooth left {faces} faces");
+    }
+    // --help describes the new options
+    let help = splinekit(&["subdivide", "--help"]).ok().to_owned();
+    for text in ["--cc-triangles", "TRI_SUB_SMOOTH", "bilinear", "t interpolateboundary", "t creasemethod"] {
+        assert!(help.contains(text), "--help lacks {text:?}");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}

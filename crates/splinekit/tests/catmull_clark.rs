@@ -362,7 +362,7 @@ fn closed_form_levels_equal_level_by_level() {
                 Vec::new()
             };
             for boundary in [BoundaryRule::Smooth, BoundaryRule::Corners] {
-                let options = CatmullClarkOptions { boundary, color_by_level };
+                let options = CatmullClarkOptions { boundary, color_by_level, ..CatmullClarkOptions::default() };
                 let mut level = mesh.clone();
                 let deepest = if name == "large torus" { 3 } else { 4 };
                 for depth in 1..=deepest {

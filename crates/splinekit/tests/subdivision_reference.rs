@@ -14,6 +14,9 @@
 //!   an open quad grid and the open triangle grid, in `tests/data/cgal/` (made by
 //!   `bench/make_cgal_references.sh` with `bench/drivers/cgal_sqrt3_doosabin.cpp`; the cube,
 //!   prism and quad grid are Catmull-Clark's inputs, in `tests/data/catmark/`).
+//! - OpenSubdiv's options (issue #39): Catmull-Clark with `TRI_SUB_SMOOTH` on meshes with
+//!   triangles (also creased, with fixed corners, non-manifold) and the bilinear scheme, in
+//!   `tests/data/options/` (made by `bench/make_options_references.sh`).
 //! - Modified butterfly (issue #7): OpenMesh 9's `ModifiedButterflyT` on closed meshes of
 //!   valences 3 to 7, two open meshes and the bunny's base mesh, in `tests/data/openmesh/`
 //!   (made by `bench/make_butterfly_references.sh` with `bench/drivers/openmesh_loop.cpp`).
@@ -30,11 +33,12 @@ use std::fmt::Write as _;
 use glam::DVec3;
 use splinekit::PolyMesh;
 use splinekit::subdiv::{
-    BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions, EdgeCrease,
-    LoopOptions, LoopWeights, Sqrt3Options, VertexCrease, butterfly_subdivide, catmull_clark_limit_creased,
-    catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
-    catmull_clark_subdivide_creased, doo_sabin_subdivide, loop_limit_creased, loop_limit_normals, loop_limit_positions,
-    loop_subdivide, loop_subdivide_creased, sqrt3_subdivide,
+    BilinearOptions, BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions,
+    EdgeCrease, HoleSplit, LoopOptions, LoopWeights, Sqrt3Options, TriangleSubdivision, VertexCrease,
+    bilinear_subdivide, boundary_holes, butterfly_subdivide, catmull_clark_limit_creased, catmull_clark_limit_normals,
+    catmull_clark_limit_positions, catmull_clark_step, catmull_clark_subdivide, catmull_clark_subdivide_creased,
+    doo_sabin_subdivide, loop_limit_creased, loop_limit_normals, loop_limit_positions, loop_subdivide,
+    loop_subdivide_creased, remove_holes, sqrt3_subdivide,
 };
 
 /// Largest distance allowed between a vertex of ours and its match in the reference, as a
@@ -123,6 +127,9 @@ fn read_obj(file: &str) -> Obj {
             // `t crease N/M v0 .. s ..` (a chain of edges) and `t corner N/M v .. s ..`, 0-based
             Some("t") => {
                 let name = words.next().unwrap_or_else(|| bad());
+                if matches!(name, "interpolateboundary" | "creasemethod" | "smoothtriangles") {
+                    continue; // the options of `tests/data/options/`, given to the tests in code
+                }
                 let (ni, nf) = words.next().and_then(|w| w.split_once('/')).unwrap_or_else(|| bad());
                 let (ni, nf): (usize, usize) =
                     (ni.parse().unwrap_or_else(|_| bad()), nf.parse().unwrap_or_else(|_| bad()));
@@ -394,7 +401,8 @@ fn catmull_clark_matches_opensubdiv_catmark() {
 
 /// Sharp and semi-sharp creases against OpenSubdiv (catmark and loop schemes): levels 1 to 3 of
 /// each creased input (`tests/data/crease/`, from `bench/make_crease_references.sh`) with
-/// Chaikin's creasing, two also with Uniform, two grids also with fixed corners; and the
+/// Chaikin's creasing, two also with Uniform, two grids also with fixed corners, two tori with
+/// four and five semi-sharp edges of different sharpness at one vertex; and the
 /// creases the subdivision returns carry on: one level at a time gives the same mesh.
 #[test]
 fn creases_match_opensubdiv() {
@@ -413,6 +421,10 @@ fn creases_match_opensubdiv() {
         ("grid32", "osd", chaikin, smooth, false),
         ("grid32", "osd-corners", chaikin, corners, false),
         ("torus96", "osd", chaikin, smooth, false),
+        // issue #39: several semi-sharp edges of different sharpness at one vertex, whose
+        // single-precision Chaikin sums follow OpenSubdiv's order of the vertex's edges
+        ("torus48c4", "osd", chaikin, smooth, true),
+        ("torus96c5", "osd", chaikin, smooth, false),
     ];
     for (name, peer, method, boundary, catmark) in cases {
         let obj = read_obj(&format!("crease/{name}.in.obj"));
@@ -433,9 +445,10 @@ fn creases_match_opensubdiv() {
             let reference = read_obj(&format!("crease/{what}.obj"));
             let result = subdivide(&mesh, level, &obj.creases)
                 .map_err(|e| format!("subdivision failed: {e}"))
-                .and_then(|(ours, _)| compare(&ours, &reference));
-            if let Err(e) = result {
-                writeln!(failures, "{what}: {e}").unwrap();
+                .and_then(|(ours, _)| compare(&ours, &reference).map(|()| relative_error(&ours, &reference)));
+            match result {
+                Ok(error) => println!("{what}: {error:.1e}"),
+                Err(e) => writeln!(failures, "{what}: {e}").unwrap(),
             }
             // (Loop numbers a refined level's edges differently from a mesh read afresh: compare
             // as meshes, not vertex by vertex)
@@ -555,6 +568,155 @@ fn creased_limit_matches_opensubdiv() {
     }
     println!("creased limit normals: {exact} as OpenSubdiv's, {other_side} on the other side of a crease or corner");
     assert!(failures.is_empty(), "creased limit against OpenSubdiv:\n{failures}");
+}
+
+/// The largest distance from a vertex of `ours` to the nearest vertex of `reference`, as a
+/// fraction of the reference's bounding-box diagonal (what [`compare`] bounds by [`MATCH_TOL`]).
+fn relative_error(ours: &PolyMesh, reference: &Obj) -> f64 {
+    let index = NearestByX::new(&reference.positions);
+    let worst = ours.positions.iter().map(|&p| index.nearest(p).1).fold(0.0, f64::max);
+    worst / diagonal(&reference.positions)
+}
+
+/// Catmull-Clark with OpenSubdiv's `TRI_SUB_SMOOTH` (issue #39): levels 1 to 3 of meshes with
+/// triangles among quads and pentagons (a closed prism, an open grid, also with fixed corners),
+/// of all triangles (the icosahedron), with creases (Chaikin and Uniform) and non-manifold
+/// (cubes with a triangle fin), in one call and one level at a time; and the plain rule is
+/// far from these references, so the comparison would notice a missing option.
+#[test]
+fn smooth_triangles_match_opensubdiv() {
+    let smooth = CatmullClarkOptions { triangles: TriangleSubdivision::Smooth, ..CatmullClarkOptions::default() };
+    let corners = CatmullClarkOptions { boundary: BoundaryRule::Corners, ..smooth };
+    let (chaikin, uniform) = (CreasingMethod::Chaikin, CreasingMethod::Uniform);
+    let cases = [
+        ("prism8", "osd-smooth", smooth, chaikin),
+        ("gridmix", "osd-smooth", smooth, chaikin),
+        ("gridmix", "osd-smooth-corners", corners, chaikin),
+        ("icosahedron20", "osd-smooth", smooth, chaikin),
+        ("prism8creased", "osd-smooth", smooth, chaikin),
+        ("prism8creased", "osd-smooth-uniform", smooth, uniform),
+        ("fins3", "osd-smooth", smooth, chaikin),
+    ];
+    let mut failures = String::new();
+    for (name, tag, options, method) in cases {
+        let obj = read_obj(&format!("options/{name}.in.obj"));
+        let mesh = obj.to_poly();
+        let subdivide = |m: &PolyMesh, levels: usize, creases: &Creases| {
+            catmull_clark_subdivide_creased(m, levels, &options, creases, method).map_err(|e| e.to_string())
+        };
+        let (mut stepped, mut creases) = (mesh.clone(), obj.creases.clone());
+        for level in 1..=3 {
+            let what = format!("{name}.{tag}.l{level}");
+            let reference = read_obj(&format!("options/{what}.obj"));
+            let plain = catmull_clark_subdivide(&mesh, level, &options).map_err(|e| e.to_string());
+            let creased = subdivide(&mesh, level, &obj.creases).map(|(m, _)| m);
+            for (how, ours) in
+                [("", if obj.creases.is_empty() { plain } else { creased.clone() }), (" creased", creased)]
+            {
+                match ours.and_then(|ours| compare(&ours, &reference).map(|()| relative_error(&ours, &reference))) {
+                    Ok(error) => println!("{what}{how}: {error:.1e}"),
+                    Err(e) => writeln!(failures, "{what}{how}: {e}").unwrap(),
+                }
+            }
+            let (next, next_creases) = subdivide(&stepped, 1, &creases).unwrap();
+            if let Err(e) = compare(&next, &reference) {
+                writeln!(failures, "{what}, one level at a time: {e}").unwrap();
+            }
+            (stepped, creases) = (next, next_creases);
+        }
+        if obj.creases.is_empty() {
+            let step = catmull_clark_step(&mesh, 1, &options).unwrap();
+            if let Err(e) = compare(&step, &read_obj(&format!("options/{name}.{tag}.l1.obj"))) {
+                writeln!(failures, "{name}.{tag}.l1, catmull_clark_step: {e}").unwrap();
+            }
+        }
+        let catmark = CatmullClarkOptions { triangles: TriangleSubdivision::Catmark, ..options };
+        let plain = catmull_clark_subdivide_creased(&mesh, 1, &catmark, &obj.creases, method).unwrap().0;
+        let error = relative_error(&plain, &read_obj(&format!("options/{name}.{tag}.l1.obj")));
+        assert!(error > 1e-3, "{name}: Catmull-Clark's own rule is within {error:.1e} of TRI_SUB_SMOOTH's");
+    }
+    assert!(failures.is_empty(), "TRI_SUB_SMOOTH against OpenSubdiv:\n{failures}");
+}
+
+/// Bilinear subdivision against OpenSubdiv's `SCHEME_BILINEAR` (issue #39): levels 1 to 3 of
+/// the cube, the prism of triangles, quads and pentagons, the open grid of triangles, quads and
+/// a pentagon, and cubes sharing an edge and a vertex with a triangle fin (non-manifold).
+#[test]
+fn bilinear_matches_opensubdiv() {
+    let mut failures = String::new();
+    for name in ["cube6", "prism8", "gridmix", "cubes"] {
+        let mesh = read_obj(&format!("options/{name}.in.obj")).to_poly();
+        for level in 1..=3 {
+            let what = format!("{name}.osd-bilinear.l{level}");
+            let reference = read_obj(&format!("options/{what}.obj"));
+            let ours = bilinear_subdivide(&mesh, level, &BilinearOptions::default()).map_err(|e| e.to_string());
+            match ours.and_then(|ours| compare(&ours, &reference).map(|()| relative_error(&ours, &reference))) {
+                Ok(error) => println!("{what}: {error:.1e}"),
+                Err(e) => writeln!(failures, "{what}: {e}").unwrap(),
+            }
+        }
+    }
+    assert!(failures.is_empty(), "bilinear against OpenSubdiv:\n{failures}");
+}
+
+/// OpenSubdiv's `VTX_BOUNDARY_NONE` (issue #39): the surface of edge-only boundaries with the
+/// faces at the boundary left out — Catmull-Clark on the open grid of quads, triangles and a
+/// pentagon with an infinitely sharp crease along one side (its faces stay), Loop on an open
+/// grid — levels 1 to 3.
+#[test]
+fn boundary_none_leaves_the_same_holes_as_opensubdiv() {
+    let mut failures = String::new();
+    for (name, reference, split) in
+        [("holes", "holes.osd", HoleSplit::Quads), ("grid32", "grid32.osd-none", HoleSplit::Triangles)]
+    {
+        let obj = read_obj(&format!("options/{name}.in.obj"));
+        let mesh = obj.to_poly();
+        let holes = boundary_holes(&mesh, &obj.creases);
+        assert!(holes.iter().any(|&h| h) && !holes.iter().all(|&h| h), "{name}: {holes:?}");
+        for level in 1..=3 {
+            let what = format!("{reference}.l{level}");
+            let mut fine = match split {
+                HoleSplit::Quads => {
+                    let options = CatmullClarkOptions::default();
+                    catmull_clark_subdivide_creased(&mesh, level, &options, &obj.creases, CreasingMethod::Chaikin)
+                        .unwrap()
+                        .0
+                }
+                HoleSplit::Triangles => loop_subdivide(&mesh, level as u32, &LoopOptions::default()).unwrap(),
+            };
+            remove_holes(&mut fine, &mesh, level, split, &holes);
+            let reference = read_obj(&format!("options/{what}.obj"));
+            // the vertices of the holes stay: compare them as a point set, and the faces left
+            let kept = PolyMesh { face_offsets: vec![0], face_vertices: Vec::new(), ..fine.clone() };
+            let result = compare(&kept, &Obj { faces: Vec::new(), ..read_obj(&format!("options/{what}.obj")) })
+                .and_then(|()| faces_match(&fine, &reference));
+            match result {
+                Ok(()) => println!("{what}: {:.1e}", relative_error(&fine, &reference)),
+                Err(e) => writeln!(failures, "{what}: {e}").unwrap(),
+            }
+        }
+    }
+    assert!(failures.is_empty(), "VTX_BOUNDARY_NONE against OpenSubdiv:\n{failures}");
+}
+
+/// Whether the faces of `ours`, its vertices matched to the nearest of `reference`'s, are
+/// `reference`'s faces (same orientation, up to rotation).
+fn faces_match(ours: &PolyMesh, reference: &Obj) -> Result<(), String> {
+    let index = NearestByX::new(&reference.positions);
+    let map: Vec<u32> = ours.positions.iter().map(|&p| index.nearest(p).0 as u32).collect();
+    let mine: HashSet<Vec<u32>> =
+        ours.faces().map(|f| canonical(&f.iter().map(|&v| map[v as usize]).collect::<Vec<u32>>())).collect();
+    let theirs: HashSet<Vec<u32>> = reference.faces.iter().map(|f| canonical(f)).collect();
+    if mine == theirs && mine.len() == ours.num_faces() {
+        Ok(())
+    } else {
+        Err(format!(
+            "{} faces, the reference has {}; {} in common",
+            ours.num_faces(),
+            theirs.len(),
+            mine.intersection(&theirs).count()
+        ))
+    }
 }
 
 /// Levels 1 to `max` of each `(input, max)` case (`tests/data/{input}.in.obj`) made by

@@ -14,7 +14,7 @@ use splinekit::mesh::{FaceVarying, PolyMesh};
 use splinekit::subdiv::Creases;
 
 use super::load::{self, LoadedMesh, MAX_WARNINGS, ReadWarningKind, Warnings};
-use super::{MeshIoError, MeshIoErrorKind};
+use super::{MeshIoError, MeshIoErrorKind, SubdivTags};
 
 /// `glTF`, the magic number at the start of a `.glb`.
 const MAGIC: &[u8; 4] = b"glTF";
@@ -960,7 +960,12 @@ impl Reader<'_> {
             normals,
             uvs,
         };
-        Ok(LoadedMesh { mesh, warnings: self.warnings.finish(), creases: Creases::default() })
+        Ok(LoadedMesh {
+            mesh,
+            warnings: self.warnings.finish(),
+            creases: Creases::default(),
+            subdiv_tags: SubdivTags::default(),
+        })
     }
 }
 

@@ -32,6 +32,9 @@ pub struct LoadedMesh {
     /// Sharp and semi-sharp edges and vertices: an OBJ file's crease tags (see
     /// [`read_creases`](super::read_creases)); none for the other formats.
     pub creases: Creases,
+    /// The subdivision options an OBJ file's tags ask for (see [`SubdivTags`](super::SubdivTags));
+    /// none for the other formats.
+    pub subdiv_tags: super::SubdivTags,
 }
 
 /// Something a reader skipped or dropped without failing.
@@ -52,7 +55,8 @@ pub enum ReadWarningKind {
         /// The line's text (at most 60 characters, then `…`).
         text: String,
     },
-    /// An OBJ tag line (`t NAME …`) other than `crease` and `corner`, skipped.
+    /// An OBJ tag line (`t NAME …`) other than `crease`, `corner`, `interpolateboundary`,
+    /// `creasemethod` and `smoothtriangles`, skipped.
     SkippedTag {
         /// The tag's name.
         name: String,
@@ -148,7 +152,10 @@ impl fmt::Display for ReadWarning {
         match &self.kind {
             ReadWarningKind::UnknownStatement { text } => write!(f, "skipped unknown statement {text:?}"),
             ReadWarningKind::SkippedTag { name } => {
-                write!(f, "skipped tag {name:?} (only crease and corner tags are read)")
+                write!(
+                    f,
+                    "skipped tag {name:?} (only crease, corner, interpolateboundary, creasemethod and smoothtriangles are read)"
+                )
             }
             ReadWarningKind::More { count } => write!(f, "… and {count} more warnings like the previous one"),
             ReadWarningKind::AttributeDropped { attribute, faces_with, faces_without, first_without } => write!(

@@ -89,7 +89,7 @@ pub use revolution_obj::{
 };
 pub use stl::write_stl;
 pub use stl_read::read_stl;
-pub use tags::{read_creases, write_creases};
+pub use tags::{BoundaryInterpolation, SubdivTags, read_creases, write_creases};
 
 /// Size of the internal output buffer of the writers.
 const BUFFER_SIZE: usize = 1 << 16;

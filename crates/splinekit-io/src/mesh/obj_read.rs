@@ -40,7 +40,9 @@ const VERTEX_VALUES: [&str; 6] =
 ///   line without it.
 /// - `t crease …` and `t corner …`: sharp and semi-sharp edges and vertices (OpenSubdiv's tags,
 ///   0-based vertices; see [`read_creases`](super::read_creases)) into
-///   [`LoadedMesh::creases`]; other `t` tags are skipped with a
+///   [`LoadedMesh::creases`]; `t interpolateboundary …`, `t creasemethod …` and
+///   `t smoothtriangles …`, the subdivision options (see [`SubdivTags`](super::SubdivTags)), into
+///   [`LoadedMesh::subdiv_tags`]; other `t` tags are skipped with a
 ///   [`SkippedTag`](ReadWarningKind::SkippedTag) warning.
 /// - Grouping, material and display statements (`o`, `g`, `s`, `mg`, `usemtl`, `mtllib`,
 ///   `maplib`, `usemap`, `bevel`, `c_interp`, `d_interp`, `lod`, `shadow_obj`, `trace_obj`,
@@ -415,6 +417,7 @@ impl Reader {
             }
         }
 
+        let subdiv_tags = self.tags.options();
         let creases = self.tags.finish(origin, self.positions.len())?;
         let keep_colors = self.colored > 0 && self.colored == self.positions.len();
         if self.colored > 0 && !keep_colors {
@@ -443,7 +446,7 @@ impl Reader {
             normals,
             uvs,
         };
-        Ok(LoadedMesh { mesh, warnings: self.warnings.finish(), creases })
+        Ok(LoadedMesh { mesh, warnings: self.warnings.finish(), creases, subdiv_tags })
     }
 }
 

@@ -7,7 +7,7 @@ use splinekit::mesh::{FaceVarying, PolyMesh};
 use splinekit::subdiv::Creases;
 
 use super::load::{self, LoadedMesh, ReadWarningKind, Warnings};
-use super::{MeshIoError, MeshIoErrorKind};
+use super::{MeshIoError, MeshIoErrorKind, SubdivTags};
 use crate::swp::SourcePos;
 
 /// Reads a PLY mesh from `reader`; `origin` names it in errors (usually the path).
@@ -778,7 +778,12 @@ pub(crate) fn parse_ply(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
         Some(face_uvs.into_face_varying(&face_offsets, &face_vertices, origin)?)
     };
     let mesh = PolyMesh { positions, colors, face_offsets, face_vertices, normals, uvs };
-    Ok(LoadedMesh { mesh, warnings: warnings.finish(), creases: Creases::default() })
+    Ok(LoadedMesh {
+        mesh,
+        warnings: warnings.finish(),
+        creases: Creases::default(),
+        subdiv_tags: SubdivTags::default(),
+    })
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@ use splinekit::mesh::PolyMesh;
 use splinekit::subdiv::Creases;
 
 use super::load::{self, LoadedMesh, ReadWarningKind, Warnings, parse_f64};
-use super::{MeshIoError, MeshIoErrorKind};
+use super::{MeshIoError, MeshIoErrorKind, SubdivTags};
 
 /// Size of the binary header and of one binary triangle record.
 const HEADER: usize = 84;
@@ -162,7 +162,7 @@ fn parse_binary(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIoError> {
 
 fn finish(welder: Welder, face_vertices: Vec<u32>, face_offsets: Vec<u32>, warnings: Warnings) -> LoadedMesh {
     let mesh = PolyMesh { positions: welder.positions, face_offsets, face_vertices, ..PolyMesh::default() };
-    LoadedMesh { mesh, warnings: warnings.finish(), creases: Creases::default() }
+    LoadedMesh { mesh, warnings: warnings.finish(), creases: Creases::default(), subdiv_tags: SubdivTags::default() }
 }
 
 /// Whitespace-separated tokens across lines, with their positions.

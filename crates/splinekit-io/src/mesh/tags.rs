@@ -1,6 +1,7 @@
-//! Crease tags: OpenSubdiv's OBJ extension for sharp edges and vertices, read in `.obj` files
-//! ([`read_obj`](super::read_obj)) and in crease side files ([`read_creases`]), written by
-//! [`write_creases`].
+//! OpenSubdiv's OBJ tags (its shape files' extension): sharp and semi-sharp edges and vertices,
+//! and the subdivision options a mesh asks for, read in `.obj` files
+//! ([`read_obj`](super::read_obj)); crease side files ([`read_creases`]) hold the crease and
+//! corner tags, written by [`write_creases`].
 //!
 //! ```text
 //! t crease 2/1 0 1 2.5          # edge 0–1, sharpness 2.5
@@ -8,6 +9,9 @@
 //! t crease 3/2 0 8 16 1 0.5     # 0–8 sharpness 1, 8–16 sharpness 0.5
 //! t corner 1/1 3 1.25           # vertex 3, sharpness 1.25
 //! t corner 2/1 0 7 10           # vertices 0 and 7, infinitely sharp
+//! t interpolateboundary 1/0/0 1 # boundary: 0 none, 1 edge and corner, 2 edge only
+//! t creasemethod 0/0/1 chaikin  # how creases pass to their halves: normal (uniform) or chaikin
+//! t smoothtriangles 0/0/1 smooth # Catmull-Clark's edge points next to triangles: catmark or smooth
 //! ```
 //!
 //! A tag line is `t NAME I/F[/S]` and then `I` integers, `F` numbers and `S` strings. Vertices
@@ -15,12 +19,14 @@
 //! of `I ≥ 2` vertices — its `I − 1` edges — with one sharpness for all (`F = 1`) or one per
 //! edge (`F = I − 1`); `corner` lists `I ≥ 1` vertices with one sharpness or one each.
 //! Sharpness is a number ≥ 0: 0 is smooth, 10 or more infinitely sharp (see
-//! [`splinekit::subdiv::crease`]). Other tags (`interpolateboundary`, `hole`, …) are skipped
-//! with a warning.
+//! [`splinekit::subdiv::crease`]). `interpolateboundary`, `creasemethod` and `smoothtriangles`
+//! take the values OpenSubdiv's shape reader gives them (into [`SubdivTags`]); when a tag is
+//! given twice the last counts. Other tags (`hole`, `facevaryinginterpolateboundary`, …) are
+//! skipped with a warning.
 
 use std::io::{Read, Write};
 
-use splinekit::subdiv::{Creases, EdgeCrease, VertexCrease};
+use splinekit::subdiv::{Creases, CreasingMethod, EdgeCrease, TriangleSubdivision, VertexCrease};
 
 use super::load::{self, ReadWarningKind, Warnings, next_token, parse_f64, parse_i64};
 use super::{MeshIoError, MeshIoErrorKind};
@@ -33,11 +39,44 @@ struct VertexRef {
     pos: SourcePos,
 }
 
-/// Collects the crease tags of a file.
+/// How boundary vertices are interpolated: OpenSubdiv's `Sdc::Options::VtxBoundaryInterpolation`,
+/// set by a `t interpolateboundary 1/0/0 N` tag.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BoundaryInterpolation {
+    /// `N = 0`, `VTX_BOUNDARY_NONE`: the faces at the boundary are holes (not drawn).
+    None,
+    /// `N = 1`, `VTX_BOUNDARY_EDGE_AND_CORNER`: boundary edges are sharp creases and a boundary
+    /// vertex of one face a sharp corner.
+    EdgeAndCorner,
+    /// `N = 2`, `VTX_BOUNDARY_EDGE_ONLY`: boundary edges are sharp creases.
+    EdgeOnly,
+}
+
+/// The subdivision options an OBJ file's tags ask for; `None` where it has no such tag.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct SubdivTags {
+    /// `t interpolateboundary 1/0/0 N`.
+    pub boundary: Option<BoundaryInterpolation>,
+    /// `t creasemethod 0/0/1 normal|chaikin` (`normal` is [`CreasingMethod::Uniform`]).
+    pub creasing: Option<CreasingMethod>,
+    /// `t smoothtriangles 0/0/1 catmark|smooth` (Catmull-Clark only).
+    pub triangles: Option<TriangleSubdivision>,
+}
+
+impl SubdivTags {
+    /// No option tag.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// Collects the tags of a file.
 #[derive(Default)]
 pub(crate) struct Tags {
     creases: Creases,
     refs: Vec<VertexRef>,
+    options: SubdivTags,
 }
 
 impl Tags {
@@ -58,6 +97,9 @@ impl Tags {
             let (at, t) = end_of(pos);
             return Err(unexpected(at, t, "a tag name (crease or corner)"));
         };
+        if matches!(name, b"interpolateboundary" | b"creasemethod" | b"smoothtriangles") {
+            return self.option(name, line, pos, &unexpected);
+        }
         if name != b"crease" && name != b"corner" {
             warnings.push(no, ReadWarningKind::SkippedTag { name: String::from_utf8_lossy(name).into_owned() });
             return Ok(());
@@ -118,6 +160,64 @@ impl Tags {
         Ok(())
     }
 
+    /// Reads the rest of an option tag `name` (`interpolateboundary`, `creasemethod` or
+    /// `smoothtriangles`) from byte `pos` of `line`; `unexpected` makes its errors.
+    fn option(
+        &mut self,
+        name: &[u8],
+        line: &[u8],
+        mut pos: usize,
+        unexpected: &dyn Fn(usize, &[u8], &str) -> MeshIoError,
+    ) -> Result<(), MeshIoError> {
+        let boundary = name == b"interpolateboundary";
+        let (at, counts) = next_token(line, &mut pos).unwrap_or((pos, &b""[..]));
+        let parts: Vec<Option<i64>> = counts.split(|&b| b == b'/').map(parse_i64).collect();
+        let given = match parts[..] {
+            [Some(i), Some(f)] => Some((i, f, 0)),
+            [Some(i), Some(f), Some(s)] => Some((i, f, s)),
+            _ => None,
+        };
+        let (want, form) =
+            if boundary { ((1, 0, 0), "1/0/0 (one integer)") } else { ((0, 0, 1), "0/0/1 (one string)") };
+        if given != Some(want) {
+            return Err(unexpected(at, counts, &format!("argument counts {form}")));
+        }
+        let (at, value) = next_token(line, &mut pos).unwrap_or((pos, &b""[..]));
+        match name {
+            b"interpolateboundary" => {
+                self.options.boundary = Some(match parse_i64(value) {
+                    Some(0) => BoundaryInterpolation::None,
+                    Some(1) => BoundaryInterpolation::EdgeAndCorner,
+                    Some(2) => BoundaryInterpolation::EdgeOnly,
+                    _ => return Err(unexpected(at, value, "0 (none), 1 (edge and corner) or 2 (edge only)")),
+                });
+            }
+            b"creasemethod" => {
+                self.options.creasing = Some(match value {
+                    b"normal" => CreasingMethod::Uniform,
+                    b"chaikin" => CreasingMethod::Chaikin,
+                    _ => return Err(unexpected(at, value, "normal or chaikin")),
+                });
+            }
+            _ => {
+                self.options.triangles = Some(match value {
+                    b"catmark" => TriangleSubdivision::Catmark,
+                    b"smooth" => TriangleSubdivision::Smooth,
+                    _ => return Err(unexpected(at, value, "catmark or smooth")),
+                });
+            }
+        }
+        if let Some((at, token)) = next_token(line, &mut pos) {
+            return Err(unexpected(at, token, "end of line (the counts say there is nothing more)"));
+        }
+        Ok(())
+    }
+
+    /// The option tags read.
+    pub(crate) fn options(&self) -> SubdivTags {
+        self.options
+    }
+
     /// How many vertex references the tags have so far.
     pub(crate) fn num_refs(&self) -> usize {
         self.refs.len()
@@ -169,6 +269,13 @@ pub fn read_creases<R: Read>(reader: R, origin: &str, num_vertices: usize) -> Re
                 String::from("a tag line `t crease …` or `t corner …`"),
             ));
         }
+        let mut peek = pos;
+        if let Some((at, name @ (b"interpolateboundary" | b"creasemethod" | b"smoothtriangles"))) =
+            next_token(line, &mut peek)
+        {
+            let expected = String::from("a crease or corner tag (option tags go in the mesh file)");
+            return Err(load::unexpected(origin, no, line, at, name, expected));
+        }
         tags.statement(origin, no, line, pos, &mut warnings)?;
     }
     tags.finish(origin, num_vertices)
@@ -210,7 +317,7 @@ mod tests {
     #[test]
     fn chains_corners_and_per_item_sharpness() {
         let (c, warnings) = obj("t crease 2/1 0 1 2.5\nt crease 5/1 0 1 2 3 0 10\nt crease 3/2 3 2 1 1 0.5\n\
-                                 t corner 1/1 3 1.25\nt corner 2/2 0 2 10 0.75\nt interpolateboundary 1/0 1\n")
+                                 t corner 1/1 3 1.25\nt corner 2/2 0 2 10 0.75\nt hole 1/0 0\n")
         .unwrap();
         assert_eq!(
             c.edges,
@@ -221,7 +328,60 @@ mod tests {
         );
         let v: Vec<(u32, f32)> = c.vertices.iter().map(|v| (v.vertex, v.sharpness)).collect();
         assert_eq!(v, [(3, 1.25), (0, 10.0), (2, 0.75)]);
-        assert_eq!(warnings, [r#"line 11: skipped tag "interpolateboundary" (only crease and corner tags are read)"#]);
+        assert_eq!(
+            warnings,
+            [
+                r#"line 11: skipped tag "hole" (only crease, corner, interpolateboundary, creasemethod and smoothtriangles are read)"#
+            ]
+        );
+    }
+
+    fn options(tags: &str) -> Result<SubdivTags, String> {
+        read_obj(format!("{QUAD}{tags}").as_bytes(), "q.obj").map(|l| l.subdiv_tags).map_err(|e| e.to_string())
+    }
+
+    /// The values OpenSubdiv's shape reader (`regression/common/far_utils.h`) gives the option
+    /// tags; the last of a kind counts.
+    #[test]
+    fn option_tags_as_opensubdiv_reads_them() {
+        assert!(options("").unwrap().is_empty());
+        let boundary = |n: &str| options(&format!("t interpolateboundary 1/0/0 {n}\n")).unwrap().boundary;
+        assert_eq!(boundary("0"), Some(BoundaryInterpolation::None));
+        assert_eq!(boundary("1"), Some(BoundaryInterpolation::EdgeAndCorner));
+        assert_eq!(boundary("2"), Some(BoundaryInterpolation::EdgeOnly));
+        let both =
+            options("t creasemethod 0/0/1 normal\nt smoothtriangles 0/0/1 smooth\nt creasemethod 0/0/1 chaikin\n");
+        let expected = SubdivTags {
+            boundary: None,
+            creasing: Some(CreasingMethod::Chaikin),
+            triangles: Some(TriangleSubdivision::Smooth),
+        };
+        assert_eq!(both.unwrap(), expected);
+        assert_eq!(options("t creasemethod 0/0/1 normal\n").unwrap().creasing, Some(CreasingMethod::Uniform));
+        assert_eq!(options("t smoothtriangles 0/0/1 catmark\n").unwrap().triangles, Some(TriangleSubdivision::Catmark));
+        // the I/F form without strings, as for creases
+        assert_eq!(options("t interpolateboundary 1/0 2\n").unwrap().boundary, Some(BoundaryInterpolation::EdgeOnly));
+        let err = |tags: &str| options(tags).unwrap_err();
+        assert_eq!(
+            err("t interpolateboundary 1/0/0 3\n"),
+            r#"q.obj:6:29: found "3", expected 0 (none), 1 (edge and corner) or 2 (edge only)"#
+        );
+        assert_eq!(
+            err("t interpolateboundary 0/0/1 edge\n"),
+            r#"q.obj:6:23: found "0/0/1", expected argument counts 1/0/0 (one integer)"#
+        );
+        assert_eq!(err("t creasemethod 0/0/1 uniform\n"), r#"q.obj:6:22: found "uniform", expected normal or chaikin"#);
+        assert_eq!(err("t smoothtriangles 0/0/1\n"), "q.obj:6:24: found end of line, expected catmark or smooth");
+        assert_eq!(
+            err("t creasemethod 0/0/1 chaikin x\n"),
+            r#"q.obj:6:30: found "x", expected end of line (the counts say there is nothing more)"#
+        );
+        // not in side files, which hold creases
+        let side = read_creases("t interpolateboundary 1/0/0 1\n".as_bytes(), "c.txt", 4).unwrap_err();
+        assert_eq!(
+            side.to_string(),
+            r#"c.txt:1:3: found "interpolateboundary", expected a crease or corner tag (option tags go in the mesh file)"#
+        );
     }
 
     #[test]

@@ -53,6 +53,40 @@ pub struct CatmullClarkOptions {
     pub boundary: BoundaryRule,
     /// Colour the vertices by the level they were born at ([`LEVEL_COLORS`](super::LEVEL_COLORS)).
     pub color_by_level: bool,
+    /// The edge points next to triangles (OpenSubdiv's `TriangleSubdivision`).
+    pub triangles: TriangleSubdivision,
+}
+
+/// The edge-point rule of Catmull-Clark next to triangles (OpenSubdiv's
+/// `Sdc::Options::TriangleSubdivision`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TriangleSubdivision {
+    /// Catmull-Clark's edge points everywhere, `(v₀ + v₁ + f₀ + f₁)/4` (`TRI_SUB_CATMARK`, the
+    /// default).
+    #[default]
+    Catmark,
+    /// `TRI_SUB_SMOOTH`: on an interior edge with a triangle on either side, each face point
+    /// weighs `w = (w₀ + w₁)/2`, with `wᵢ = 0.47` for a triangle and `1/4` for another face,
+    /// and each end `(1 − 2w)/2` (`0.47` and `0.03` between two triangles), which makes the
+    /// surface over triangles rounder. Only the first level has triangles, so only its edge
+    /// points change.
+    Smooth,
+}
+
+impl TriangleSubdivision {
+    /// The weights `(end, face point)` of the smooth edge point of an interior edge between
+    /// faces of `n0` and `n1` corners, where they are not Catmull-Clark's `1/4` and `1/4`.
+    #[must_use]
+    pub(super) fn edge_weights(self, n0: usize, n1: usize) -> Option<(f64, f64)> {
+        /// OpenSubdiv's `CATMARK_SMOOTH_TRI_EDGE_WEIGHT`.
+        const TRIANGLE: f64 = 0.470;
+        if self == Self::Catmark || (n0 != 3 && n1 != 3) {
+            return None;
+        }
+        let w = |n: usize| if n == 3 { TRIANGLE } else { 0.25 };
+        let face = 0.5 * (w(n0) + w(n1));
+        Some((0.5 * (1.0 - 2.0 * face), face))
+    }
 }
 
 /// Subdivides `mesh` `levels` times with Catmull-Clark's rules (see the [module
@@ -72,10 +106,11 @@ pub fn catmull_clark_subdivide(
         polygons_only(mesh)?;
         return Ok(PolyMesh { normals: None, uvs: None, ..mesh.clone() });
     }
-    let rings = match Rings::new(mesh) {
+    let mut rings = match Rings::new(mesh) {
         Err(SubdivError::Topology(e)) if e.is_nonmanifold() => return general(mesh, levels, options),
         rings => rings?,
     };
+    rings.triangles = options.triangles;
     counts::catmull_clark_levels(Counts::of_rings(&rings), 0, levels)?;
     let all_quads = mesh.face_vertices.len() == 4 * mesh.num_faces()
         && mesh.face_offsets.iter().enumerate().all(|(f, &o)| o as usize == 4 * f);
@@ -120,7 +155,7 @@ pub fn catmull_clark_step(
     depth: usize,
     options: &CatmullClarkOptions,
 ) -> Result<PolyMesh, SubdivError> {
-    let rings = match Rings::new(mesh) {
+    let mut rings = match Rings::new(mesh) {
         Err(SubdivError::Topology(e)) if e.is_nonmanifold() => {
             // the colours of this level are made from the parent's, by level or not
             return general(mesh, 1, &CatmullClarkOptions { color_by_level: false, ..*options }).map(|mut fine| {
@@ -133,6 +168,7 @@ pub fn catmull_clark_step(
         }
         rings => rings?,
     };
+    rings.triangles = options.triangles;
     let parent_depth = depth.saturating_sub(1);
     counts::catmull_clark_levels(Counts::of_rings(&rings), parent_depth, parent_depth + 1)?;
     let positions = rings.refine(&mesh.positions, options.boundary);
@@ -147,7 +183,7 @@ pub fn catmull_clark_step(
 /// (see [`general`](super::general)).
 fn general(mesh: &PolyMesh, levels: usize, options: &CatmullClarkOptions) -> Result<PolyMesh, SubdivError> {
     let no = Creases::default();
-    let general = General::catmark(options.boundary, &no, CreasingMethod::default());
+    let general = General::catmark(options, &no, CreasingMethod::default());
     general.subdivide(mesh, levels, options.color_by_level).map(|(m, ..)| m)
 }
 
@@ -155,6 +191,8 @@ fn general(mesh: &PolyMesh, levels: usize, options: &CatmullClarkOptions) -> Res
 pub(super) struct Rings<'a> {
     pub(super) mesh: &'a PolyMesh,
     pub(super) adj: Adjacency,
+    /// The edge points next to triangles ([`TriangleSubdivision::Catmark`] unless set).
+    pub(super) triangles: TriangleSubdivision,
 }
 
 impl<'a> Rings<'a> {
@@ -177,7 +215,7 @@ impl<'a> Rings<'a> {
         }
         // a manifold vertex's corners form one fan: rotating from its boundary half-edge (or
         // any corner) reaches them all
-        let rings = Self { mesh, adj };
+        let rings = Self { mesh, adj, triangles: TriangleSubdivision::Catmark };
         let bad = (0..mesh.num_vertices() as u32).into_par_iter().with_min_len(MIN_RINGS).find_first(|&v| {
             let corners = rings.adj.corners_of(v);
             let Some(&first) = corners.first() else { return false };
@@ -228,8 +266,12 @@ impl<'a> Rings<'a> {
             if t == NONE {
                 return (a + b) * 0.5;
             }
-            let (f0, f1) = (faces[self.adj.face_of[c as usize] as usize], faces[self.adj.face_of[t as usize] as usize]);
-            (a + b + f0 + f1) * 0.25
+            let (g0, g1) = (self.adj.face_of[c as usize] as usize, self.adj.face_of[t as usize] as usize);
+            let (f0, f1) = (faces[g0], faces[g1]);
+            match self.triangles.edge_weights(self.mesh.face(g0).len(), self.mesh.face(g1).len()) {
+                None => (a + b + f0 + f1) * 0.25,
+                Some((end, face)) => (a + b) * end + (f0 + f1) * face,
+            }
         });
         vertices.chain(edges).chain(faces.par_iter().copied()).collect_into_vec(&mut out);
         out

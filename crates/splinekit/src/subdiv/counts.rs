@@ -123,6 +123,11 @@ pub(super) fn catmull_clark_levels(base: Counts, from: usize, to: usize) -> Resu
     walk(base, from, to, |c, _| c.catmull_clark_child(), |c, depth| c.fit("Catmull-Clark", depth, "vertices"))
 }
 
+/// The counts of level `to` of bilinear subdivision (Catmull-Clark's split) from level `from`, `base`.
+pub(super) fn bilinear_levels(base: Counts, from: usize, to: usize) -> Result<Counts, SubdivError> {
+    walk(base, from, to, |c, _| c.catmull_clark_child(), |c, depth| c.fit("bilinear", depth, "vertices"))
+}
+
 /// The counts of level `levels` of √3 subdivision of the triangle mesh `base` (level 0;
 /// boundary levels are the even ones).
 pub(super) fn sqrt3_levels(base: Counts, levels: usize) -> Result<Counts, SubdivError> {

@@ -474,15 +474,23 @@ impl Level for Rings<'_> {
         self.adj.twin[self.adj.edge_corner[e as usize] as usize] == NONE
     }
 
+    /// In OpenSubdiv's order (`Vtr::Level::orderVertexFacesAndEdges`), which its single-precision
+    /// Chaikin sums follow: from the edge leaving `v` in its first face (or the boundary edge
+    /// leaving `v`), counter-clockwise, then the boundary edge arriving at `v`. The children of
+    /// a vertex keep the order: their first face is the child of the parent's first face.
     fn edges_at(&self, v: u32, out: &mut Vec<(u32, u32)>) -> usize {
         out.clear();
         let corners = self.adj.corners_of(v);
-        for &c in corners {
+        let Some(&first) = corners.first() else { return 0 };
+        let start = corners.iter().copied().find(|&c| self.adj.twin[c as usize] == NONE).unwrap_or(first);
+        let mut last = start;
+        for c in self.fan(start) {
             out.push((self.adj.edge_of[c as usize], self.adj.to[c as usize]));
-            let arriving = self.prev(c);
-            if self.adj.twin[arriving as usize] == NONE {
-                out.push((self.adj.edge_of[arriving as usize], self.mesh.face_vertices[arriving as usize]));
-            }
+            last = c;
+        }
+        let arriving = self.prev(last);
+        if self.adj.twin[arriving as usize] == NONE {
+            out.push((self.adj.edge_of[arriving as usize], self.mesh.face_vertices[arriving as usize]));
         }
         corners.len()
     }
@@ -501,10 +509,13 @@ impl Level for Rings<'_> {
     fn smooth_edge(&self, e: u32, scale: f64, b: &mut Builder) {
         let c = self.adj.edge_corner[e as usize];
         let t = self.adj.twin[c as usize];
-        b.add(self.mesh.face_vertices[c as usize], 0.25 * scale);
-        b.add(self.adj.to[c as usize], 0.25 * scale);
-        self.face_point(self.adj.face_of[c as usize], 0.25 * scale, b);
-        self.face_point(self.adj.face_of[t as usize], 0.25 * scale, b);
+        let (f0, f1) = (self.adj.face_of[c as usize], self.adj.face_of[t as usize]);
+        let sizes = (self.mesh.face(f0 as usize).len(), self.mesh.face(f1 as usize).len());
+        let (end, face) = self.triangles.edge_weights(sizes.0, sizes.1).unwrap_or((0.25, 0.25));
+        b.add(self.mesh.face_vertices[c as usize], end * scale);
+        b.add(self.adj.to[c as usize], end * scale);
+        self.face_point(f0, face * scale, b);
+        self.face_point(f1, face * scale, b);
     }
 
     fn more_rows(&self, b: &mut Builder) {
@@ -573,14 +584,15 @@ pub(super) fn catmull_clark_levels(
     mut visit: impl FnMut(SubdivisionMatrix),
 ) -> Result<(Creases, Option<PolyMesh>), SubdivError> {
     if levels > 0 && is_nonmanifold(mesh) {
-        let (child, level) = General::catmark(options.boundary, creases, method).levels(mesh, levels, visit)?;
+        let (child, level) = General::catmark(options, creases, method).levels(mesh, levels, visit)?;
         return Ok((child, Some(level.to_mesh(vec![DVec3::ZERO; level.num_vertices()], Vec::new()))));
     }
     let mut creases = creases.clone();
     let mut current: Option<PolyMesh> = None;
     for depth in 0..levels {
         let m = current.as_ref().unwrap_or(mesh);
-        let rings = Rings::new(m)?;
+        let mut rings = Rings::new(m)?;
+        rings.triangles = options.triangles;
         if depth == 0 {
             counts::catmull_clark_levels(Counts::of_rings(&rings), 0, levels)?;
         }
@@ -667,7 +679,7 @@ pub fn catmull_clark_subdivide_creased(
     method: CreasingMethod,
 ) -> Result<(PolyMesh, Creases), SubdivError> {
     if levels > 0 && is_nonmanifold(mesh) {
-        let general = General::catmark(options.boundary, creases, method);
+        let general = General::catmark(options, creases, method);
         return general.subdivide(mesh, levels, options.color_by_level).map(|(m, c, _)| (m, c));
     }
     let mut values = Values::new(mesh, options.color_by_level);

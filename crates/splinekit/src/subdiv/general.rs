@@ -31,7 +31,7 @@
 
 use glam::DVec3;
 
-use super::catmull_clark::Rings;
+use super::catmull_clark::{CatmullClarkOptions, Rings, TriangleSubdivision};
 use super::counts::{self, Counts};
 use super::crease::{CreasedLevel, Creases, CreasingMethod, Level, Rule, creased_level, rule, sharpness};
 use super::loop_scheme::{BoundaryRule, LoopOptions, Rules, SubdivError, triangles_only};
@@ -270,6 +270,11 @@ impl GeneralLevel {
         self.face_offsets.len() - 1
     }
 
+    /// The number of corners of face `f`.
+    fn face_len(&self, f: u32) -> usize {
+        (self.face_offsets[f as usize + 1] - self.face_offsets[f as usize]) as usize
+    }
+
     /// Number of vertices.
     pub(super) fn num_vertices(&self) -> usize {
         self.num_vertices
@@ -430,6 +435,7 @@ struct Scheme<'a> {
     level: &'a GeneralLevel,
     split: Split,
     rules: &'a Rules,
+    triangles: TriangleSubdivision,
 }
 
 impl Level for Scheme<'_> {
@@ -487,7 +493,13 @@ impl Level for Scheme<'_> {
     fn smooth_edge(&self, e: u32, scale: f64, b: &mut Builder) {
         let level = self.level;
         let [v0, v1] = level.edge_vertices[e as usize];
-        let (ends, faces) = if self.split == Split::Triangles { (0.375, 0.125) } else { (0.25, 0.25) };
+        let corners = level.edge_corners_of(e);
+        let size = |c: u32| level.face_len(level.face_of[c as usize]);
+        let (ends, faces) = match (self.split, corners) {
+            (Split::Triangles, _) => (0.375, 0.125),
+            (Split::Quads, &[c0, c1]) => self.triangles.edge_weights(size(c0), size(c1)).unwrap_or((0.25, 0.25)),
+            (Split::Quads, _) => (0.25, 0.25),
+        };
         b.add(v0, scale * ends);
         b.add(v1, scale * ends);
         for &c in level.edge_corners_of(e) {
@@ -515,6 +527,8 @@ pub(super) struct General<'a> {
     pub(super) split: Split,
     pub(super) rules: Rules,
     pub(super) boundary: BoundaryRule,
+    /// Catmull-Clark's edge points next to triangles.
+    pub(super) triangles: TriangleSubdivision,
     pub(super) creases: &'a Creases,
     pub(super) method: CreasingMethod,
 }
@@ -523,13 +537,14 @@ impl<'a> General<'a> {
     /// Loop subdivision with `options` (its weights and boundary rule).
     pub(super) fn loop_scheme(options: &LoopOptions, creases: &'a Creases, method: CreasingMethod) -> Self {
         let (rules, boundary) = (Rules::new(options), options.boundary);
-        Self { split: Split::Triangles, rules, boundary, creases, method }
+        Self { split: Split::Triangles, rules, boundary, triangles: TriangleSubdivision::Catmark, creases, method }
     }
 
-    /// Catmull-Clark subdivision with the boundary rule `boundary`.
-    pub(super) fn catmark(boundary: BoundaryRule, creases: &'a Creases, method: CreasingMethod) -> Self {
+    /// Catmull-Clark subdivision with `options` (its boundary rule and triangle rule).
+    pub(super) fn catmark(options: &CatmullClarkOptions, creases: &'a Creases, method: CreasingMethod) -> Self {
         let rules = Rules::new(&LoopOptions::default());
-        Self { split: Split::Quads, rules, boundary, creases, method }
+        let (boundary, triangles) = (options.boundary, options.triangles);
+        Self { split: Split::Quads, rules, boundary, triangles, creases, method }
     }
 
     /// Walks `levels` levels of subdivision of `mesh`, giving each level's matrix to `visit`;
@@ -550,7 +565,7 @@ impl<'a> General<'a> {
         };
         let mut creases = self.creases.clone();
         for _ in 0..levels {
-            let scheme = Scheme { level: &level, split: self.split, rules: &self.rules };
+            let scheme = Scheme { level: &level, split: self.split, rules: &self.rules, triangles: self.triangles };
             let CreasedLevel { matrix, child } = creased_level(&scheme, &creases, self.boundary, self.method)?;
             visit(matrix);
             creases = child;
@@ -598,7 +613,7 @@ impl<'a> General<'a> {
         creases: &Creases,
     ) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
         let (split, rules, boundary) = (self.split, &self.rules, self.boundary);
-        let scheme = Scheme { level, split, rules };
+        let scheme = Scheme { level, split, rules, triangles: self.triangles };
         let sharp = sharpness(&scheme, creases)?;
         let mut around = Vec::new();
         let mut limit = Vec::with_capacity(level.num_vertices);

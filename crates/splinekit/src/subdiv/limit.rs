@@ -323,7 +323,7 @@ fn catmark_general(
     options: &CatmullClarkOptions,
     creases: &Creases,
 ) -> Result<(Vec<DVec3>, Vec<DVec3>), SubdivError> {
-    General::catmark(options.boundary, creases, CreasingMethod::default())
+    General::catmark(options, creases, CreasingMethod::default())
         .subdivide_limit(mesh, 0, false)
         .map(|(_, p, n)| (p, n))
 }
@@ -389,7 +389,7 @@ pub fn catmull_clark_subdivide_limit(
     creases: &Creases,
     method: CreasingMethod,
 ) -> Result<LimitMesh, SubdivError> {
-    let general = General::catmark(options.boundary, creases, method);
+    let general = General::catmark(options, creases, method);
     if !is_nonmanifold(mesh) {
         let (fine, child) = super::catmull_clark_subdivide_creased(mesh, levels, options, creases, method)?;
         let limits = each_vertex(&fine, options.boundary, &child, |rings, v, f| {

@@ -2,7 +2,8 @@
 //! subdivision of polygon meshes, with OpenSubdiv's rules; √3 subdivision of
 //! triangle meshes ([`sqrt3_subdivide`]) and Doo-Sabin subdivision of polygon meshes
 //! ([`doo_sabin_subdivide`]), with CGAL's; the interpolating modified butterfly scheme
-//! ([`butterfly_subdivide`]), with OpenMesh's.
+//! ([`butterfly_subdivide`]), with OpenMesh's; and bilinear subdivision of polygon meshes
+//! ([`bilinear_subdivide`]), with OpenSubdiv's.
 //!
 //! ```
 //! use glam::DVec3;
@@ -18,6 +19,7 @@
 //! # Ok::<(), splinekit::subdiv::SubdivError>(())
 //! ```
 
+pub mod bilinear;
 pub mod butterfly;
 mod catmull_clark;
 mod counts;
@@ -26,6 +28,7 @@ pub mod doo_sabin;
 mod general;
 mod grandchild;
 mod great;
+pub mod holes;
 mod limit;
 mod loop_scheme;
 mod matrix;
@@ -34,13 +37,15 @@ mod regular;
 pub mod sqrt3;
 pub mod topology;
 
+pub use bilinear::{BilinearOptions, bilinear_subdivide};
 pub use butterfly::{ButterflyOptions, butterfly_step, butterfly_subdivide};
-pub use catmull_clark::{CatmullClarkOptions, catmull_clark_step, catmull_clark_subdivide};
+pub use catmull_clark::{CatmullClarkOptions, TriangleSubdivision, catmull_clark_step, catmull_clark_subdivide};
 pub use crease::{
     Creases, CreasingMethod, EdgeCrease, VertexCrease, catmull_clark_subdivide_creased, loop_subdivide_creased,
 };
 pub use doo_sabin::{DooSabinOptions, doo_sabin_subdivide};
 pub use general::is_nonmanifold;
+pub use holes::{HoleSplit, boundary_holes, remove_holes};
 pub use limit::{
     LimitMesh, catmull_clark_limit_creased, catmull_clark_limit_normals, catmull_clark_limit_positions,
     catmull_clark_subdivide_limit, loop_limit_creased, loop_limit_normals, loop_limit_positions, loop_subdivide_limit,

@@ -216,7 +216,7 @@ impl QuadLevel {
     /// The tables of a manifold all-quad level (its adjacency numbers edges as quad levels do),
     /// taking over the adjacency's twins and edges.
     pub(super) fn from_quad_rings(rings: Rings<'_>) -> Self {
-        let Rings { mesh, mut adj } = rings;
+        let Rings { mesh, mut adj, .. } = rings;
         let edge_base = counts_before(mesh.num_faces(), |q| owner_bits(q, quad_twins(&adj.twin, q)).count_ones());
         let mut vertex_start = Vec::new();
         (0..mesh.num_vertices() as u32)
