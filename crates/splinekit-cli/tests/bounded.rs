@@ -420,7 +420,7 @@ fn faces_of_fewer_than_three_corners_are_refused_by_name() {
     fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n").unwrap();
     let out = dir.path().join("out.obj");
     for (file, corners) in [(&ply, "0 corners"), (&obj, "2 corners")] {
-        for scheme in ["catmull-clark", "doo-sabin"] {
+        for scheme in ["catmull-clark", "doo-sabin", "bilinear"] {
             for levels in ["0", "1", "2"] {
                 let args = [
                     "subdivide".as_ref(),

@@ -326,6 +326,8 @@ fn faces_of_fewer_than_three_corners_are_refused() {
         for levels in 0..3 {
             assert_eq!(catmull_clark_subdivide(&mesh, levels, &cc).unwrap_err(), expected, "{levels} levels");
             assert_eq!(doo_sabin_subdivide(&mesh, levels, &DooSabinOptions::default()).unwrap_err(), expected);
+            let bilinear = splinekit::subdiv::bilinear_subdivide(&mesh, levels, &Default::default());
+            assert_eq!(bilinear.unwrap_err(), expected);
             let creased =
                 catmull_clark_subdivide_creased(&mesh, levels, &cc, &Creases::default(), CreasingMethod::Chaikin);
             assert_eq!(creased.unwrap_err(), expected);

@@ -37,10 +37,12 @@ pub struct BilinearOptions {
 ///
 /// # Errors
 ///
-/// [`SubdivError::Topology`] for a face that repeats a vertex or a vertex index out of range;
+/// [`SubdivError::TooFewCorners`] for a face of fewer than 3 corners; [`SubdivError::Topology`]
+/// for a face that repeats a vertex or a vertex index out of range;
 /// [`SubdivError::TooLarge`] if the result would not fit `u32` indices (checked before any
 /// level is made).
 pub fn bilinear_subdivide(mesh: &PolyMesh, levels: usize, options: &BilinearOptions) -> Result<PolyMesh, SubdivError> {
+    super::loop_scheme::polygons_only(mesh)?;
     let count = mesh.num_vertices();
     for (face, f) in mesh.faces().enumerate() {
         if let Some(&vertex) = f.iter().find(|&&v| v as usize >= count) {
