@@ -163,7 +163,9 @@ fn doc_magnitude(doc: &SwpDocument) -> f64 {
     let mut values: Vec<f64> = Vec::new();
     for c in &doc.curves {
         match &c.geometry {
-            SwpGeometry::Points(p) => values.extend(p.iter().flat_map(|p| p.to_array())),
+            SwpGeometry::Points(p) | SwpGeometry::Tcb { points: p, .. } => {
+                values.extend(p.iter().flat_map(|p| p.to_array()));
+            }
             SwpGeometry::Hermite { points, tangents } => {
                 values.extend(points.iter().chain(tangents).flat_map(|p| p.to_array()));
             }

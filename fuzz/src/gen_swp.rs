@@ -1,5 +1,5 @@
-//! Structure-aware SWP documents: every curve keyword (`bez2 bsp2 cr2 her2 bez3 bsp3 cr3 her3
-//! circ helix trefoil`), every surface keyword (`srev gcyl zrev xsweep lathe`) with their
+//! Structure-aware SWP documents: every curve keyword (`bez2 bsp2 cr2 her2 tcb2 bo2 bez3 bsp3
+//! cr3 her3 tcb3 bo3 circ helix trefoil`), every surface keyword (`srev gcyl zrev xsweep lathe`) with their
 //! options, clauses and settings, comments and every whitespace the format allows, filled
 //! with ordinary and extreme values. Most documents follow the grammar (so that they reach
 //! the geometry); a few break one rule (so that the errors are exercised too).
@@ -28,15 +28,19 @@ struct Doc<'a> {
 }
 
 /// The curve keywords, with their dimension.
-const CURVES: [(&str, u8); 11] = [
+const CURVES: [(&str, u8); 15] = [
     ("bez2", 2),
     ("bsp2", 2),
     ("cr2", 2),
     ("her2", 2),
+    ("tcb2", 2),
+    ("bo2", 2),
     ("bez3", 3),
     ("bsp3", 3),
     ("cr3", 3),
     ("her3", 3),
+    ("tcb3", 3),
+    ("bo3", 3),
     ("circ", 2),
     ("helix", 3),
     ("trefoil", 3),
@@ -194,7 +198,8 @@ impl Doc<'_> {
         self.curves.len() - 1
     }
 
-    /// NPOINTS, options and the points (pairs for Hermite curves).
+    /// NPOINTS, options and the points (pairs for Hermite curves, with tension, continuity and
+    /// bias for Kochanek–Bartels curves).
     fn control_points(&mut self, keyword: &str, dim: u8) {
         let closed = self.rng.chance(0.3);
         let hermite = keyword.starts_with("her");
@@ -234,6 +239,13 @@ impl Doc<'_> {
             self.tok(&o);
         }
         let points = self.point_set(n * if hermite { 2 } else { 1 }, dim);
+        if keyword.starts_with("tcb") {
+            for p in points {
+                let shape = self.shape();
+                self.key(&p, dim, shape);
+            }
+            return;
+        }
         for p in points {
             self.point(&p, dim);
         }
@@ -270,6 +282,29 @@ impl Doc<'_> {
             points[i][k] = *self.rng.pick(&EXTREMES);
         }
         points
+    }
+
+    /// A key's tension, continuity and bias: in [−1, 1], often 0 or ±1, now and then outside.
+    fn shape(&mut self) -> [f64; 3] {
+        [0; 3].map(|_| match self.rng.below(6) {
+            0 => 0.0,
+            1 => *self.rng.pick(&[-1.0, 1.0, -0.0, 1e-300]),
+            _ if self.mistake() => *self.rng.pick(&[1.0000001, -2.0, 1e300]),
+            _ => self.rng.uniform(-1.0, 1.0),
+        })
+    }
+
+    /// `[x y t c b]` or `[x y z t c b]`.
+    fn key(&mut self, p: &[f64; 3], dim: u8, shape: [f64; 3]) {
+        let mut t = String::from("[");
+        for (k, x) in p.iter().take(dim as usize).chain(&shape).enumerate() {
+            if k > 0 {
+                t.push(' ');
+            }
+            t.push_str(&values::format(self.rng, *x));
+        }
+        t.push(']');
+        self.tok(&t);
     }
 
     /// `[x y]` or `[x y z]`, brackets glued or spaced.
@@ -319,10 +354,12 @@ impl Doc<'_> {
 
     /// A surface of a random kind with its options and settings.
     fn surface(&mut self) {
-        const PROFILES: [&str; 5] = ["bez2", "bsp2", "cr2", "her2", "circ"];
-        const SPLINES_2D: [&str; 4] = ["bez2", "bsp2", "cr2", "her2"];
-        const SWEEPS: [&str; 11] =
-            ["bez2", "bsp2", "cr2", "her2", "circ", "bez3", "bsp3", "cr3", "her3", "helix", "trefoil"];
+        const PROFILES: [&str; 7] = ["bez2", "bsp2", "cr2", "her2", "tcb2", "bo2", "circ"];
+        const SPLINES_2D: [&str; 6] = ["bez2", "bsp2", "cr2", "her2", "tcb2", "bo2"];
+        const SWEEPS: [&str; 15] = [
+            "bez2", "bsp2", "cr2", "her2", "tcb2", "bo2", "circ", "bez3", "bsp3", "cr3", "her3", "tcb3", "bo3",
+            "helix", "trefoil",
+        ];
         let kind = *self.rng.pick(&["srev", "gcyl", "zrev", "xsweep", "lathe"]);
         // the curves first (a reference may define one)
         let mut words: Vec<String> = Vec::new();

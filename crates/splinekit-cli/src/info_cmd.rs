@@ -74,8 +74,9 @@ fn curve_rows(doc: &SwpDocument) -> Vec<CurveRow> {
         .enumerate()
         .map(|(i, c)| {
             let (points, shape) = match &c.geometry {
-                SwpGeometry::Points(p) => (p.len(), None),
-                SwpGeometry::Hermite { points, .. } => (points.len(), None),
+                SwpGeometry::Points(_) | SwpGeometry::Hermite { .. } | SwpGeometry::Tcb { .. } => {
+                    (c.geometry.points().len(), None)
+                }
                 SwpGeometry::Circle { .. } => (0, Some(String::from("circle"))),
                 SwpGeometry::Helix { radius, pitch, turns } => {
                     (0, Some(format!("helix of radius {radius}, pitch {pitch}, {turns} turns")))

@@ -724,3 +724,141 @@ fn closed_output_pipe_is_success() {
     assert!(status.success(), "exit {status:?}, stderr: {stderr}");
     assert!(stderr.is_empty(), "{stderr}");
 }
+
+// ---------------------------------------------------------------------------------------
+// Kochanek–Bartels and Bessel–Overhauser curves (issue #41)
+
+/// The keys of the `tcb3` curve of [`interpolating_swp`]: (x, y, z, tension, continuity, bias).
+const TCB_KEYS: [[f64; 6]; 6] = [
+    [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 0.5, 0.2, 0.5, 0.0, 0.0],
+    [2.0, -0.5, 0.4, -0.3, 0.4, 0.0],
+    [3.0, 1.0, 0.8, 0.0, -0.2, 0.6],
+    [4.0, 0.0, 1.0, 0.2, 0.0, -0.5],
+    [5.0, 0.5, 1.5, 0.0, 0.0, 0.0],
+];
+
+/// Eight keys on the unit circle, for the closed `bo2` curve.
+fn ring_keys() -> Vec<[f64; 2]> {
+    (0..8).map(|i| f64::from(i) * std::f64::consts::TAU / 8.0).map(|a| [a.cos(), a.sin()]).collect()
+}
+
+/// A `tcb3` curve `keys` (10 steps), a closed `bo2` curve `ring` (6 steps) and, for
+/// comparison, `zero` (`tcb3` with every shape 0) and `cr` (`cr3`) on the same points.
+fn interpolating_swp(dir: &Dir) -> PathBuf {
+    let mut text = String::from("tcb3 keys 10 6\n");
+    for k in TCB_KEYS {
+        text.push_str(&format!("[{} {} {} {} {} {}]\n", k[0], k[1], k[2], k[3], k[4], k[5]));
+    }
+    text.push_str("bo2 ring 6 8 closed\n");
+    for [x, y] in ring_keys() {
+        text.push_str(&format!("[{x} {y}]\n"));
+    }
+    text.push_str("tcb3 zero 10 6\n");
+    for k in TCB_KEYS {
+        text.push_str(&format!("[{} {} {} 0 0 0]\n", k[0], k[1], k[2]));
+    }
+    text.push_str("cr3 cr 10 6\n");
+    for k in TCB_KEYS {
+        text.push_str(&format!("[{} {} {}]\n", k[0], k[1], k[2]));
+    }
+    dir.file("interpolating.swp", &text)
+}
+
+/// The length of a polyline through the rows' points.
+fn polyline_length(rows: &[[f64; 4]]) -> f64 {
+    rows.windows(2).map(|w| (1..4).map(|c| (w[1][c] - w[0][c]).powi(2)).sum::<f64>().sqrt()).sum()
+}
+
+#[test]
+fn curve_tessellates_tcb_and_bo_through_their_keys() {
+    let dir = Dir::new();
+    let path = interpolating_swp(&dir);
+    // tcb3, open: 6 keys, 3 segments from key 1 to key 4, 10 steps each
+    let rows = csv_rows(on("curve", &path, &["--curve", "keys"]).ok());
+    assert_eq!(rows.len(), 3 * 10 + 1);
+    for k in 0..=3 {
+        let key = TCB_KEYS[k + 1];
+        assert_eq!(rows[10 * k][0], k as f64);
+        for c in 0..3 {
+            assert_close(rows[10 * k][c + 1], key[c], 1e-12, &format!("key {}", k + 1));
+        }
+    }
+    // bo2, closed: 8 segments of 6 steps, from key 1 around to key 1
+    let json = on("curve", &path, &["--curve", "ring", "--format", "json"]).json();
+    assert_eq!(json["curve"], "ring");
+    let points = json["points"].as_array().unwrap();
+    assert_eq!(points.len(), 8 * 6 + 1);
+    let keys = ring_keys();
+    for k in 0..=8 {
+        let [x, y] = keys[(k + 1) % 8];
+        let p = &points[6 * k];
+        assert_close(num(&p["x"]), x, 1e-12, &format!("ring key {k}"));
+        assert_close(num(&p["y"]), y, 1e-12, &format!("ring key {k}"));
+        assert_eq!(num(&p["z"]), 0.0);
+    }
+    // tension, continuity and bias 0 is the Catmull-Rom curve
+    let zero = csv_rows(on("curve", &path, &["--curve", "zero", "--steps", "7"]).ok());
+    let cr = csv_rows(on("curve", &path, &["--curve", "cr", "--steps", "7"]).ok());
+    assert_eq!(zero.len(), cr.len());
+    for (a, b) in zero.iter().zip(&cr) {
+        for c in 0..4 {
+            assert_close(a[c], b[c], 1e-15, "zero tcb against cr");
+        }
+    }
+}
+
+#[test]
+fn arclen_measures_tcb_and_bo() {
+    let dir = Dir::new();
+    let path = interpolating_swp(&dir);
+    for (curve, segments) in [("keys", 3), ("ring", 8)] {
+        // the adaptive length against a fine polyline of the curve (which is shorter, by at
+        // most about L·(h·κ)²/24 for steps h: far below 1e-6 here)
+        let json = on("arclen", &path, &["--curve", curve, "--method", "adaptive", "--json"]).json();
+        let length = num(&json["length"]);
+        let fine = polyline_length(&csv_rows(on("curve", &path, &["--curve", curve, "--steps", "4000"]).ok()));
+        assert!(fine <= length + 1e-9, "{curve}: polyline {fine} longer than {length}");
+        assert_close(length, fine, 1e-6, curve);
+        // the chord table: 5 rows per segment, its length that of the polyline of 5 steps
+        let json = on("arclen", &path, &["--curve", curve, "--json"]).json();
+        let table = json["table"].as_array().unwrap();
+        assert_eq!(table.len(), 5 * segments + 1, "{curve}");
+        assert_close(num(&table[5 * segments]["u"]), segments as f64, 1e-15, curve);
+        let chords = polyline_length(&csv_rows(on("curve", &path, &["--curve", curve, "--steps", "5"]).ok()));
+        assert_close(num(&json["length"]), chords, 1e-12, curve);
+        assert!(chords < length, "{curve}");
+    }
+    // the ring of 8 keys on the unit circle is within 1% of the circle (0.43% short)
+    let json = on("arclen", &path, &["--curve", "ring", "--method", "adaptive", "--json"]).json();
+    assert_close(num(&json["length"]), std::f64::consts::TAU, 1e-2 * std::f64::consts::TAU, "ring length");
+    let human = on("arclen", &path, &["--curve", "keys"]).ok().to_string();
+    assert!(human.contains("keys"), "{human}");
+}
+
+#[test]
+fn info_lists_tcb_and_bo_curves() {
+    let dir = Dir::new();
+    let path = interpolating_swp(&dir);
+    let text = on("info", &path, &[]).ok().to_string();
+    assert!(text.contains("4 curves, 0 surfaces"), "{text}");
+    for line in [
+        "keys  tcb3  6 points, 3 segments, steps 10, open",
+        "ring  bo2   8 points, 8 segments, steps 6, closed",
+        "zero  tcb3  6 points, 3 segments, steps 10, open",
+    ] {
+        assert!(text.contains(line), "no {line:?} in\n{text}");
+    }
+    let json = on("info", &path, &["--json"]).json();
+    let curves = json["curves"].as_array().unwrap();
+    assert_eq!(curves[0]["kind"], "tcb3");
+    assert_eq!(curves[1]["kind"], "bo2");
+    assert_eq!((num(&curves[1]["points"]), num(&curves[1]["segments"])), (8.0, 8.0));
+    assert_eq!(curves[1]["closed"], true);
+    // a bad key is an error with its line and column
+    let bad = dir.file("bad.swp", "tcb2 k 10 4\n[0 0 0 0 0] [1 0 0 2 0]\n");
+    for command in ["info", "curve", "arclen"] {
+        let stderr = on(command, &bad, &[]).fails_with_error().to_string();
+        assert!(stderr.contains("bad.swp:2:20: found \"2\", expected a number from -1 to 1"), "{stderr}");
+    }
+}

@@ -14,7 +14,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::DVec3;
 use splinekit::subdiv::Creases;
-use splinekit::{AnyCurve, ParamCurve, PolyMesh};
+use splinekit::{AnyCurve, ParamCurve, PolyMesh, Tcb};
 use splinekit_io::mesh::MeshFormat;
 use splinekit_io::{SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind};
 
@@ -22,12 +22,14 @@ use splinekit_io::{SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, 
 pub const MAX_UNDO: usize = 500;
 
 /// The spline kinds the kind switch offers, in the order `s` cycles through them.
-pub const KINDS: [(SwpCurveKind, &str); 5] = [
+pub const KINDS: [(SwpCurveKind, &str); 7] = [
     (SwpCurveKind::Bezier, "Bézier"),
     (SwpCurveKind::BSpline, "B-spline"),
     (SwpCurveKind::CatmullRom { alpha: 0.0 }, "Catmull-Rom (uniform)"),
     (SwpCurveKind::CatmullRom { alpha: 0.5 }, "Catmull-Rom (centripetal)"),
     (SwpCurveKind::Hermite, "Hermite"),
+    (SwpCurveKind::KochanekBartels, "Kochanek–Bartels (TCB)"),
+    (SwpCurveKind::BesselOverhauser, "Bessel–Overhauser"),
 ];
 
 /// The display name of a curve kind.
@@ -312,13 +314,38 @@ impl Document {
         curve.to_curve().err().map(|e| format!("{}: {e}", curve.display_name(self.active)))
     }
 
-    /// The editable points of the active curve (control points, or a Hermite curve's points);
-    /// empty for circles, helices and trefoils.
+    /// The editable points of the active curve (control points, or a Hermite curve's points,
+    /// or a Kochanek–Bartels curve's keys); empty for circles, helices and trefoils.
     #[must_use]
     pub fn points(&self) -> &[DVec3] {
+        self.curve().map_or(&[], |c| c.geometry.points())
+    }
+
+    /// The tension, continuity and bias of key `i` of the active curve, if it is a
+    /// Kochanek–Bartels curve.
+    #[must_use]
+    pub fn shape(&self, i: usize) -> Option<Tcb> {
         match self.curve().map(|c| &c.geometry) {
-            Some(SwpGeometry::Points(p)) | Some(SwpGeometry::Hermite { points: p, .. }) => p,
-            _ => &[],
+            Some(SwpGeometry::Tcb { shape, .. }) => shape.get(i).copied(),
+            _ => None,
+        }
+    }
+
+    /// Sets the tension, continuity and bias of key `i` of a Kochanek–Bartels curve, each
+    /// clamped to `[−1, 1]` (NaN is ignored). Call [`begin_move`](Self::begin_move) first for
+    /// one undo step per drag.
+    pub fn set_shape(&mut self, i: usize, shape: Tcb) {
+        let values = [shape.tension, shape.continuity, shape.bias];
+        if values.iter().any(|v| v.is_nan()) {
+            return;
+        }
+        let [tension, continuity, bias] = values.map(|v| v.clamp(-1.0, 1.0));
+        if let Some(SwpGeometry::Tcb { shape: shapes, .. }) =
+            self.swp.curves.get_mut(self.active).map(|c| &mut c.geometry)
+            && let Some(s) = shapes.get_mut(i)
+        {
+            *s = Tcb::new(tension, continuity, bias);
+            self.revision = next_revision();
         }
     }
 
@@ -391,21 +418,17 @@ impl Document {
     /// control points of a curve through samples of it (so it can be edited at all).
     fn points_mut(&mut self) -> Option<&mut Vec<DVec3>> {
         let curve = self.swp.curves.get_mut(self.active)?;
-        if !matches!(curve.geometry, SwpGeometry::Points(_) | SwpGeometry::Hermite { .. }) {
+        if curve.geometry.points_mut().is_none() {
             let samples = sample_closed(curve);
             curve.closed = !matches!(curve.kind, SwpCurveKind::Helix);
             curve.kind = SwpCurveKind::BSpline;
             curve.geometry = SwpGeometry::Points(samples);
         }
-        match &mut curve.geometry {
-            SwpGeometry::Points(p) => Some(p),
-            SwpGeometry::Hermite { points, .. } => Some(points),
-            _ => None,
-        }
+        curve.geometry.points_mut()
     }
 
     /// Appends a point to the active curve (a Hermite curve gets the tangent of its last
-    /// segment direction).
+    /// segment direction, a Kochanek–Bartels key tension, continuity and bias 0).
     pub fn add_point(&mut self, p: DVec3) {
         let n = self.points().len();
         self.insert_point(n, p);
@@ -423,11 +446,13 @@ impl Document {
         let at = at.min(points.len());
         let prev = if at > 0 { Some(points[at - 1]) } else { None };
         points.insert(at, p);
-        if let Some(SwpGeometry::Hermite { tangents, .. }) =
-            self.swp.curves.get_mut(self.active).map(|c| &mut c.geometry)
-        {
-            let t = prev.map_or(DVec3::X, |q| p - q);
-            tangents.insert(at.min(tangents.len()), t);
+        match self.swp.curves.get_mut(self.active).map(|c| &mut c.geometry) {
+            Some(SwpGeometry::Hermite { tangents, .. }) => {
+                let t = prev.map_or(DVec3::X, |q| p - q);
+                tangents.insert(at.min(tangents.len()), t);
+            }
+            Some(SwpGeometry::Tcb { shape, .. }) => shape.insert(at.min(shape.len()), Tcb::default()),
+            _ => {}
         }
     }
 
@@ -506,6 +531,12 @@ impl Document {
                         tangents.remove(i);
                     }
                 }
+                SwpGeometry::Tcb { points, shape } => {
+                    points.remove(i);
+                    if i < shape.len() {
+                        shape.remove(i);
+                    }
+                }
                 _ => {}
             }
         }
@@ -520,13 +551,15 @@ impl Document {
         if let Some(curve) = self.swp.curves.get_mut(self.active) {
             curve.geometry = match curve.geometry {
                 SwpGeometry::Hermite { .. } => SwpGeometry::Hermite { points: Vec::new(), tangents: Vec::new() },
+                SwpGeometry::Tcb { .. } => SwpGeometry::Tcb { points: Vec::new(), shape: Vec::new() },
                 _ => SwpGeometry::Points(Vec::new()),
             };
         }
     }
 
     /// Changes the active curve's kind, keeping its points (a Hermite curve gets
-    /// Catmull-Rom tangents; leaving Hermite drops the tangents).
+    /// Catmull-Rom tangents, a Kochanek–Bartels curve tension, continuity and bias 0 at every
+    /// key, the same curve as uniform Catmull-Rom; leaving them drops the tangents or shapes).
     pub fn set_kind(&mut self, kind: SwpCurveKind) {
         if self.curve().is_none_or(|c| c.kind == kind) {
             return;
@@ -535,11 +568,13 @@ impl Document {
         let points = self.points_mut().map(|p| p.clone()).unwrap_or_default();
         let Some(curve) = self.swp.curves.get_mut(self.active) else { return };
         curve.kind = kind;
-        curve.geometry = if kind == SwpCurveKind::Hermite {
-            let tangents = catmull_rom_tangents(&points, curve.closed);
-            SwpGeometry::Hermite { points, tangents }
-        } else {
-            SwpGeometry::Points(points)
+        curve.geometry = match kind {
+            SwpCurveKind::Hermite => {
+                let tangents = catmull_rom_tangents(&points, curve.closed);
+                SwpGeometry::Hermite { points, tangents }
+            }
+            SwpCurveKind::KochanekBartels => SwpGeometry::Tcb { shape: vec![Tcb::default(); points.len()], points },
+            _ => SwpGeometry::Points(points),
         };
     }
 
@@ -553,7 +588,8 @@ impl Document {
     /// Opens or closes the active curve.
     pub fn set_closed(&mut self, closed: bool) {
         if self.curve().is_none_or(|c| {
-            c.closed == closed || !matches!(c.geometry, SwpGeometry::Points(_) | SwpGeometry::Hermite { .. })
+            c.closed == closed
+                || !matches!(c.geometry, SwpGeometry::Points(_) | SwpGeometry::Hermite { .. } | SwpGeometry::Tcb { .. })
         }) {
             return;
         }
@@ -771,10 +807,10 @@ fn empty_curve(name: &str, kind: SwpCurveKind, dim: u8) -> SwpCurve {
         dim,
         steps: 16,
         closed: false,
-        geometry: if kind == SwpCurveKind::Hermite {
-            SwpGeometry::Hermite { points: Vec::new(), tangents: Vec::new() }
-        } else {
-            SwpGeometry::Points(Vec::new())
+        geometry: match kind {
+            SwpCurveKind::Hermite => SwpGeometry::Hermite { points: Vec::new(), tangents: Vec::new() },
+            SwpCurveKind::KochanekBartels => SwpGeometry::Tcb { points: Vec::new(), shape: Vec::new() },
+            _ => SwpGeometry::Points(Vec::new()),
         },
         pos: SourcePos::new(1, 1),
     }

@@ -44,7 +44,7 @@ use splinekit::subdiv::{
     Sqrt3Options, butterfly_step, catmull_clark_step, catmull_clark_subdivide_creased, doo_sabin_subdivide,
     loop_subdivide_creased, sqrt3_subdivide,
 };
-use splinekit::{PolyMesh, TriMesh};
+use splinekit::{PolyMesh, Tcb, TriMesh};
 use splinekit_io::mesh::{MeshFormat, RebuildOptions, SplineHeader};
 use splinekit_io::surface::{SurfaceError, SurfaceOptions};
 use splinekit_io::{SwpDocument, SwpFrames, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation};
@@ -1940,7 +1940,8 @@ impl EditorApp {
     }
 
     /// The selected point's coordinates, to type or drag (`Point x`, `Point y`, and `Point z`
-    /// for a 3D curve); each change one undo step.
+    /// for a 3D curve), and a Kochanek–Bartels key's `Tension`, `Continuity` and `Bias`; each
+    /// change one undo step.
     fn selected_point(&mut self, ui: &mut egui::Ui) {
         let Some(i) = self.view.selected else { return };
         let Some(&p) = self.doc.points().get(i) else { return };
@@ -1958,6 +1959,24 @@ impl EditorApp {
                     let mut q = p;
                     q[k] = v;
                     self.doc.set_point(i, q);
+                }
+            }
+        });
+        // a Kochanek–Bartels key's tension, continuity and bias, each in [−1, 1]
+        let Some(shape) = self.doc.shape(i) else { return };
+        ui.horizontal_wrapped(|ui| {
+            let values = [shape.tension, shape.continuity, shape.bias];
+            for (k, name) in ["Tension", "Continuity", "Bias"].into_iter().enumerate() {
+                let label = ui.label(name);
+                let mut v = values[k];
+                let r = ui
+                    .add(egui::DragValue::new(&mut v).range(-1.0..=1.0).speed(0.01).max_decimals(4))
+                    .labelled_by(label.id);
+                if r.changed() && v != values[k] {
+                    self.edit_value(&r);
+                    let mut next = values;
+                    next[k] = v;
+                    self.doc.set_shape(i, Tcb::new(next[0], next[1], next[2]));
                 }
             }
         });
@@ -2006,12 +2025,7 @@ impl EditorApp {
                 }
                 let is_3d = self.doc.swp.curves[*i].dim == 3;
                 if !(active && is_3d) {
-                    let points = match &self.doc.swp.curves[*i].geometry {
-                        splinekit_io::SwpGeometry::Points(p) | splinekit_io::SwpGeometry::Hermite { points: p, .. } => {
-                            p.as_slice()
-                        }
-                        _ => &[],
-                    };
+                    let points = self.doc.swp.curves[*i].geometry.points();
                     let colour = if active { view3d::HANDLE_COLOUR } else { egui::Color32::from_gray(150) };
                     overlay.dots.extend(points.iter().map(|&p| (p, colour)));
                 }
@@ -2554,10 +2568,7 @@ impl eframe::App for EditorApp {
 
 /// The number of editable points of a curve (0 for circles and the like).
 fn point_count(c: &splinekit_io::SwpCurve) -> usize {
-    match &c.geometry {
-        splinekit_io::SwpGeometry::Points(p) | splinekit_io::SwpGeometry::Hermite { points: p, .. } => p.len(),
-        _ => 0,
-    }
+    c.geometry.points().len()
 }
 
 /// Appends `b` to `a` (per-vertex attributes kept only if both have them).

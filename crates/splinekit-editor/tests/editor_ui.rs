@@ -9,6 +9,7 @@ use eframe::egui::{self, Modifiers, Pos2, Vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{DVec2, DVec3};
+use splinekit::{KochanekBartels, ParamCurve, Tcb};
 use splinekit_editor::EditorApp;
 use splinekit_io::{SwpCurveKind, SwpDocument};
 
@@ -202,6 +203,14 @@ fn delete_by_key_and_by_context_menu_then_undo_and_redo() {
     assert_eq!(h.state().doc.points().len(), 2);
 }
 
+/// Picks the kind called `name` from the kind menu.
+fn pick_kind(h: &mut Harness<'static, EditorApp>, name: &str) {
+    h.get_by_label("Kind").click();
+    h.run();
+    h.get_by_label(name).click();
+    h.run();
+}
+
 #[test]
 fn kinds_switch_by_key_and_by_the_kind_menu() {
     let mut h = four_points();
@@ -211,10 +220,7 @@ fn kinds_switch_by_key_and_by_the_kind_menu() {
     h.key_press(egui::Key::S);
     h.run();
     assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::CatmullRom { alpha: 0.5 });
-    h.get_by_label("Kind").click();
-    h.run();
-    h.get_by_label("Hermite").click();
-    h.run();
+    pick_kind(&mut h, "Hermite");
     assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::Hermite);
     assert!(h.state().doc.spline().is_ok());
     assert_eq!(h.state().doc.points().len(), 4, "points kept");
@@ -793,6 +799,45 @@ fn typed_coordinates_and_the_pointer_readout() {
         let got = splinekit_editor::view2d::grid_step(min);
         assert!((got - step).abs() < 1e-12 * step, "{min}: {got}");
     }
+}
+
+/// #41: the kind menu offers Kochanek–Bartels and Bessel–Overhauser; a TCB key's tension,
+/// continuity and bias are typed in the point panel (clamped to [−1, 1], one undo step each)
+/// and the curve follows at once.
+#[test]
+fn tcb_shapes_are_edited_per_key_and_bessel_overhauser_is_a_kind() {
+    let mut h = four_points();
+    let before = h.state().doc.spline().unwrap();
+    pick_kind(&mut h, "Kochanek–Bartels (TCB)");
+    assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::KochanekBartels);
+    assert_eq!(h.state().doc.points().len(), 4, "points kept");
+    // every shape 0: the same curve as the uniform Catmull-Rom one it was
+    let zero = h.state().doc.spline().unwrap();
+    assert!((zero.eval(0.5) - before.eval(0.5)).length() < 1e-15);
+    assert!(h.query_by_label("Tension").is_none(), "no key selected yet");
+    h.get_by_label("P1").click();
+    h.run();
+    type_value(&mut h, "Tension", "0.5");
+    type_value(&mut h, "Bias", "3");
+    assert_eq!(h.state().doc.shape(1), Some(Tcb::new(0.5, 0.0, 1.0)), "typed values, clamped to [-1, 1]");
+    let points = h.state().doc.points().to_vec();
+    let mut shapes = [Tcb::default(); 4];
+    shapes[1] = Tcb::new(0.5, 0.0, 1.0);
+    let expected = KochanekBartels::new(&points, &shapes, false).unwrap().to_piecewise();
+    let shaped = h.state().doc.spline().unwrap();
+    assert!((shaped.eval(0.3) - expected.eval(0.3)).length() < 1e-15);
+    assert!((shaped.eval(0.3) - zero.eval(0.3)).length() > 1e-3, "the curve follows the shape");
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    assert_eq!(h.state().doc.shape(1), Some(Tcb::new(0.5, 0.0, 0.0)), "one undo step per value typed");
+    // saved as tcb2 and read back
+    let text = h.state().doc.to_swp_string();
+    assert!(text.contains("tcb2 profile 16 4\n"), "{text}");
+    assert!(text.contains(" 0.5 0 0]\n"), "{text}");
+    pick_kind(&mut h, "Bessel–Overhauser");
+    assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::BesselOverhauser);
+    assert!(h.state().doc.spline().is_ok());
+    assert!(h.query_by_label("Tension").is_none(), "only Kochanek–Bartels keys have a shape");
 }
 
 /// #37: a click on a 3D curve's handle in the 3D view selects it (highlighted there, its

@@ -16,7 +16,10 @@
 //! ```
 
 use glam::DVec3;
-use splinekit::{AnyCurve, BSpline, BezierSpline, CatmullRom, Circle, Helix, Hermite, SplineError, Trefoil};
+use splinekit::{
+    AnyCurve, BSpline, BesselOverhauser, BezierSpline, CatmullRom, Circle, Helix, Hermite, KochanekBartels,
+    SplineError, Trefoil,
+};
 
 use crate::swp::{SwpCurve, SwpCurveKind, SwpGeometry};
 
@@ -29,6 +32,8 @@ impl SwpCurve {
     /// | `bsp2`, `bsp3` | [`BSpline`] (uniform cubic) |
     /// | `cr2`, `cr3` | [`CatmullRom`] with the curve's `alpha` |
     /// | `her2`, `her3` | [`Hermite`] |
+    /// | `tcb2`, `tcb3` | [`KochanekBartels`] |
+    /// | `bo2`, `bo3` | [`BesselOverhauser`] |
     /// | `circ` | [`Circle`] ([`AnyCurve::Circle`]) |
     /// | `helix` | [`Helix`] ([`AnyCurve::Helix`]) |
     /// | `trefoil` | [`Trefoil`] ([`AnyCurve::Trefoil`]) |
@@ -38,16 +43,14 @@ impl SwpCurve {
     /// # Errors
     ///
     /// The core constructor's [`SplineError`] when the data does not fit the kind (too
-    /// few points, a bad Bézier count, a non-finite coordinate, an alpha outside `[0, 1]`).
+    /// few points, a bad Bézier count, a non-finite coordinate, an alpha outside `[0, 1]`, a
+    /// tension, continuity or bias outside `[−1, 1]`).
     /// Parsed documents have already passed these checks. A kind whose geometry is of the
     /// wrong shape (say Bézier with Hermite data, possible only in a hand-built model) is
-    /// reported as [`SplineError::Empty`], except that Hermite data given to a points kind
-    /// uses its points.
+    /// reported as [`SplineError::Empty`], except that Hermite or Kochanek–Bartels data given
+    /// to a points kind uses its points.
     pub fn to_curve(&self) -> Result<AnyCurve<DVec3>, SplineError> {
-        let points: &[DVec3] = match &self.geometry {
-            SwpGeometry::Points(points) | SwpGeometry::Hermite { points, .. } => points,
-            SwpGeometry::Circle { .. } | SwpGeometry::Helix { .. } | SwpGeometry::Trefoil { .. } => &[],
-        };
+        let points = self.geometry.points();
         let closed = self.closed;
         let curve = match (self.kind, &self.geometry) {
             (SwpCurveKind::Circle, SwpGeometry::Circle { radius }) => {
@@ -69,7 +72,14 @@ impl SwpCurve {
             (SwpCurveKind::Hermite, SwpGeometry::Hermite { points, tangents }) => {
                 Hermite::new(points, tangents, closed)?.to_piecewise()
             }
-            (SwpCurveKind::Hermite, SwpGeometry::Points(_)) => return Err(SplineError::Empty),
+            (SwpCurveKind::KochanekBartels, SwpGeometry::Tcb { points, shape }) => {
+                KochanekBartels::new(points, shape, closed)?.to_piecewise()
+            }
+            (SwpCurveKind::BesselOverhauser, _) => BesselOverhauser::new(points, closed)?.to_piecewise(),
+            (SwpCurveKind::Hermite, SwpGeometry::Points(_) | SwpGeometry::Tcb { .. })
+            | (SwpCurveKind::KochanekBartels, SwpGeometry::Points(_) | SwpGeometry::Hermite { .. }) => {
+                return Err(SplineError::Empty);
+            }
         };
         Ok(AnyCurve::Piecewise(curve))
     }

@@ -389,7 +389,7 @@ fn spline_2d(curve: &AnyCurve<DVec3>, name: &str, surface: &str) -> Result<Piece
     let AnyCurve::Piecewise(c) = curve else {
         return Err(SurfaceError::Revolution {
             surface: surface.to_owned(),
-            message: format!("curve {name} must be a spline (bez2, bsp2, cr2 or her2)"),
+            message: format!("curve {name} must be a spline (bez2, bsp2, cr2, her2, tcb2 or bo2)"),
         });
     };
     let flat =

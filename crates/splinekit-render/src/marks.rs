@@ -9,7 +9,7 @@ use glam::DVec3;
 use splinekit::flatten::{Tessellation, flatten_at_most, flatten_count};
 use splinekit::frame::{self, FrameOptions};
 use splinekit::{Aabb, AnyCurve, ArclenIndex, ParamCurve};
-use splinekit_io::{SwpCurve, SwpGeometry};
+use splinekit_io::SwpCurve;
 
 use crate::{ImageSize, Rgb};
 
@@ -59,10 +59,7 @@ impl PlotCurve {
     /// # Errors
     /// The curve's [`SplineError`](splinekit::SplineError) when it does not compile.
     pub fn from_swp(curve: &SwpCurve, index: usize) -> Result<Self, splinekit::SplineError> {
-        let control_points = match &curve.geometry {
-            SwpGeometry::Points(p) | SwpGeometry::Hermite { points: p, .. } => p.clone(),
-            _ => Vec::new(),
-        };
+        let control_points = curve.geometry.points().to_vec();
         Ok(Self { name: curve.display_name(index), curve: curve.to_curve()?, control_points, closed: curve.closed })
     }
 

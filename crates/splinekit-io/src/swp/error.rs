@@ -7,7 +7,7 @@ use super::{SourcePos, SwpClause};
 
 /// The keywords listed in "unknown keyword" messages, in the order they are documented.
 pub(crate) const KEYWORD_LIST: &str =
-    "bez2, bsp2, bez3, bsp3, cr2, cr3, her2, her3, circ, helix, trefoil, srev or gcyl";
+    "bez2, bsp2, bez3, bsp3, cr2, cr3, her2, her3, tcb2, tcb3, bo2, bo3, circ, helix, trefoil, srev or gcyl";
 
 /// Longest token text (in characters) quoted in a message before it is shortened with `…`.
 const MAX_QUOTED_CHARS: usize = 40;
@@ -198,7 +198,7 @@ pub enum SwpErrorKind {
     },
     /// A surface's profile is a 3D curve.
     #[error(
-        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2, her2 or circ) as the profile of {surface}",
+        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2 or circ) as the profile of {surface}",
         quote(name)
     )]
     ProfileNot2D {
@@ -211,7 +211,7 @@ pub enum SwpErrorKind {
     },
     /// A gcyl's scale or twist curve is a 3D curve.
     #[error(
-        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2, her2 or circ) as the {role} curve of {surface}",
+        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2 or circ) as the {role} curve of {surface}",
         quote(name)
     )]
     CurveNot2D {
@@ -226,7 +226,7 @@ pub enum SwpErrorKind {
     },
     /// A lathe's radius or height curve is a 3D curve.
     #[error(
-        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2 or her2) as the {} curve of {surface}",
+        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2 or bo2) as the {} curve of {surface}",
         quote(name), role.word()
     )]
     LatheCurveNot2D {

@@ -10,11 +10,13 @@
 //!
 //! ```text
 //! document := object*
-//! object   := curve | hermite | circle | helix | trefoil | srev | gcyl
-//! curve    := ("bez2"|"bsp2"|"cr2"|"bez3"|"bsp3"|"cr3") NAME STEPS NPOINTS option* point{NPOINTS}
+//! object   := curve | hermite | tcb | circle | helix | trefoil | srev | gcyl
+//! curve    := ("bez2"|"bsp2"|"cr2"|"bo2"|"bez3"|"bsp3"|"cr3"|"bo3") NAME STEPS NPOINTS option* point{NPOINTS}
 //! hermite  := ("her2"|"her3") NAME STEPS NPAIRS option* (point point){NPAIRS}   point, then tangent
-//! point    := "[" x y "]"        2D kinds (bez2 bsp2 cr2 her2); z is 0 in the model
-//!           | "[" x y z "]"      3D kinds (bez3 bsp3 cr3 her3)
+//! tcb      := ("tcb2"|"tcb3") NAME STEPS NKEYS option* key{NKEYS}
+//! point    := "[" x y "]"        2D kinds (bez2 bsp2 cr2 bo2 her2); z is 0 in the model
+//!           | "[" x y z "]"      3D kinds (bez3 bsp3 cr3 bo3 her3)
+//! key      := "[" x y t c b "]" | "[" x y z t c b "]"   tcb2 | tcb3: tension, continuity, bias in [−1, 1]
 //! circle   := "circ" NAME STEPS RADIUS          xy-plane, centred at the origin
 //! helix    := "helix" NAME STEPS RADIUS PITCH TURNS     3D, about +z from (RADIUS, 0, 0)
 //! trefoil  := "trefoil" NAME STEPS SIZE         3D, closed
@@ -31,7 +33,7 @@
 //!   other text: `[3 0]`, `[ 3 0 ]` and `[-2 2] [-4 0]` on one line all work. A UTF-8 byte
 //!   order mark at the very start is skipped (it does not count as a column).
 //! - **Keywords** are lowercase. `bez2 bsp2 bez3 bsp3 circ srev gcyl` are the original SWP
-//!   keywords; `cr2 cr3 her2 her3 helix trefoil` and the gcyl clause words `scale` and `twist`
+//!   keywords; `cr2 cr3 her2 her3 tcb2 tcb3 bo2 bo3 helix trefoil` and the gcyl clause words `scale` and `twist`
 //!   are ours (see *Extensions*).
 //! - **Names**: `.` is anonymous and may repeat; every other token is a name that must be unique
 //!   across all curves *and* surfaces. `[` and `]` cannot be names, and neither can anything
@@ -46,12 +48,15 @@
 //!   | Bézier (`bez2`, `bez3`) | 3m+1 points, m ≥ 1 (4, 7, 10, …) | 3m points, m ≥ 1 (3, 6, 9, …); the last segment returns to the first point |
 //!   | B-spline (`bsp2`, `bsp3`) | ≥ 4 | ≥ 3 |
 //!   | Catmull-Rom (`cr2`, `cr3`) | ≥ 4 | ≥ 3 |
+//!   | Kochanek–Bartels (`tcb2`, `tcb3`) | ≥ 4 | ≥ 3 |
+//!   | Bessel–Overhauser (`bo2`, `bo3`) | ≥ 4 | ≥ 3 |
 //!   | Hermite (`her2`, `her3`) | ≥ 2 pairs | ≥ 2 pairs |
 //!
 //! - **Numbers** are decimal floating-point numbers such as `-0.765483`, `2`, `1e-3` or `.5`.
 //!   `nan`, `inf` and numbers too large for an `f64` are errors. RADIUS must be ≥ 0 (a radius of
 //!   0 is valid: real files use it as a degenerate sweep).
-//! - **Profiles** of `srev` and `gcyl` must be 2D curves (`bez2`, `bsp2`, `cr2`, `her2`, `circ`);
+//! - **Profiles** of `srev` and `gcyl` must be 2D curves (`bez2`, `bsp2`, `cr2`, `her2`, `tcb2`,
+//!   `bo2`, `circ`);
 //!   a `gcyl` sweep may be 2D or 3D. Scale and twist curves must be 2D as well.
 //! - **Quirks of real files** that are accepted: CRLF line endings, brackets with or without
 //!   inner spaces, several points on one line, repeated end points, trailing spaces, no final
@@ -67,6 +72,15 @@
 //!   `cr3 NAME STEPS N [x y z] …`.
 //! - **Hermite** curves `her2` / `her3`: `her2 NAME STEPS N` followed by N pairs
 //!   `[point] [tangent]`.
+//! - **Kochanek–Bartels** curves `tcb2` / `tcb3` ([`splinekit::KochanekBartels`]): the shape
+//!   of `cr2` / `cr3` with each key's tension, continuity and bias (each from −1 to 1) after its
+//!   coordinates, `tcb2 NAME STEPS N [x y t c b] …`; all zero is the uniform Catmull-Rom curve.
+//! - **Bessel–Overhauser** curves `bo2` / `bo3` ([`splinekit::BesselOverhauser`]): exactly the
+//!   shape of `cr2` / `cr3`, `bo3 NAME STEPS N [x y z] …`.
+//!
+//!   Like Catmull-Rom curves, both interpolate their inner keys: open, N ≥ 4 and N − 3 segments
+//!   from the second key to the second-to-last; closed, N ≥ 3 and N segments. STEPS counts
+//!   the steps of each segment.
 //! - **Curve options** stand between NPOINTS and the first `[`:
 //!   - `closed` makes the curve closed (see the point-count table), `open` is the default;
 //!   - Catmull-Rom only: `alpha A` with 0 ≤ A ≤ 1 picks the knot parametrization (0 uniform,
@@ -152,6 +166,7 @@ mod writer;
 use std::path::Path;
 
 use glam::DVec3;
+use splinekit::Tcb;
 use splinekit::sweep::MeshLayout;
 
 pub use error::{SwpError, SwpErrorKind};
@@ -258,6 +273,10 @@ impl SwpCurve {
             (SwpCurveKind::BSpline, true) => "bsp3",
             (SwpCurveKind::CatmullRom { .. }, false) => "cr2",
             (SwpCurveKind::CatmullRom { .. }, true) => "cr3",
+            (SwpCurveKind::KochanekBartels, false) => "tcb2",
+            (SwpCurveKind::KochanekBartels, true) => "tcb3",
+            (SwpCurveKind::BesselOverhauser, false) => "bo2",
+            (SwpCurveKind::BesselOverhauser, true) => "bo3",
             (SwpCurveKind::Hermite, false) => "her2",
             (SwpCurveKind::Hermite, true) => "her3",
             (SwpCurveKind::Circle, _) => "circ",
@@ -281,6 +300,11 @@ pub enum SwpCurveKind {
     },
     /// Cubic Hermite spline from points and tangents (`her2`, `her3`, an extension).
     Hermite,
+    /// Kochanek–Bartels spline, with a tension, continuity and bias per key (`tcb2`, `tcb3`,
+    /// an extension; geometry [`SwpGeometry::Tcb`]).
+    KochanekBartels,
+    /// Bessel–Overhauser spline (`bo2`, `bo3`, an extension).
+    BesselOverhauser,
     /// Circle in the xy-plane, centred at the origin (`circ`).
     Circle,
     /// Circular helix about +z (`helix`, an extension).
@@ -309,8 +333,12 @@ impl SwpCurveKind {
         match (self, closed) {
             (Self::Bezier, false) => count >= 4 && (count - 1).is_multiple_of(3),
             (Self::Bezier, true) => count >= 3 && count.is_multiple_of(3),
-            (Self::BSpline | Self::CatmullRom { .. }, false) => count >= 4,
-            (Self::BSpline | Self::CatmullRom { .. }, true) => count >= 3,
+            (Self::BSpline | Self::CatmullRom { .. } | Self::KochanekBartels | Self::BesselOverhauser, false) => {
+                count >= 4
+            }
+            (Self::BSpline | Self::CatmullRom { .. } | Self::KochanekBartels | Self::BesselOverhauser, true) => {
+                count >= 3
+            }
             (Self::Hermite, _) => count >= 2,
             (Self::Circle | Self::Helix | Self::Trefoil, _) => count == 0,
         }
@@ -320,7 +348,8 @@ impl SwpCurveKind {
 /// The geometric data of an SWP curve.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SwpGeometry {
-    /// Control points of a Bézier, B-spline or Catmull-Rom curve; z = 0 for 2D kinds.
+    /// Control points of a Bézier, B-spline, Catmull-Rom or Bessel–Overhauser curve; z = 0
+    /// for 2D kinds.
     Points(Vec<DVec3>),
     /// Points and tangents of a Hermite curve (same length); z = 0 for `her2`.
     Hermite {
@@ -328,6 +357,14 @@ pub enum SwpGeometry {
         points: Vec<DVec3>,
         /// The tangent at each point.
         tangents: Vec<DVec3>,
+    },
+    /// Keys of a Kochanek–Bartels curve and the tension, continuity and bias of each (same
+    /// length); z = 0 for `tcb2`.
+    Tcb {
+        /// The keys.
+        points: Vec<DVec3>,
+        /// Each key's tension, continuity and bias, each in `[−1, 1]`.
+        shape: Vec<Tcb>,
     },
     /// A circle of the given radius (≥ 0).
     Circle {
@@ -348,6 +385,28 @@ pub enum SwpGeometry {
         /// The size (≥ 0).
         size: f64,
     },
+}
+
+impl SwpGeometry {
+    /// The points of a spline (control points, Hermite points or Kochanek–Bartels keys);
+    /// empty for circles, helices and trefoils.
+    #[must_use]
+    pub fn points(&self) -> &[DVec3] {
+        match self {
+            Self::Points(points) | Self::Hermite { points, .. } | Self::Tcb { points, .. } => points,
+            Self::Circle { .. } | Self::Helix { .. } | Self::Trefoil { .. } => &[],
+        }
+    }
+
+    /// The points of a spline, to edit (see [`points`](Self::points)); `None` for circles,
+    /// helices and trefoils. Tangents and shapes are not touched: keep their lists as long.
+    #[must_use]
+    pub fn points_mut(&mut self) -> Option<&mut Vec<DVec3>> {
+        match self {
+            Self::Points(points) | Self::Hermite { points, .. } | Self::Tcb { points, .. } => Some(points),
+            Self::Circle { .. } | Self::Helix { .. } | Self::Trefoil { .. } => None,
+        }
+    }
 }
 
 /// One surface of an SWP file.
@@ -606,7 +665,8 @@ impl SwpDocument {
     /// Writes the document as SWP text.
     ///
     /// The output uses plain SWP keywords and no options wherever the options are the
-    /// defaults, LF line endings, one point (or Hermite point-tangent pair) per line, a blank
+    /// defaults, LF line endings, one point (or Hermite point-tangent pair, or Kochanek–Bartels
+    /// key `[x y t c b]`) per line, a blank
     /// line between objects, all curves before all surfaces, and Rust's shortest round-trip
     /// formatting of `f64` (so every coordinate reads back exactly).
     ///
@@ -625,7 +685,8 @@ impl SwpDocument {
     /// 3D profile, scale or twist curve, a reference out of range — written as `.` —, a
     /// non-finite number, `steps` or helix turns out of range, …) is written anyway, and the
     /// output then fails to parse. The z coordinates of 2D curves are not written; a Hermite
-    /// curve writes as many pairs as its shorter list has entries. Scale and twist clauses are
+    /// curve writes as many pairs as its shorter list has entries (a Kochanek–Bartels curve as
+    /// many keys as its shorter list of points and shapes). Scale and twist clauses are
     /// written after the sweep, `scale` first.
     ///
     /// Call [`validate`](Self::validate) first to refuse such a document before writing: when

@@ -3,6 +3,7 @@
 use std::collections::HashMap;
 
 use glam::DVec3;
+use splinekit::Tcb;
 
 use super::error::{SwpError, SwpErrorKind};
 use super::lexer::{Token, TokenKind, tokenize};
@@ -16,9 +17,9 @@ use super::{
 };
 
 /// Every keyword that starts an object.
-const KEYWORDS: [&str; 16] = [
-    "bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "circ", "helix", "trefoil", "srev", "gcyl", "zrev",
-    "xsweep", "lathe",
+const KEYWORDS: [&str; 20] = [
+    "bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "tcb2", "tcb3", "bo2", "bo3", "circ", "helix",
+    "trefoil", "srev", "gcyl", "zrev", "xsweep", "lathe",
 ];
 
 /// Whether `word` is an SWP keyword.
@@ -33,6 +34,8 @@ enum Family {
     BSpline,
     CatmullRom,
     Hermite,
+    KochanekBartels,
+    BesselOverhauser,
 }
 
 /// What a keyword starts.
@@ -60,6 +63,10 @@ fn keyword(word: &str) -> Option<Keyword> {
         "cr3" => curve("cr3", Family::CatmullRom, 3),
         "her2" => curve("her2", Family::Hermite, 2),
         "her3" => curve("her3", Family::Hermite, 3),
+        "tcb2" => curve("tcb2", Family::KochanekBartels, 2),
+        "tcb3" => curve("tcb3", Family::KochanekBartels, 3),
+        "bo2" => curve("bo2", Family::BesselOverhauser, 2),
+        "bo3" => curve("bo3", Family::BesselOverhauser, 3),
         "circ" => Some(Keyword::Circle),
         "helix" => Some(Keyword::Helix),
         "trefoil" => Some(Keyword::Trefoil),
@@ -80,6 +87,8 @@ impl Family {
             Self::BSpline => SwpCurveKind::BSpline,
             Self::CatmullRom => SwpCurveKind::CatmullRom { alpha },
             Self::Hermite => SwpCurveKind::Hermite,
+            Self::KochanekBartels => SwpCurveKind::KochanekBartels,
+            Self::BesselOverhauser => SwpCurveKind::BesselOverhauser,
         }
     }
 }
@@ -256,7 +265,7 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// `bez2 … bsp3 cr2 cr3 her2 her3`, after the keyword.
+    /// `bez2 … bsp3 cr2 cr3 her2 her3 tcb2 tcb3 bo2 bo3`, after the keyword.
     fn curve(&mut self, pos: SourcePos, keyword: &'static str, family: Family, dim: u8) -> Result<(), SwpError> {
         let index = self.doc.curves.len();
         let (name, name_pos) = self.name(&format!("{keyword} curve"))?;
@@ -264,6 +273,8 @@ impl<'a> Parser<'a> {
         let steps = self.steps(&label)?;
 
         let pairs = family == Family::Hermite;
+        // Kochanek–Bartels keys carry their tension, continuity and bias after the coordinates
+        let shaped = family == Family::KochanekBartels;
         let items = if pairs { "point pairs" } else { "points" };
         let expected = || format!("the number of {items} (an integer ≥ 0) of {label}");
         let count_token = self.expect(expected)?;
@@ -283,10 +294,11 @@ impl<'a> Parser<'a> {
 
         // Each point takes at least `dim + 2` tokens, so the remaining tokens bound how many
         // points can follow: never reserve memory for a count the input cannot back.
-        let tokens_per_item = usize::from(dim + 2) * if pairs { 2 } else { 1 };
+        let tokens_per_item = (usize::from(dim + 2) + if shaped { 3 } else { 0 }) * if pairs { 2 } else { 1 };
         let capacity = usize::try_from(count).unwrap_or(usize::MAX).min(self.remaining() / tokens_per_item);
         let mut points = Vec::with_capacity(capacity);
         let mut tangents = Vec::with_capacity(if pairs { capacity } else { 0 });
+        let mut shape = Vec::with_capacity(if shaped { capacity } else { 0 });
         for i in 0..count {
             let n = i + 1;
             match self.peek() {
@@ -304,13 +316,25 @@ impl<'a> Parser<'a> {
                 }
                 Some(_) => {}
             }
+            if shaped {
+                let (point, tcb) = self.bracketed(dim, true, "point", n, count, &label)?;
+                points.push(point);
+                shape.push(tcb);
+                continue;
+            }
             points.push(self.point(dim, "point", n, count, &label)?);
             if pairs {
                 tangents.push(self.point(dim, "tangent", n, count, &label)?);
             }
         }
 
-        let geometry = if pairs { SwpGeometry::Hermite { points, tangents } } else { SwpGeometry::Points(points) };
+        let geometry = if pairs {
+            SwpGeometry::Hermite { points, tangents }
+        } else if shaped {
+            SwpGeometry::Tcb { points, shape }
+        } else {
+            SwpGeometry::Points(points)
+        };
         self.register(name, name_pos, Named::Curve(index));
         self.doc.curves.push(SwpCurve {
             name: name.map(str::to_owned),
@@ -381,6 +405,20 @@ impl<'a> Parser<'a> {
 
     /// Reads `[x y]` or `[x y z]`: the `role` (point or tangent) number `n` of `label`.
     fn point(&mut self, dim: u8, role: &str, n: u64, count: u64, label: &str) -> Result<DVec3, SwpError> {
+        Ok(self.bracketed(dim, false, role, n, count, label)?.0)
+    }
+
+    /// Reads `[x y]` or `[x y z]`, followed before the `]` by a tension, continuity and bias
+    /// (each from −1 to 1) if `shaped`: the `role` (point or tangent) number `n` of `label`.
+    fn bracketed(
+        &mut self,
+        dim: u8,
+        shaped: bool,
+        role: &str,
+        n: u64,
+        count: u64,
+        label: &str,
+    ) -> Result<(DVec3, Tcb), SwpError> {
         let expected_open = || format!("`[` starting {role} {n} of {count} of {label}");
         let open = self.expect(expected_open)?;
         if open.kind != TokenKind::Open {
@@ -392,12 +430,26 @@ impl<'a> Parser<'a> {
             let token = self.expect(expected)?;
             *slot = number(token.text).ok_or_else(|| self.invalid_number(token, expected()))?;
         }
+        let form = if dim == 3 { "[x y z t c b]" } else { "[x y t c b]" };
+        let mut tcb = [0.0; 3];
+        for (what, slot) in
+            ["tension", "continuity", "bias"].into_iter().zip(tcb.iter_mut()).take(if shaped { 3 } else { 0 })
+        {
+            let expected =
+                || format!("a number from -1 to 1 (the {what} of {role} {n} of {label}, whose points are {form})");
+            let token = self.expect(expected)?;
+            *slot = number(token.text)
+                .filter(|v| (-1.0..=1.0).contains(v))
+                .ok_or_else(|| self.invalid_number(token, expected()))?;
+        }
         let expected_close = || format!("`]` closing {role} {n} of {label}");
         let close = self.expect(expected_close)?;
         if close.kind != TokenKind::Close {
-            return Err(self.unexpected(close, format!("{} (its points have {dim} coordinates)", expected_close())));
+            let shape =
+                if shaped { format!("its points are {form}") } else { format!("its points have {dim} coordinates") };
+            return Err(self.unexpected(close, format!("{} ({shape})", expected_close())));
         }
-        Ok(DVec3::from_array(xyz))
+        Ok((DVec3::from_array(xyz), Tcb::new(tcb[0], tcb[1], tcb[2])))
     }
 
     /// Reads a number that must satisfy `ok`; `what` describes it, like `a radius (a number ≥ 0)`.
@@ -845,7 +897,7 @@ mod tests {
         };
         assert_eq!(accepted(Family::Bezier, false), [4, 7, 10]);
         assert_eq!(accepted(Family::Bezier, true), [3, 6, 9]);
-        for family in [Family::BSpline, Family::CatmullRom] {
+        for family in [Family::BSpline, Family::CatmullRom, Family::KochanekBartels, Family::BesselOverhauser] {
             assert_eq!(accepted(family, false), (4..12).collect::<Vec<_>>());
             assert_eq!(accepted(family, true), (3..12).collect::<Vec<_>>());
         }

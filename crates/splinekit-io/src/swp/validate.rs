@@ -4,6 +4,7 @@ use std::collections::HashMap;
 use std::fmt;
 
 use glam::DVec3;
+use splinekit::Tcb;
 
 use super::error::quote;
 use super::lexer::is_space;
@@ -22,10 +23,11 @@ impl SwpDocument {
     ///
     /// - each curve's point count fits its kind, closed or open
     ///   ([`SwpCurveKind::accepts_point_count`]); its geometry matches its kind (a Hermite curve
-    ///   has one tangent per point); `dim` is 2 or 3 (2 for circles, 3 for helices and
+    ///   has one tangent per point, a Kochanek–Bartels curve one shape per key); `dim` is 2 or 3 (2 for circles, 3 for helices and
     ///   trefoils); circles and trefoils are closed and helices open;
     /// - `steps` is from 1 to [`MAX_STEPS`]; every number is finite; radii and sizes are ≥ 0,
-    ///   helix turns in `(0, MAX_HELIX_TURNS]` and Catmull-Rom alpha in `[0, 1]`; the points and
+    ///   helix turns in `(0, MAX_HELIX_TURNS]`, Catmull-Rom alpha in `[0, 1]` and every tension,
+    ///   continuity and bias in `[−1, 1]`; the points and
     ///   tangents of 2D curves have z = 0 (z is not written);
     /// - names are writable tokens (not empty, not `.`, without whitespace, `[`, `]` or `#`)
     ///   and unique among all curves and surfaces;
@@ -202,6 +204,13 @@ pub enum SwpNumber {
         /// The coordinate: 0 for x, 1 for y, 2 for z.
         axis: usize,
     },
+    /// The tension, continuity or bias of a Kochanek–Bartels key.
+    Shape {
+        /// The index of the key, from 0 (messages count from 1: `point 1`).
+        index: usize,
+        /// Which value: 0 for the tension, 1 for the continuity, 2 for the bias.
+        axis: usize,
+    },
     /// The radius of a circle or helix.
     Radius,
     /// The pitch of a helix.
@@ -232,6 +241,10 @@ impl fmt::Display for SwpNumber {
         match *self {
             Self::Point { index, axis } => coordinate(f, "point", index, axis),
             Self::Tangent { index, axis } => coordinate(f, "tangent", index, axis),
+            Self::Shape { index, axis } => {
+                let what = ["tension", "continuity", "bias"].get(axis).copied().unwrap_or("?");
+                write!(f, "the {what} of point {}", index.saturating_add(1))
+            }
             Self::Radius => f.write_str("the radius"),
             Self::Pitch => f.write_str("the pitch"),
             Self::Turns => f.write_str("the number of turns"),
@@ -295,6 +308,13 @@ pub enum SwpInvalidKind {
         /// The number of tangents.
         tangents: usize,
     },
+    /// A Kochanek–Bartels curve with different numbers of keys and shapes.
+    ShapeCount {
+        /// The number of keys.
+        points: usize,
+        /// The number of tensions, continuities and biases.
+        shapes: usize,
+    },
     /// `steps` of a curve or surface of revolution is not in `1..=MAX_STEPS`.
     Steps {
         /// The steps.
@@ -336,8 +356,8 @@ pub enum SwpInvalidKind {
         /// Its value.
         value: f64,
     },
-    /// A radius or size below 0, helix turns not in `(0, MAX_HELIX_TURNS]`, or a Catmull-Rom
-    /// alpha not in `[0, 1]`.
+    /// A radius or size below 0, helix turns not in `(0, MAX_HELIX_TURNS]`, a Catmull-Rom
+    /// alpha not in `[0, 1]`, or a tension, continuity or bias not in `[−1, 1]`.
     OutOfRange {
         /// Which number.
         number: SwpNumber,
@@ -416,6 +436,12 @@ impl fmt::Display for SwpInvalidKind {
                 plural(*points, "point"),
                 plural(*tangents, "tangent")
             ),
+            Self::ShapeCount { points, shapes } => write!(
+                f,
+                "a Kochanek–Bartels spline needs one tension, continuity and bias for each point; this one has {} and {}",
+                plural(*points, "point"),
+                plural(*shapes, "shape")
+            ),
             Self::Steps { found } => {
                 write!(f, "the number of steps must be from 1 to {MAX_STEPS}; this one has {found}")
             }
@@ -431,15 +457,29 @@ impl fmt::Display for SwpInvalidKind {
                 let need = match (kind, closed) {
                     (SwpCurveKind::Bezier, false) => "4, 7, 10, … points",
                     (SwpCurveKind::Bezier, true) => "3, 6, 9, … points",
-                    (SwpCurveKind::BSpline | SwpCurveKind::CatmullRom { .. }, false) => "at least 4 points",
-                    (SwpCurveKind::BSpline | SwpCurveKind::CatmullRom { .. }, true) => "at least 3 points",
                     (SwpCurveKind::Hermite, _) => "at least 2 points",
+                    // the interpolating kinds shaped as Catmull-Rom's, and the B-spline
+                    (
+                        SwpCurveKind::BSpline
+                        | SwpCurveKind::CatmullRom { .. }
+                        | SwpCurveKind::KochanekBartels
+                        | SwpCurveKind::BesselOverhauser,
+                        false,
+                    ) => "at least 4 points",
+                    (
+                        SwpCurveKind::BSpline
+                        | SwpCurveKind::CatmullRom { .. }
+                        | SwpCurveKind::KochanekBartels
+                        | SwpCurveKind::BesselOverhauser,
+                        true,
+                    ) => "at least 3 points",
                     (SwpCurveKind::Circle | SwpCurveKind::Helix | SwpCurveKind::Trefoil, _) => "no control points",
                 };
                 write!(f, "{} needs {need}; this one has {found}", noun(*kind, *closed))
             }
             Self::NonFinite { number, value } => write!(f, "{number} must be a finite number; it is {value}"),
             Self::OutOfRange { number, value } => match number {
+                SwpNumber::Shape { .. } => write!(f, "{number} must be from -1 to 1; it is {value}"),
                 SwpNumber::Turns => {
                     write!(f, "{number} must be more than 0 and at most {MAX_HELIX_TURNS}; it is {value}")
                 }
@@ -486,6 +526,8 @@ fn noun(kind: SwpCurveKind, closed: bool) -> String {
         SwpCurveKind::BSpline => "B-spline",
         SwpCurveKind::CatmullRom { .. } => "Catmull-Rom spline",
         SwpCurveKind::Hermite => "Hermite spline",
+        SwpCurveKind::KochanekBartels => "Kochanek–Bartels spline",
+        SwpCurveKind::BesselOverhauser => "Bessel–Overhauser spline",
         SwpCurveKind::Circle => "circle",
         SwpCurveKind::Helix => "helix",
         SwpCurveKind::Trefoil => "trefoil knot",
@@ -497,7 +539,9 @@ fn noun(kind: SwpCurveKind, closed: bool) -> String {
 fn expected_data(kind: SwpCurveKind) -> &'static str {
     match kind {
         SwpCurveKind::Bezier | SwpCurveKind::BSpline | SwpCurveKind::CatmullRom { .. } => "control points",
+        SwpCurveKind::BesselOverhauser => "points",
         SwpCurveKind::Hermite => "points and tangents",
+        SwpCurveKind::KochanekBartels => "points with their tension, continuity and bias",
         SwpCurveKind::Circle => "a radius",
         SwpCurveKind::Helix => "a radius, a pitch and a number of turns",
         SwpCurveKind::Trefoil => "a size",
@@ -509,6 +553,7 @@ fn geometry_data(geometry: &SwpGeometry) -> &'static str {
     match geometry {
         SwpGeometry::Points(_) => "control points",
         SwpGeometry::Hermite { .. } => "points and tangents",
+        SwpGeometry::Tcb { .. } => "points with their tension, continuity and bias",
         SwpGeometry::Circle { .. } => "a circle's radius",
         SwpGeometry::Helix { .. } => "a helix's radius, pitch and turns",
         SwpGeometry::Trefoil { .. } => "a trefoil knot's size",
@@ -595,9 +640,13 @@ fn check_curve(curve: &SwpCurve) -> Result<(), SwpInvalidKind> {
     }
 
     let empty: &[DVec3] = &[];
+    let mut shape: &[Tcb] = &[];
     let (points, tangents) = match (kind, &curve.geometry) {
         (
-            SwpCurveKind::Bezier | SwpCurveKind::BSpline | SwpCurveKind::CatmullRom { .. },
+            SwpCurveKind::Bezier
+            | SwpCurveKind::BSpline
+            | SwpCurveKind::CatmullRom { .. }
+            | SwpCurveKind::BesselOverhauser,
             SwpGeometry::Points(points),
         ) => (points.as_slice(), empty),
         (SwpCurveKind::Hermite, SwpGeometry::Hermite { points, tangents }) => {
@@ -605,6 +654,13 @@ fn check_curve(curve: &SwpCurve) -> Result<(), SwpInvalidKind> {
                 return Err(SwpInvalidKind::TangentCount { points: points.len(), tangents: tangents.len() });
             }
             (points.as_slice(), tangents.as_slice())
+        }
+        (SwpCurveKind::KochanekBartels, SwpGeometry::Tcb { points, shape: shapes }) => {
+            if points.len() != shapes.len() {
+                return Err(SwpInvalidKind::ShapeCount { points: points.len(), shapes: shapes.len() });
+            }
+            shape = shapes;
+            (points.as_slice(), empty)
         }
         (SwpCurveKind::Circle, SwpGeometry::Circle { .. })
         | (SwpCurveKind::Helix, SwpGeometry::Helix { .. })
@@ -631,13 +687,19 @@ fn check_curve(curve: &SwpCurve) -> Result<(), SwpInvalidKind> {
             check_number(SwpNumber::Turns, turns, |t| t > 0.0 && t <= MAX_HELIX_TURNS)?;
         }
         SwpGeometry::Trefoil { size } => check_number(SwpNumber::Size, size, |s| s >= 0.0)?,
-        SwpGeometry::Points(_) | SwpGeometry::Hermite { .. } => {}
+        SwpGeometry::Points(_) | SwpGeometry::Hermite { .. } | SwpGeometry::Tcb { .. } => {}
     }
-    // In file order: each point, followed by its tangent for Hermite curves.
+    // In file order: each point, followed by its tangent for Hermite curves or its tension,
+    // continuity and bias for Kochanek–Bartels curves.
     for (index, &p) in points.iter().enumerate() {
         check_point(p, curve.dim, |axis| SwpNumber::Point { index, axis })?;
         if let Some(&t) = tangents.get(index) {
             check_point(t, curve.dim, |axis| SwpNumber::Tangent { index, axis })?;
+        }
+        if let Some(s) = shape.get(index) {
+            for (axis, value) in [s.tension, s.continuity, s.bias].into_iter().enumerate() {
+                check_number(SwpNumber::Shape { index, axis }, value, |v| (-1.0..=1.0).contains(&v))?;
+            }
         }
     }
     Ok(())
@@ -723,6 +785,8 @@ mod tests {
         helix coil 100 1 0.5 3\n\
         trefoil knot 100 2\n\
         bsp2 . 5 4 [0 0] [1 0] [1 1] [0 1]\n\
+        tcb2 keys 10 4 [0 0 0 0 0] [1 0 1 -1 0.5] [1 1 -1 1 -0.5] [0 1 0 0 0]\n\
+        bo3 ring3 10 3 closed [0 0 0] [1 0 1] [0 1 2]\n\
         srev glass 30 profile\n\
         gcyl tube ring coil scale profile twist arc\n\
         gcyl . ring path\n";
@@ -746,7 +810,7 @@ mod tests {
     fn points(doc: &mut SwpDocument, index: usize) -> &mut Vec<DVec3> {
         match &mut doc.curves[index].geometry {
             SwpGeometry::Points(points) => points,
-            SwpGeometry::Hermite { points, .. } => points,
+            SwpGeometry::Hermite { points, .. } | SwpGeometry::Tcb { points, .. } => points,
             other => panic!("curve {index} has no points: {other:?}"),
         }
     }
@@ -763,6 +827,8 @@ mod tests {
         let points = (0..n).map(|i| DVec3::new(i as f64, (i % 2) as f64, 0.0)).collect();
         let geometry = if kind == SwpCurveKind::Hermite {
             SwpGeometry::Hermite { points, tangents: vec![DVec3::X; n] }
+        } else if kind == SwpCurveKind::KochanekBartels {
+            SwpGeometry::Tcb { points, shape: vec![Tcb::default(); n] }
         } else {
             SwpGeometry::Points(points)
         };
@@ -1060,10 +1126,10 @@ mod tests {
         assert_eq!(doc.validate(), Ok(()));
 
         let mut doc = valid();
-        doc.surfaces[1].kind = gcyl(5, 9, None, None);
+        doc.surfaces[1].kind = gcyl(5, 11, None, None);
         assert_eq!(
             message(&doc),
-            r#"surface "tube": its sweep is curve #9, which does not exist (there are 9 curves)"#
+            r#"surface "tube": its sweep is curve #11, which does not exist (there are 11 curves)"#
         );
         let mut doc = SwpDocument {
             curves: vec![],
@@ -1092,6 +1158,46 @@ mod tests {
             message(&doc),
             "surface \"glass\": its profile (curve #3) is a 3D curve; a profile must be a 2D curve"
         );
+    }
+
+    /// Issue #41: Kochanek–Bartels keys need one shape each, each value in [−1, 1]; both
+    /// interpolating kinds count their keys as Catmull-Rom does.
+    #[test]
+    fn kochanek_bartels_and_bessel_overhauser() {
+        fn shape(doc: &mut SwpDocument) -> &mut Vec<Tcb> {
+            match &mut doc.curves[9].geometry {
+                SwpGeometry::Tcb { shape, .. } => shape,
+                other => panic!("curve 9 has no shape: {other:?}"),
+            }
+        }
+        let mut doc = valid();
+        shape(&mut doc)[1].continuity = -1.5;
+        assert_eq!(message(&doc), r#"curve "keys": the continuity of point 2 must be from -1 to 1; it is -1.5"#);
+        shape(&mut doc)[1].continuity = f64::NAN;
+        assert_eq!(message(&doc), r#"curve "keys": the continuity of point 2 must be a finite number; it is NaN"#);
+        shape(&mut doc).pop();
+        assert_eq!(
+            message(&doc),
+            "curve \"keys\": a Kochanek–Bartels spline needs one tension, continuity and bias for each point; \
+             this one has 4 points and 3 shapes"
+        );
+        let mut doc = valid();
+        doc.curves[9].geometry = SwpGeometry::Points(vec![DVec3::ZERO; 4]);
+        assert_eq!(
+            message(&doc),
+            "curve \"keys\": a Kochanek–Bartels spline is described by points with their tension, continuity and \
+             bias, but this one holds control points"
+        );
+        for (kind, closed, n, expected) in [
+            (SwpCurveKind::KochanekBartels, false, 3, "a Kochanek–Bartels spline needs at least 4 points"),
+            (SwpCurveKind::KochanekBartels, true, 2, "a closed Kochanek–Bartels spline needs at least 3 points"),
+            (SwpCurveKind::BesselOverhauser, false, 3, "a Bessel–Overhauser spline needs at least 4 points"),
+            (SwpCurveKind::BesselOverhauser, true, 2, "a closed Bessel–Overhauser spline needs at least 3 points"),
+        ] {
+            let doc = single(spline("k", kind, closed, n));
+            assert_eq!(message(&doc), format!("curve \"k\": {expected}; this one has {n}"));
+            assert_eq!(single(spline("k", kind, closed, n + 1)).validate(), Ok(()));
+        }
     }
 
     #[test]

@@ -157,10 +157,10 @@ fn write_curve(out: &mut String, curve: &SwpCurve, name: &str) {
     let keyword = curve.keyword();
     let dim = if curve.dim == 3 { 3 } else { 2 };
     let empty: &[DVec3] = &[];
-    let (points, tangents) = match &curve.geometry {
-        SwpGeometry::Points(points) => (points.as_slice(), None),
-        SwpGeometry::Hermite { points, tangents } => (points.as_slice(), Some(tangents.as_slice())),
-        SwpGeometry::Circle { .. } | SwpGeometry::Helix { .. } | SwpGeometry::Trefoil { .. } => (empty, None),
+    let points = curve.geometry.points();
+    let tangents = match &curve.geometry {
+        SwpGeometry::Hermite { tangents, .. } => Some(tangents.as_slice()),
+        _ => None,
     };
     // `fmt::Write` for `String` never fails, so the results below are ignored.
     match (curve.kind, &curve.geometry) {
@@ -194,6 +194,20 @@ fn write_curve(out: &mut String, curve: &SwpCurve, name: &str) {
                 out.push(' ');
                 write_point(out, *t, dim);
                 out.push('\n');
+            }
+        }
+        (SwpCurveKind::KochanekBartels, geometry) => {
+            let shape = match geometry {
+                SwpGeometry::Tcb { shape, .. } => shape.as_slice(),
+                _ => &[],
+            };
+            let count = points.len().min(shape.len());
+            let _ = writeln!(out, "{keyword} {name} {} {count}{}", curve.steps, options(curve));
+            for (p, s) in points.iter().zip(shape) {
+                write_point(out, *p, dim);
+                // the shape goes inside the brackets, after the coordinates
+                out.pop();
+                let _ = writeln!(out, " {} {} {}]", s.tension, s.continuity, s.bias);
             }
         }
         _ => {

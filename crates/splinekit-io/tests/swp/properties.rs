@@ -5,6 +5,7 @@ use glam::DVec3;
 use proptest::prelude::*;
 use proptest::sample::{Index, select};
 use proptest::test_runner::Config;
+use splinekit::Tcb;
 use splinekit_io::{
     MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpError, SwpGeometry, SwpSurface, SwpSurfaceKind,
     SwpSurfaceSettings,
@@ -50,7 +51,9 @@ fn check_round_trip(doc: &SwpDocument) -> Result<(), TestCaseError> {
     Ok(())
 }
 
-const KEYWORDS: [&str; 11] = ["bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "circ", "srev", "gcyl"];
+const KEYWORDS: [&str; 15] = [
+    "bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "tcb2", "tcb3", "bo2", "bo3", "circ", "srev", "gcyl",
+];
 
 fn keyword() -> impl Strategy<Value = &'static str> {
     select(KEYWORDS.to_vec())
@@ -126,10 +129,19 @@ fn point() -> impl Strategy<Value = DVec3> {
     (coordinate(), coordinate(), coordinate()).prop_map(|(x, y, z)| DVec3::new(x, y, z))
 }
 
+/// A Kochanek–Bartels shape value in [−1, 1]: the ends, zero (of either sign) and any between.
+fn shape_value() -> impl Strategy<Value = f64> {
+    prop_oneof![Just(-1.0), Just(1.0), Just(0.0), Just(-0.0), -1.0f64..=1.0]
+}
+
+fn shape() -> impl Strategy<Value = Tcb> {
+    (shape_value(), shape_value(), shape_value()).prop_map(|(t, c, b)| Tcb::new(t, c, b))
+}
+
 /// A valid curve; `name` is a base that the document makes unique.
 fn curve() -> impl Strategy<Value = SwpCurve> {
     (
-        (0u8..5, any::<bool>(), any::<bool>(), 1..=MAX_STEPS),
+        (0u8..7, any::<bool>(), any::<bool>(), 1..=MAX_STEPS),
         prop_oneof![Just(0.0), Just(0.5), Just(1.0), 0.0f64..=1.0],
         (0usize..6, prop::option::of("[a-z]{1,5}")),
         prop_oneof![
@@ -137,33 +149,38 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
             0.0f64..100.0,
             proptest::num::f64::POSITIVE | proptest::num::f64::NORMAL | proptest::num::f64::SUBNORMAL
         ],
-        (prop::collection::vec(point(), 20), prop::collection::vec(point(), 20)),
+        (prop::collection::vec(point(), 20), prop::collection::vec(point(), 20), prop::collection::vec(shape(), 20)),
     )
-        .prop_map(|((family, three, closed, steps), alpha, (m, name), radius, (mut points, mut tangents))| {
-            let dim: u8 = if three && family != 4 { 3 } else { 2 };
-            if dim == 2 {
-                for p in points.iter_mut().chain(&mut tangents) {
-                    p.z = 0.0;
+        .prop_map(
+            |((family, three, closed, steps), alpha, (m, name), radius, (mut points, mut tangents, mut shapes))| {
+                let dim: u8 = if three && family != 4 { 3 } else { 2 };
+                if dim == 2 {
+                    for p in points.iter_mut().chain(&mut tangents) {
+                        p.z = 0.0;
+                    }
                 }
-            }
-            let count = match (family, closed) {
-                (0, false) => 3 * (m + 1) + 1,
-                (0, true) => 3 * (m + 1),
-                (1 | 2, false) => 4 + m,
-                (1 | 2, true) => 3 + m,
-                _ => 2 + m,
-            };
-            points.truncate(count);
-            tangents.truncate(count);
-            let (kind, geometry) = match family {
-                0 => (SwpCurveKind::Bezier, SwpGeometry::Points(points)),
-                1 => (SwpCurveKind::BSpline, SwpGeometry::Points(points)),
-                2 => (SwpCurveKind::CatmullRom { alpha }, SwpGeometry::Points(points)),
-                3 => (SwpCurveKind::Hermite, SwpGeometry::Hermite { points, tangents }),
-                _ => (SwpCurveKind::Circle, SwpGeometry::Circle { radius }),
-            };
-            SwpCurve { name, kind, dim, steps, closed: closed || family == 4, geometry, pos: SourcePos::default() }
-        })
+                let count = match (family, closed) {
+                    (0, false) => 3 * (m + 1) + 1,
+                    (0, true) => 3 * (m + 1),
+                    (1 | 2 | 5 | 6, false) => 4 + m,
+                    (1 | 2 | 5 | 6, true) => 3 + m,
+                    _ => 2 + m,
+                };
+                points.truncate(count);
+                tangents.truncate(count);
+                shapes.truncate(count);
+                let (kind, geometry) = match family {
+                    0 => (SwpCurveKind::Bezier, SwpGeometry::Points(points)),
+                    1 => (SwpCurveKind::BSpline, SwpGeometry::Points(points)),
+                    2 => (SwpCurveKind::CatmullRom { alpha }, SwpGeometry::Points(points)),
+                    3 => (SwpCurveKind::Hermite, SwpGeometry::Hermite { points, tangents }),
+                    5 => (SwpCurveKind::KochanekBartels, SwpGeometry::Tcb { points, shape: shapes }),
+                    6 => (SwpCurveKind::BesselOverhauser, SwpGeometry::Points(points)),
+                    _ => (SwpCurveKind::Circle, SwpGeometry::Circle { radius }),
+                };
+                SwpCurve { name, kind, dim, steps, closed: closed || family == 4, geometry, pos: SourcePos::default() }
+            },
+        )
 }
 
 /// Raw draws of surface settings: which tessellation (none, distance, angle) with a distance

@@ -8,6 +8,7 @@ use proptest::prelude::*;
 use proptest::sample::select;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, TestRunner};
+use splinekit::Tcb;
 use splinekit_io::{
     MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, SwpSurface, SwpSurfaceKind,
 };
@@ -75,10 +76,19 @@ fn mostly<T: std::fmt::Debug + Clone + 'static>(
     prop_oneof![odds => good, 1 => bad].boxed()
 }
 
+/// A Kochanek–Bartels tension, continuity or bias: almost always in [−1, 1].
+fn shape_value() -> impl Strategy<Value = f64> {
+    mostly(
+        300,
+        prop_oneof![Just(0.0), Just(-0.0), Just(1.0), Just(-1.0), -1.0f64..=1.0],
+        select(vec![1.5, -1.0000001, f64::NAN, f64::INFINITY]),
+    )
+}
+
 /// A curve of a random kind, usually valid, with at most a few things wrong.
 fn curve() -> impl Strategy<Value = SwpCurve> {
     let shape = (
-        0usize..7,
+        0usize..9,
         mostly(25, select(vec![0.0, 0.5, 1.0, 0.25]), select(vec![-0.5, 1.5, f64::NAN])),
         mostly(30, Just(None), (0u8..5).prop_map(Some)),
         (any::<bool>(), any::<bool>()),
@@ -93,9 +103,10 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
         mostly(25, Just(None), (0usize..14, 0usize..3, bad_number()).prop_map(Some)),
         mostly(25, Just(None), (0usize..14, select(vec![0.5, -2.0, f64::NAN])).prop_map(Some)),
         mostly(25, Just(0isize), select(vec![-1isize, 1])),
+        prop::collection::vec((shape_value(), shape_value(), shape_value()), 14),
     );
     let scalars = (
-        mostly(30, Just(None), (0usize..5).prop_map(Some)),
+        mostly(30, Just(None), (0usize..6).prop_map(Some)),
         mostly(25, prop_oneof![Just(0.0), 0.0..5.0f64], select(vec![-1.0, f64::NAN, f64::INFINITY])),
         mostly(25, number(), bad_number()),
         mostly(25, select(vec![0.5, 1.0, 3.25, 10_000.0]), select(vec![0.0, -1.0, 10_000.5, f64::NAN])),
@@ -104,7 +115,7 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
     (shape, points, scalars).prop_map(
         |(
             (kind, alpha, dim, (closed, three), fixed_closed, steps),
-            (count, fix_count, raw_points, raw_tangents, non_finite, nonzero_z, tangent_delta),
+            (count, fix_count, raw_points, raw_tangents, non_finite, nonzero_z, tangent_delta, raw_shapes),
             (mismatch, radius, pitch, turns, name),
         )| {
             let kind = match kind {
@@ -114,7 +125,9 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
                 3 => SwpCurveKind::Hermite,
                 4 => SwpCurveKind::Circle,
                 5 => SwpCurveKind::Helix,
-                _ => SwpCurveKind::Trefoil,
+                6 => SwpCurveKind::Trefoil,
+                7 => SwpCurveKind::KochanekBartels,
+                _ => SwpCurveKind::BesselOverhauser,
             };
             let natural_dim = match kind {
                 SwpCurveKind::Circle => 2,
@@ -139,6 +152,7 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
             };
             let mut points = to_points(&raw_points);
             let mut tangents = to_points(&raw_tangents);
+            let mut shapes: Vec<Tcb> = raw_shapes.iter().take(count).map(|&(t, c, b)| Tcb::new(t, c, b)).collect();
             if let Some((index, axis, value)) = non_finite
                 && let Some(p) = points.get_mut(index)
             {
@@ -153,23 +167,32 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
             match tangent_delta {
                 -1 => {
                     tangents.pop();
+                    shapes.pop();
                 }
-                1 => tangents.push(DVec3::X),
+                1 => {
+                    tangents.push(DVec3::X);
+                    shapes.push(Tcb::default());
+                }
                 _ => {}
             }
             let helix = SwpGeometry::Helix { radius, pitch, turns };
             let geometry = match mismatch.unwrap_or(match kind {
-                SwpCurveKind::Bezier | SwpCurveKind::BSpline | SwpCurveKind::CatmullRom { .. } => 0,
+                SwpCurveKind::Bezier
+                | SwpCurveKind::BSpline
+                | SwpCurveKind::CatmullRom { .. }
+                | SwpCurveKind::BesselOverhauser => 0,
                 SwpCurveKind::Hermite => 1,
                 SwpCurveKind::Circle => 2,
                 SwpCurveKind::Helix => 3,
                 SwpCurveKind::Trefoil => 4,
+                SwpCurveKind::KochanekBartels => 5,
             }) {
                 0 => SwpGeometry::Points(points),
                 1 => SwpGeometry::Hermite { points, tangents },
                 2 => SwpGeometry::Circle { radius },
                 3 => helix,
-                _ => SwpGeometry::Trefoil { size: radius },
+                4 => SwpGeometry::Trefoil { size: radius },
+                _ => SwpGeometry::Tcb { points, shape: shapes },
             };
             SwpCurve { name, kind, dim, steps, closed, geometry, pos: SourcePos::default() }
         },
