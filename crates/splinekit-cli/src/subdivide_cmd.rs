@@ -611,7 +611,7 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
                 fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
             }
         }
-        written = Some(saved(path, save_poly(&fine, path, format, args.split_seams)?));
+        written = Some(saved(args, &mesh, &fine, path, save_poly(&fine, path, format, args.split_seams)?));
     }
     report(args, out, (vertices, faces, "triangles"), seconds, threads, written)
 }
@@ -746,9 +746,26 @@ fn thread_pool(args: &SubdivideArgs) -> anyhow::Result<rayon::ThreadPool> {
     builder.build().context("cannot start the worker threads")
 }
 
-/// The number of vertices written to `path`, after a note on standard error if normals had to
-/// be left out.
-fn saved(path: &Path, saved: SavedPoly) -> usize {
+/// The number of vertices written to `path`, after a note on standard error for each attribute
+/// of `input` that `fine` does not carry (the scheme, or the non-manifold path, drops it) and
+/// if normals had to be left out of a PLY.
+fn saved(args: &SubdivideArgs, input: &PolyMesh, fine: &PolyMesh, path: &Path, saved: SavedPoly) -> usize {
+    let scheme = args.scheme.title();
+    let mut dropped = Vec::new();
+    if input.uvs.is_some() && fine.uvs.is_none() {
+        dropped.push("texture coordinates");
+    }
+    if input.normals.is_some() && fine.normals.is_none() {
+        dropped.push("normals");
+    }
+    if !dropped.is_empty() {
+        eprintln!(
+            "note: {}: {scheme} subdivision of this mesh does not carry its {}; {} written without them",
+            args.input.display(),
+            dropped.join(" or "),
+            path.display()
+        );
+    }
     if saved.normals_left_out {
         eprintln!(
             "note: {}: PLY holds one normal a vertex, and the normals differ at some vertices (sharp \
@@ -836,7 +853,7 @@ fn run_catmull_clark(
             fine.positions = catmull_clark_limit_positions(&fine, &options).map_err(limit)?;
             fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
         }
-        written = Some(saved(path, save_poly(&fine, path, format, args.split_seams)?));
+        written = Some(saved(args, mesh, &fine, path, save_poly(&fine, path, format, args.split_seams)?));
     }
     let threads = pool.current_num_threads();
     report(args, out, (fine.num_vertices(), fine.num_faces(), "quads"), seconds, threads, written)
@@ -888,7 +905,8 @@ fn run_creased(
         if format != MeshFormat::Obj && !creases.is_empty() {
             eprintln!("note: {} cannot hold crease tags; write .obj to keep the child creases", path.display());
         }
-        written = Some(saved(path, save_poly_creased(&fine, &creases, path, format, args.split_seams)?));
+        written =
+            Some(saved(args, mesh, &fine, path, save_poly_creased(&fine, &creases, path, format, args.split_seams)?));
     }
     report(args, out, (fine.num_vertices(), fine.num_faces(), noun), seconds, pool.current_num_threads(), written)
 }

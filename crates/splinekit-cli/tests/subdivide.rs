@@ -862,3 +862,61 @@ fn opensubdiv_options_from_flags_and_tags() {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Nothing is dropped without a word (#39): where the scheme, or the non-manifold path, does not
+/// carry the input's texture coordinates, `subdivide` says so and names the file written; a
+/// scheme that carries them says nothing and writes them.
+#[test]
+fn attributes_a_scheme_drops_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    // three triangles on one edge (non-manifold), and a tetrahedron, both with UVs
+    let fin = dir.path().join("fin.obj");
+    std::fs::write(
+        &fin,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n\
+         f 1/1 2/2 3/3\nf 2/2 1/1 4/3\nf 1/1 2/2 5/3\n",
+    )
+    .unwrap();
+    let tet = dir.path().join("tet.obj");
+    std::fs::write(
+        &tet,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n\
+         f 1/1 3/3 2/2\nf 1/1 2/2 4/3\nf 1/1 4/3 3/3\nf 2/2 3/3 4/3\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out.obj");
+    let run = |file: &Path, scheme: &str| {
+        splinekit(&[
+            "subdivide".as_ref(),
+            file.as_os_str(),
+            "-n".as_ref(),
+            "1".as_ref(),
+            "--scheme".as_ref(),
+            scheme.as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ])
+    };
+    for (file, scheme, dropped) in [
+        (&fin, "loop", true),
+        (&tet, "catmull-clark", true),
+        (&tet, "loop", false),
+        (&tet, "sqrt3", false),
+        (&tet, "butterfly", false),
+        (&tet, "bilinear", false),
+    ] {
+        let r = run(file, scheme);
+        r.ok();
+        let written = std::fs::read_to_string(&out).unwrap();
+        let has_uvs = written.lines().any(|l| l.starts_with("vt "));
+        assert_eq!(has_uvs, !dropped, "{scheme} on {}", file.display());
+        assert_eq!(
+            r.stderr.contains("does not carry its texture coordinates; ")
+                && r.stderr.contains("out.obj written without them"),
+            dropped,
+            "{scheme} on {}: {}",
+            file.display(),
+            r.stderr
+        );
+    }
+}
