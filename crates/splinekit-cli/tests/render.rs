@@ -122,14 +122,17 @@ fn gallery_writes_its_page_and_files() {
         "1".as_ref(),
     ]);
     let stdout = run.ok();
-    // 12 course files, 2 arc-length entries, 2 meshes × 2 levels, the ribbon.
-    assert!(stdout.starts_with("19 entries, "), "{stdout}");
+    // 12 course files, 2 curve-kind examples, 2 arc-length entries, 2 meshes × 2 levels, the
+    // ribbon.
+    assert!(stdout.starts_with("21 entries, "), "{stdout}");
     assert!(stdout.contains(&out.join("index.html").display().to_string()), "{stdout}");
     assert_eq!(png_size(&out.join("images/wineglass.png")), (64, 48));
     assert!(out.join("meshes/bunny-loop1.glb").is_file());
     assert!(!out.join("meshes/bunny-loop2.obj").exists());
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(html.contains("<h2>Loop subdivision</h2>"));
+    assert!(html.contains("<h2>Curve kinds</h2>"));
+    assert_eq!(png_size(&out.join("images/curve-kinds.png")), (64, 48));
 
     let bad = splinekit(&["gallery", "--levels", "9"]);
     assert!(bad.fails().contains("--levels"), "{}", bad.stderr);

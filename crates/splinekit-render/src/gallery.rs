@@ -62,6 +62,13 @@ const COURSE_FILES: [(&str, &str); 12] = [
     course_file!("circles.swp"),
 ];
 
+/// The project's examples of its curve kinds: one 2D curve of each kind through the same
+/// points, and Kochanek–Bartels and Bessel–Overhauser curves as profiles and sweeps.
+const EXAMPLE_FILES: [(&str, &str); 2] = [
+    ("curve-kinds.swp", include_str!("../../../examples/curve-kinds.swp")),
+    ("tcb-bessel.swp", include_str!("../../../examples/tcb-bessel.swp")),
+];
+
 /// The arc-length reference scene: 8 control points on the rose `r = cos 2θ` rising in z, an
 /// open uniform Catmull-Rom curve of 5 segments.
 const REFERENCE_SCENE: &str = include_str!("../../../examples/reference-scene.swp");
@@ -124,6 +131,8 @@ impl Default for GalleryOptions {
 pub enum Section {
     /// The course set of SWP files.
     CourseFiles,
+    /// The curve kinds, with the project's examples.
+    CurveKinds,
     /// Arc length.
     ArcLength,
     /// Loop subdivision.
@@ -134,13 +143,14 @@ pub enum Section {
 
 impl Section {
     /// Every section, in page order.
-    pub const ALL: [Self; 4] = [Self::CourseFiles, Self::ArcLength, Self::Subdivision, Self::Frames];
+    pub const ALL: [Self; 5] = [Self::CourseFiles, Self::CurveKinds, Self::ArcLength, Self::Subdivision, Self::Frames];
 
     /// The heading on the page.
     #[must_use]
     pub fn title(self) -> &'static str {
         match self {
             Self::CourseFiles => "Course SWP files, swept",
+            Self::CurveKinds => "Curve kinds",
             Self::ArcLength => "Arc length",
             Self::Subdivision => "Loop subdivision",
             Self::Frames => "Frames along a space curve",
@@ -183,7 +193,7 @@ pub struct Gallery {
 /// The number of steps [`write_gallery`] reports through its `progress` callback.
 #[must_use]
 pub fn num_steps(options: &GalleryOptions) -> usize {
-    COURSE_FILES.len() + 2 + COURSE_MESHES.len() * (options.max_level as usize + 1) + 1 + 1
+    COURSE_FILES.len() + EXAMPLE_FILES.len() + 2 + COURSE_MESHES.len() * (options.max_level as usize + 1) + 1 + 1
 }
 
 /// Writes the gallery into `dir` (created if missing; files of the same names are replaced,
@@ -215,6 +225,10 @@ pub fn write_gallery(
     let mut entries = Vec::new();
     for (name, text) in COURSE_FILES {
         entries.push(writer.course_file(name, text)?);
+        writer.step(name);
+    }
+    for (name, text) in EXAMPLE_FILES {
+        entries.push(Entry { section: Section::CurveKinds, ..writer.course_file(name, text)? });
         writer.step(name);
     }
     entries.extend(writer.reference_scene()?);

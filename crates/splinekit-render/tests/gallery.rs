@@ -71,7 +71,7 @@ fn gallery_writes_every_file_it_lists_and_they_are_right() {
     let made = make(&dir);
 
     // Entries: 12 course files, 2 arc-length entries, 2 meshes × (levels + 1), 1 ribbon.
-    assert_eq!(made.entries.len(), 12 + 2 + 2 * (LEVELS as usize + 1) + 1);
+    assert_eq!(made.entries.len(), 12 + 2 + 2 + 2 * (LEVELS as usize + 1) + 1);
     for section in Section::ALL {
         assert!(made.entries.iter().any(|e| e.section == section), "{section:?} is empty");
     }
