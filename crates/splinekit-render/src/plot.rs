@@ -173,6 +173,32 @@ pub fn clip_segment(a: [f64; 2], b: [f64; 2], lo: [f64; 2], hi: [f64; 2]) -> Opt
     (t0 <= t1).then(|| (if t0 == 0.0 { a } else { at(t0) }, if t1 == 1.0 { b } else { at(t1) }))
 }
 
+/// The picture `width`×`height` with a margin for a stroke of `stroke` pixels: what of a line
+/// can show.
+fn stroke_box(stroke: f64, width: u32, height: u32) -> ([f64; 2], [f64; 2]) {
+    let margin = stroke + 2.0;
+    ([-margin; 2], [f64::from(width) + margin, f64::from(height) + margin])
+}
+
+/// The finite points of the polyline `points` clipped to the box `lo`–`hi` a segment at a time
+/// ([`clip_segment`]): the runs that stay connected inside it, each with the polyline's length
+/// before its first point (the phase of a dash pattern there).
+fn clipped_runs(points: &[[f64; 2]], (lo, hi): ([f64; 2], [f64; 2])) -> Vec<(Vec<[f64; 2]>, f64)> {
+    let mut runs: Vec<(Vec<[f64; 2]>, f64)> = Vec::new();
+    let mut travelled = 0.0;
+    let finite = points.iter().filter(|p| p[0].is_finite() && p[1].is_finite());
+    for (a, b) in finite.clone().zip(finite.skip(1)) {
+        if let Some((p, q)) = clip_segment(*a, *b, lo, hi) {
+            match runs.last_mut() {
+                Some((run, _)) if run.last() == Some(&p) => run.push(q),
+                _ => runs.push((vec![p, q], travelled + (p[0] - a[0]).hypot(p[1] - a[1]))),
+            }
+        }
+        travelled += (b[0] - a[0]).hypot(b[1] - a[1]);
+    }
+    runs
+}
+
 /// Draws `marks` seen by `camera` with tiny-skia (anti-aliased).
 #[must_use]
 pub fn draw_marks(camera: &Camera, marks: &[Mark], options: &PlotOptions) -> Image {
@@ -204,29 +230,30 @@ pub fn draw_marks(camera: &Camera, marks: &[Mark], options: &PlotOptions) -> Ima
                 // width) and a piece at a time: its scan converter fails an assertion, and the
                 // process aborts, on coordinates far outside the picture or on one path of a
                 // great many edges piled on the same pixels (a helix of 10 000 turns).
-                let margin = width + 2.0;
-                let (lo, hi) = ([-margin; 2], [f64::from(size.width) + margin, f64::from(size.height) + margin]);
-                let (mut pb, mut edges, mut last, mut travelled, mut start) =
-                    (PathBuilder::new(), 0, None::<[f64; 2]>, 0.0, 0.0);
-                let finite = points.iter().filter(|p| p[0].is_finite() && p[1].is_finite());
-                for (a, b) in finite.clone().zip(finite.skip(1)) {
-                    if let Some((p, q)) = clip_segment(*a, *b, lo, hi) {
-                        if last != Some(p) {
-                            pb.move_to(p[0] as f32, p[1] as f32);
+                let (mut piece, mut edges, mut phase) = (PathBuilder::new(), 0, 0.0);
+                for (run, mut along) in clipped_runs(&points, stroke_box(width, size.width, size.height)) {
+                    let mut open = false;
+                    for w in run.windows(2) {
+                        if edges == 0 {
+                            phase = along;
                         }
-                        pb.line_to(q[0] as f32, q[1] as f32);
-                        (last, edges) = (Some(q), edges + 1);
-                    }
-                    travelled += (b[0] - a[0]).hypot(b[1] - a[1]);
-                    if edges >= STROKE_PIECE {
-                        if let Some(path) = std::mem::take(&mut pb).finish() {
-                            pixmap.stroke_path(&path, &paint(colour), &stroke(start), Transform::identity(), None);
+                        if !open {
+                            piece.move_to(w[0][0] as f32, w[0][1] as f32);
+                            open = true;
                         }
-                        (edges, last, start) = (0, None, travelled);
+                        piece.line_to(w[1][0] as f32, w[1][1] as f32);
+                        edges += 1;
+                        along += (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+                        if edges >= STROKE_PIECE {
+                            if let Some(path) = std::mem::take(&mut piece).finish() {
+                                pixmap.stroke_path(&path, &paint(colour), &stroke(phase), Transform::identity(), None);
+                            }
+                            (edges, open) = (0, false);
+                        }
                     }
                 }
-                if let Some(path) = pb.finish() {
-                    pixmap.stroke_path(&path, &paint(colour), &stroke(start), Transform::identity(), None);
+                if let Some(path) = piece.finish() {
+                    pixmap.stroke_path(&path, &paint(colour), &stroke(phase), Transform::identity(), None);
                 }
             }
             Flat::Dot { at, radius, fill, outline } => {
@@ -270,23 +297,9 @@ pub fn marks_svg(camera: &Camera, marks: &[Mark], options: &PlotOptions) -> Stri
     for flat in flatten_marks(camera, marks) {
         match flat {
             Flat::Line { points, colour, width, dash } => {
-                // clipped to the picture (with a margin for the stroke), as in the PNG: an axis
-                // of a scene of size 1e-300 reaches 1e300 pixels, numbers of 300 digits
-                let margin = width + 2.0;
-                let (lo, hi) = ([-margin; 2], [f64::from(w) + margin, f64::from(h) + margin]);
-                let mut runs: Vec<(Vec<[f64; 2]>, f64)> = Vec::new();
-                let mut travelled = 0.0;
-                let finite = points.iter().filter(|p| p[0].is_finite() && p[1].is_finite());
-                for (a, b) in finite.clone().zip(finite.skip(1)) {
-                    if let Some((p, q)) = clip_segment(*a, *b, lo, hi) {
-                        let skipped = travelled + (p[0] - a[0]).hypot(p[1] - a[1]);
-                        match runs.last_mut() {
-                            Some((run, _)) if run.last() == Some(&p) => run.push(q),
-                            _ => runs.push((vec![p, q], skipped)),
-                        }
-                    }
-                    travelled += (b[0] - a[0]).hypot(b[1] - a[1]);
-                }
+                // clipped to the picture, as in the PNG: an axis of a scene of size 1e-300
+                // reaches 1e300 pixels, numbers of 300 digits
+                let runs = clipped_runs(&points, stroke_box(width, w, h));
                 for (run, start) in runs {
                     let pts: Vec<String> = run.iter().map(|p| format!("{},{}", num(p[0]), num(p[1]))).collect();
                     let dash = dash.map_or(String::new(), |[on, off]| {
