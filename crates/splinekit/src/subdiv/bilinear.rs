@@ -21,7 +21,7 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::counts::{self, Counts};
-use super::general::repeated_vertex;
+use super::general::{indices_in_range, repeated_vertex};
 use super::loop_scheme::{Attribute, SubdivError, child_colors, parent_colors};
 use super::topology::{MIN_LEN, TopologyError};
 use crate::mesh::{FaceVarying, NONE, PolyMesh};
@@ -43,12 +43,7 @@ pub struct BilinearOptions {
 /// level is made).
 pub fn bilinear_subdivide(mesh: &PolyMesh, levels: usize, options: &BilinearOptions) -> Result<PolyMesh, SubdivError> {
     super::loop_scheme::polygons_only(mesh)?;
-    let count = mesh.num_vertices();
-    for (face, f) in mesh.faces().enumerate() {
-        if let Some(&vertex) = f.iter().find(|&&v| v as usize >= count) {
-            return Err(TopologyError::Index { face: face as u32, vertex, count }.into());
-        }
-    }
+    indices_in_range(mesh)?;
     if let Some((face, vertex)) = repeated_vertex(mesh) {
         return Err(TopologyError::RepeatedVertex { face: face as u32, vertex }.into());
     }

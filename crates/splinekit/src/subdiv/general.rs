@@ -55,11 +55,21 @@ pub(super) enum Split {
 /// fewer than three corners, which no scheme takes.
 #[must_use]
 pub fn is_nonmanifold(mesh: &PolyMesh) -> bool {
-    let nv = mesh.num_vertices();
-    if mesh.faces().any(|f| f.len() < 3 || f.iter().any(|&v| v as usize >= nv)) {
+    if mesh.faces().any(|f| f.len() < 3) || indices_in_range(mesh).is_err() {
         return false;
     }
     matches!(Rings::new(mesh), Err(SubdivError::Topology(e)) if e.is_nonmanifold())
+}
+
+/// [`TopologyError::Index`] for the first corner of `mesh` that names no vertex.
+pub(super) fn indices_in_range(mesh: &PolyMesh) -> Result<(), TopologyError> {
+    let count = mesh.num_vertices();
+    for (face, f) in mesh.faces().enumerate() {
+        if let Some(&vertex) = f.iter().find(|&&v| v as usize >= count) {
+            return Err(TopologyError::Index { face: face as u32, vertex, count });
+        }
+    }
+    Ok(())
 }
 
 /// The first face that names a vertex twice, and that vertex.
@@ -118,12 +128,8 @@ fn group(n: usize, items: impl Iterator<Item = (u32, u32)> + Clone) -> (Vec<u32>
 impl GeneralLevel {
     /// The base level of `mesh`, tagged as OpenSubdiv's factory tags it.
     pub(super) fn base(mesh: &PolyMesh) -> Result<Self, SubdivError> {
+        indices_in_range(mesh)?;
         let nv = mesh.num_vertices();
-        for (face, f) in mesh.faces().enumerate() {
-            if let Some(&vertex) = f.iter().find(|&&v| v as usize >= nv) {
-                return Err(TopologyError::Index { face: face as u32, vertex, count: nv }.into());
-            }
-        }
         let nc = mesh.face_vertices.len();
         let mut face_edges = Vec::with_capacity(nc);
         let mut edge_vertices: Vec<[u32; 2]> = Vec::new();
