@@ -692,7 +692,15 @@ pub fn glb(rng: &mut Rng, m: &MeshSpec) -> Vec<u8> {
             json!(add(&mut bin, &data, json!({"componentType": 5126, "count": n, "type": "VEC2"}), None));
     }
     if !m.colors.is_empty() {
-        let data: Vec<u8> = m.colors.iter().flat_map(|c| c.map(|x| (x.clamp(0.0, 1.0) * 255.0) as u8)).collect();
+        // RGB in 4-byte elements: vertex attributes are 4-byte aligned, so the stride is 4
+        let data: Vec<u8> = m
+            .colors
+            .iter()
+            .flat_map(|c| {
+                let [r, g, b] = c.map(|x| (x.clamp(0.0, 1.0) * 255.0) as u8);
+                [r, g, b, 0]
+            })
+            .collect();
         let accessor = json!({"componentType": 5121, "normalized": true, "count": n, "type": "VEC3"});
         attributes["COLOR_0"] = json!(add(&mut bin, &data, accessor, Some(4)));
     }

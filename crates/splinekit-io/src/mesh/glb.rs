@@ -14,11 +14,11 @@ use super::{MeshIoError, MeshIoErrorKind, to_f32};
 const FORMAT: &str = "binary glTF";
 
 /// `glTF`, the magic number at the start of a `.glb`.
-const MAGIC: &[u8; 4] = b"glTF";
+pub(super) const MAGIC: &[u8; 4] = b"glTF";
 /// The chunk type of the JSON chunk.
-const CHUNK_JSON: &[u8; 4] = b"JSON";
+pub(super) const CHUNK_JSON: &[u8; 4] = b"JSON";
 /// The chunk type of the binary buffer chunk.
-const CHUNK_BIN: &[u8; 4] = b"BIN\0";
+pub(super) const CHUNK_BIN: &[u8; 4] = b"BIN\0";
 /// What `asset.generator` says.
 const GENERATOR: &str = "splinekit-io";
 
