@@ -49,20 +49,13 @@ where
     out.write_all(b"]")
 }
 
-/// An error and its causes on one line, `outer: cause: …`, leaving out a cause whose text the
-/// line already holds (many errors of the crates put their source in their own message too).
+/// An error and its causes on one line, `outer: cause: …`.
+///
+/// Each error of splinekit's crates holds its whole story in its message (`file:line:col:
+/// found …, expected …`, `cannot write: <the system's reason>`) and returns no source, so
+/// the chain here is only the contexts this binary adds, each printed once.
 pub fn error_message(err: &anyhow::Error) -> String {
-    let mut line = String::new();
-    for cause in err.chain() {
-        let text = cause.to_string();
-        if line.is_empty() {
-            line = text;
-        } else if !line.contains(&text) {
-            line.push_str(": ");
-            line.push_str(&text);
-        }
-    }
-    line
+    format!("{err:#}")
 }
 
 /// A bar on standard error when it is a terminal: `steps` steps, the elapsed time and what is
@@ -124,28 +117,27 @@ mod tests {
     }
 
     #[test]
-    fn error_messages_name_each_cause_once() {
-        /// An error that names its source in its message and also returns it as its source.
-        #[derive(Debug)]
-        struct Outer {
-            source: std::io::Error,
-        }
-        impl fmt::Display for Outer {
-            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                write!(f, "surface s: {}", self.source)
-            }
-        }
-        impl std::error::Error for Outer {
-            fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-                Some(&self.source)
-            }
-        }
-        let inner = || std::io::Error::other("too big");
-        // the cause is in the message already: once
-        let e = anyhow::Error::new(Outer { source: inner() }).context("file.swp");
-        assert_eq!(error_message(&e), "file.swp: surface s: too big");
-        // a context over a plain error: both
-        let e = anyhow::Error::new(inner()).context("cannot write out.obj");
+    fn error_messages_print_the_chain_once() {
+        let e = anyhow::Error::new(std::io::Error::other("too big")).context("cannot write out.obj");
         assert_eq!(error_message(&e), "cannot write out.obj: too big");
+        let e = anyhow::anyhow!("no curve named x").context("core.swp");
+        assert_eq!(error_message(&e), "core.swp: no curve named x");
+    }
+
+    /// The crates' errors that wrap another print it and do not also return it as their
+    /// source, so that a chain printer never shows a cause twice.
+    #[test]
+    fn wrapping_errors_print_their_cause_and_return_no_source() {
+        let swp = splinekit_io::SwpDocument::read(std::path::Path::new("/nonexistent/dir/x.swp")).unwrap_err();
+        let spline = splinekit::SplineError::InsufficientPoints { kind: "x", needed: 4, given: 1 };
+        let curve = || splinekit_io::surface::SurfaceError::Curve { curve: "c".into(), error: spline.clone() };
+        let surface = curve();
+        let lathe = splinekit::sweep::surface::SurfaceError::Keys { curve: "radius", error: spline.clone() };
+        let render = splinekit_render::RenderError::Surface { path: "a.swp".into(), error: curve() };
+        let errors: [&dyn std::error::Error; 5] = [&swp, &spline, &surface, &lathe, &render];
+        for e in errors {
+            assert!(e.source().is_none(), "{e}");
+        }
+        assert!(render.to_string().ends_with(&spline.to_string()), "{render}");
     }
 }

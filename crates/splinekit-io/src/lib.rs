@@ -56,14 +56,15 @@
 
 pub mod annotated;
 pub mod convert;
+pub mod location;
 pub mod mesh;
 pub mod surface;
 pub mod swp;
 
+pub use location::{Location, Position, SourcePos};
 pub use mesh::atomic;
 pub use mesh::{LoadedMesh, MeshFormat, MeshIoError, MeshIoErrorKind, ReadWarning, load_mesh};
 pub use swp::{
-    MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpCurveRole, SwpDocument, SwpError, SwpErrorKind, SwpFrames,
-    SwpGeometry, SwpInvalid, SwpInvalidKind, SwpNumber, SwpObject, SwpSurface, SwpSurfaceKind, SwpSurfaceSettings,
-    SwpTessellation,
+    MAX_STEPS, SwpCurve, SwpCurveKind, SwpCurveRole, SwpDocument, SwpError, SwpErrorKind, SwpFrames, SwpGeometry,
+    SwpInvalid, SwpInvalidKind, SwpNumber, SwpObject, SwpSurface, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation,
 };

@@ -139,12 +139,12 @@ pub enum SurfaceError {
     #[error("no surface {0}")]
     NoSuchSurface(usize),
     /// A curve the surface uses does not compile.
-    #[error("curve {curve}: {source}")]
+    #[error("curve {curve}: {error}")]
     Curve {
         /// Display name of the curve.
         curve: String,
         /// What is wrong with it.
-        source: splinekit::SplineError,
+        error: splinekit::SplineError,
     },
     /// The profile of a surface is a 3D curve.
     #[error("profile {curve} of surface {surface} is 3D; a profile must be a 2D curve")]
@@ -177,20 +177,46 @@ pub enum SurfaceError {
         limit: usize,
     },
     /// The sweep itself failed.
-    #[error("surface {surface}: {source}")]
+    #[error("surface {surface}: {error}")]
     Sweep {
         /// Display name of the surface.
         surface: String,
         /// What went wrong.
-        source: sweep::SweepError,
+        error: sweep::SweepError,
     },
-    /// A `zrev` or `lathe` could not be built (a profile across the axis, a negative radius…).
-    #[error("surface {surface}: {message}")]
-    Revolution {
+    /// A `zrev` or an `xsweep` could not be built (a profile across the axis, a negative
+    /// radius…).
+    #[error("surface {surface}: {error}")]
+    Rebuild {
         /// Display name of the surface.
         surface: String,
         /// What went wrong.
-        message: String,
+        error: RebuildError,
+    },
+    /// A `lathe` could not be built (its keys do not make a spline, a radius is negative…).
+    #[error("surface {surface}: {error}")]
+    Lathe {
+        /// Display name of the surface.
+        surface: String,
+        /// What went wrong.
+        error: sweep::surface::SurfaceError,
+    },
+    /// The profile of a `zrev` or a key curve of a `lathe` is a circle, helix or knot, not a
+    /// spline.
+    #[error("surface {surface}: curve {curve} must be a spline (bez2, bsp2, cr2, her2, tcb2 or bo2)")]
+    NotSpline {
+        /// Display name of the surface.
+        surface: String,
+        /// Display name of the curve.
+        curve: String,
+    },
+    /// A curve of an `xsweep` is not a 2D B-spline, the only kind the sweep tool has.
+    #[error("surface {surface}: curve {curve} must be a 2D B-spline (bsp2): the sweep tool's curves are")]
+    NotToolCurve {
+        /// Display name of the surface.
+        surface: String,
+        /// Display name of the curve.
+        curve: String,
     },
 }
 
@@ -225,7 +251,7 @@ impl SwpDocument {
         let curve = |i: usize| {
             self.curves[i]
                 .to_curve()
-                .map_err(|source| SurfaceError::Curve { curve: self.curves[i].display_name(i), source })
+                .map_err(|error| SurfaceError::Curve { curve: self.curves[i].display_name(i), error })
         };
         let limit = Limit { surface: &surface_name, max: options.max_triangles };
         let profile_of = |i: usize| -> Result<Profile, SurfaceError> {
@@ -243,7 +269,7 @@ impl SwpDocument {
                 normals: frames.iter().map(|f| f.n.truncate().try_normalize().unwrap_or(DVec2::Y)).collect(),
             })
         };
-        let sweep_err = |source| SurfaceError::Sweep { surface: surface_name.clone(), source };
+        let sweep_err = |error| SurfaceError::Sweep { surface: surface_name.clone(), error };
         match surface.kind {
             SwpSurfaceKind::Revolution { steps, profile } => {
                 let prof = profile_of(profile)?;
@@ -319,7 +345,7 @@ impl SwpDocument {
                     RebuildError::TooLarge { triangles, why, limit } => {
                         SurfaceError::TooLarge { surface: surface_name.clone(), triangles, why, limit }
                     }
-                    e => SurfaceError::Revolution { surface: surface_name.clone(), message: e.to_string() },
+                    error => SurfaceError::Rebuild { surface: surface_name.clone(), error },
                 })
             }
             SwpSurfaceKind::ToolSweep { profile, path, epsilon, path_epsilon, scale } => {
@@ -331,13 +357,9 @@ impl SwpDocument {
                             epsilon,
                             control_points: points.iter().map(|p| p.truncate()).collect(),
                         }),
-                        _ => Err(SurfaceError::Revolution {
-                            surface: surface_name.clone(),
-                            message: format!(
-                                "curve {} must be a 2D B-spline (bsp2): the sweep tool's curves are",
-                                c.display_name(i)
-                            ),
-                        }),
+                        _ => {
+                            Err(SurfaceError::NotToolCurve { surface: surface_name.clone(), curve: c.display_name(i) })
+                        }
                     }
                 };
                 let header = SweepHeader {
@@ -353,7 +375,7 @@ impl SwpDocument {
                     RebuildError::TooLarge { triangles, why, limit } => {
                         SurfaceError::TooLarge { surface: surface_name.clone(), triangles, why, limit }
                     }
-                    e => SurfaceError::Revolution { surface: surface_name.clone(), message: e.to_string() },
+                    error => SurfaceError::Rebuild { surface: surface_name.clone(), error },
                 })
             }
             SwpSurfaceKind::Lathe { stacks, slices, radius, height } => {
@@ -372,10 +394,7 @@ impl SwpDocument {
                     SurfaceTessellation::Distance(d) => slice_count(slice_angle(max_r, d)),
                 };
                 limit.check(2 * slices as u64 * u64::from(stacks), || format!("{slices} slices of {stacks} stacks"))?;
-                let failed = |e: sweep::surface::SurfaceError| SurfaceError::Revolution {
-                    surface: surface_name.clone(),
-                    message: e.to_string(),
-                };
+                let failed = |error| SurfaceError::Lathe { surface: surface_name.clone(), error };
                 let lathe = Lathe::new(&r, &z).map_err(failed)?;
                 let uvs = if options.sweep.uvs { UvMode::SplitSeams } else { UvMode::Omit };
                 B::lathe(&lathe, &LatheOptions::new(slices, stacks as usize).with_uvs(uvs)).map_err(failed)
@@ -387,15 +406,12 @@ impl SwpDocument {
 /// A 2D spline's compiled form in the plane, for `zrev` and `lathe` (circles are refused).
 fn spline_2d(curve: &AnyCurve<DVec3>, name: &str, surface: &str) -> Result<PiecewiseCubic<DVec2>, SurfaceError> {
     let AnyCurve::Piecewise(c) = curve else {
-        return Err(SurfaceError::Revolution {
-            surface: surface.to_owned(),
-            message: format!("curve {name} must be a spline (bez2, bsp2, cr2, her2, tcb2 or bo2)"),
-        });
+        return Err(SurfaceError::NotSpline { surface: surface.to_owned(), curve: name.to_owned() });
     };
     let flat =
         |b: &CubicBezier<DVec3>| CubicBezier::new(b.p0.truncate(), b.p1.truncate(), b.p2.truncate(), b.p3.truncate());
     PiecewiseCubic::new(c.segments().iter().map(flat).collect(), c.is_closed())
-        .map_err(|source| SurfaceError::Curve { curve: name.to_owned(), source })
+        .map_err(|error| SurfaceError::Curve { curve: name.to_owned(), error })
 }
 
 /// The largest slice angle whose chords stay within `tolerance` of a circle of `radius`

@@ -13,22 +13,22 @@ pub enum RenderError {
     #[error(transparent)]
     Mesh(#[from] splinekit_io::MeshIoError),
     /// A surface of the SWP file could not be swept.
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Surface {
         /// The SWP file.
         path: String,
         /// What went wrong.
-        source: splinekit_io::surface::SurfaceError,
+        error: splinekit_io::surface::SurfaceError,
     },
     /// A curve of the SWP file does not compile.
-    #[error("{path}: curve {curve}: {source}")]
+    #[error("{path}: curve {curve}: {error}")]
     Curve {
         /// The SWP file.
         path: String,
         /// Display name of the curve.
         curve: String,
         /// What is wrong with it.
-        source: splinekit::SplineError,
+        error: splinekit::SplineError,
     },
     /// The input's extension names no format that can be drawn.
     #[error("{path}: cannot draw a file of this kind ({extension}); expected .swp, .obj, .glb, .ply or .stl")]

@@ -259,7 +259,7 @@ fn render_swp(input: &Path, path: &str, format: PictureFormat, options: &FileOpt
         let surface_options = SurfaceOptions { max_triangles: Some(left), ..base };
         let mesh = doc
             .surface_mesh(i, &surface_options)
-            .map_err(|source| RenderError::Surface { path: path.to_string(), source })?;
+            .map_err(|error| RenderError::Surface { path: path.to_string(), error })?;
         left = left.saturating_sub(mesh.num_triangles());
         meshes.push(mesh);
     }
@@ -286,7 +286,7 @@ pub fn sweep_surfaces_with(
     options: &SurfaceOptions,
 ) -> Result<Vec<TriMesh>, RenderError> {
     (0..doc.surfaces.len())
-        .map(|i| doc.surface_mesh(i, options).map_err(|source| RenderError::Surface { path: path.to_string(), source }))
+        .map(|i| doc.surface_mesh(i, options).map_err(|error| RenderError::Surface { path: path.to_string(), error }))
         .collect()
 }
 
@@ -316,10 +316,10 @@ pub fn render_swp_document(
         .iter()
         .enumerate()
         .map(|(i, c)| {
-            PlotCurve::from_swp(c, i).map_err(|source| RenderError::Curve {
+            PlotCurve::from_swp(c, i).map_err(|error| RenderError::Curve {
                 path: path.to_string(),
                 curve: c.display_name(i),
-                source,
+                error,
             })
         })
         .collect::<Result<Vec<_>, _>>()?;

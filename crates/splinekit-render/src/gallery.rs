@@ -359,10 +359,10 @@ impl Writer<'_> {
     fn reference_scene(&mut self) -> Result<[Entry; 2], RenderError> {
         let name = "reference-scene.swp";
         let doc = SwpDocument::parse(REFERENCE_SCENE, name)?;
-        let curve = doc.curves[0].to_curve().map_err(|source| RenderError::Curve {
+        let curve = doc.curves[0].to_curve().map_err(|error| RenderError::Curve {
             path: name.into(),
             curve: doc.curves[0].display_name(0),
-            source,
+            error,
         })?;
         let t = Instant::now();
         let chord = ArclenTable::chord(&curve, 5);
@@ -498,9 +498,8 @@ impl Writer<'_> {
         let doc = SwpDocument::parse(RIBBON_ON_TREFOIL, name)?;
         let surface_options = SurfaceOptions { frames: SurfaceFrames::RotationMinimizing, ..SurfaceOptions::default() };
         let t = Instant::now();
-        let mesh = doc
-            .surface_mesh(0, &surface_options)
-            .map_err(|source| RenderError::Surface { path: name.into(), source })?;
+        let mesh =
+            doc.surface_mesh(0, &surface_options).map_err(|error| RenderError::Surface { path: name.into(), error })?;
         let sweep_time = t.elapsed();
         let stem = "trefoil-rmf";
         let t = Instant::now();

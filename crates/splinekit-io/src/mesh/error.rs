@@ -1,11 +1,9 @@
 //! The error type of the mesh writers and of the spline-annotated OBJ header reader.
 
-use std::fmt;
-
 use splinekit::mesh::MeshError;
 
 use super::atomic::WriteFileError;
-use crate::swp::SourcePos;
+use crate::location::{Location, Position, Prefix, SourcePos};
 
 /// Longest token text (in characters) quoted in a message before it is shortened with `…`.
 const MAX_QUOTED_CHARS: usize = 40;
@@ -21,37 +19,27 @@ const MAX_QUOTED_CHARS: usize = 40;
 /// `lathe.obj:5:9: found "ture", expected true or false (closed, 1st value of the configs line)`
 /// or `out/vase.glb: cannot create temporary file: No such file or directory (os error 2)`.
 #[derive(Debug, thiserror::Error)]
-#[error("{}{kind}", Prefix(origin, *.pos))]
+#[error("{}{kind}", Prefix(location))]
 pub struct MeshIoError {
-    origin: String,
-    pos: Option<SourcePos>,
+    location: Location,
     kind: MeshIoErrorKind,
-}
-
-/// Formats the origin and optional position as `ORIGIN:LINE:COL: `, `ORIGIN: `, `LINE:COL: `
-/// or nothing.
-struct Prefix<'a>(&'a str, Option<SourcePos>);
-
-impl fmt::Display for Prefix<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match (self.0.is_empty(), self.1) {
-            (true, None) => Ok(()),
-            (false, None) => write!(f, "{}: ", self.0),
-            (true, Some(pos)) => write!(f, "{}:{}: ", pos.line, pos.column),
-            (false, Some(pos)) => write!(f, "{}:{}:{}: ", self.0, pos.line, pos.column),
-        }
-    }
 }
 
 impl MeshIoError {
     /// An error without origin or position (the origin is filled in by path-level functions).
     pub(crate) fn new(kind: MeshIoErrorKind) -> Self {
-        Self { origin: String::new(), pos: None, kind }
+        Self { location: Location::default(), kind }
     }
 
     /// An error at a position in `origin`.
     pub(crate) fn at(origin: &str, pos: SourcePos, kind: MeshIoErrorKind) -> Self {
-        Self { origin: origin.to_owned(), pos: Some(pos), kind }
+        Self { location: Location::new(origin, Some(Position::Text(pos))), kind }
+    }
+
+    /// An error at a place in the structure of the binary file `origin` (see
+    /// [`Position::Structure`]).
+    pub(crate) fn in_structure(origin: &str, path: String, kind: MeshIoErrorKind) -> Self {
+        Self { location: Location::new(origin, Some(Position::Structure(path))), kind }
     }
 
     /// An I/O error while writing to a stream.
@@ -61,14 +49,16 @@ impl MeshIoError {
 
     /// Moves the position through `map` (for statements joined from several lines).
     pub(crate) fn map_pos(mut self, map: impl Fn(SourcePos) -> SourcePos) -> Self {
-        self.pos = self.pos.map(map);
+        if let Some(Position::Text(pos)) = &mut self.location.position {
+            *pos = map(*pos);
+        }
         self
     }
 
     /// Sets the origin if the error has none yet.
     pub(crate) fn with_origin(mut self, origin: &std::path::Path) -> Self {
-        if self.origin.is_empty() {
-            self.origin = origin.display().to_string();
+        if self.location.origin.is_empty() {
+            self.location.origin = origin.display().to_string();
         }
         self
     }
@@ -76,25 +66,31 @@ impl MeshIoError {
     /// The path or name the error is about; empty for errors of a stream writer.
     #[must_use]
     pub fn origin(&self) -> &str {
-        &self.origin
+        &self.location.origin
+    }
+
+    /// The file and the place in it.
+    #[must_use]
+    pub fn location(&self) -> &Location {
+        &self.location
     }
 
     /// The 1-based line of a parse error, or 0 if the error has no position.
     #[must_use]
     pub fn line(&self) -> usize {
-        self.pos.map_or(0, |p| p.line)
+        self.location.pos().map_or(0, |p| p.line)
     }
 
     /// The 1-based column (in characters) of a parse error, or 0 if the error has no position.
     #[must_use]
     pub fn column(&self) -> usize {
-        self.pos.map_or(0, |p| p.column)
+        self.location.pos().map_or(0, |p| p.column)
     }
 
     /// The position of a parse error, or `None`.
     #[must_use]
     pub fn pos(&self) -> Option<SourcePos> {
-        self.pos
+        self.location.pos()
     }
 
     /// What went wrong.
@@ -106,9 +102,9 @@ impl MeshIoError {
 
 impl From<WriteFileError> for MeshIoError {
     fn from(e: WriteFileError) -> Self {
-        let origin = e.path().display().to_string();
+        let location = Location::new(e.path().display().to_string(), None);
         let (action, error) = e.into_parts();
-        Self { origin, pos: None, kind: MeshIoErrorKind::Io { action, error } }
+        Self { location, kind: MeshIoErrorKind::Io { action, error } }
     }
 }
 
@@ -220,13 +216,12 @@ pub enum MeshIoErrorKind {
         reason: String,
     },
     /// A binary glTF file is malformed, or uses something the reader does not support (see
-    /// [`read_glb`](super::read_glb)). Binary files have no lines, so `at` says where instead.
-    #[error("{at}: {message}")]
+    /// [`read_glb`](super::read_glb)). Binary files have no lines: the error's
+    /// [`Location`] holds a [`Position::Structure`] instead, such as the JSON path
+    /// `meshes[0].primitives[1].indices (accessors[4])`, `chunk 1 at byte 1020`, or `JSON
+    /// chunk line 1, column 57 (byte 76)`.
+    #[error("{message}")]
     InvalidGltf {
-        /// Where: a JSON path such as `meshes[0].primitives[1].indices (accessors[4])`, a
-        /// place in the binary layout such as `chunk 1 at byte 1020`, or `JSON chunk line 1,
-        /// column 57 (byte 76)`.
-        at: String,
         /// What is wrong, such as `found index 7 at element 5, expected an index below 4 (the
         /// count of POSITION)`.
         message: String,

@@ -1,9 +1,9 @@
 //! The SWP error type.
 
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 use super::{SourcePos, SwpClause};
+use crate::location::{Location, Position, Prefix};
 
 /// The keywords listed in "unknown keyword" messages, in the order they are documented.
 pub(crate) const KEYWORD_LIST: &str =
@@ -22,34 +22,22 @@ const MAX_QUOTED_CHARS: usize = 40;
 /// `core.swp:3:7: found "1.2.3", expected a number (x coordinate of point 2 of bsp2 curve "profile")`.
 /// Errors without a position (I/O errors) display as `FILE: <message>`.
 #[derive(Debug, thiserror::Error)]
-#[error("{origin}{}: {kind}", Location(*.pos))]
+#[error("{}{kind}", Prefix(location))]
 pub struct SwpError {
-    origin: String,
-    pos: Option<SourcePos>,
+    location: Location,
     kind: SwpErrorKind,
-}
-
-/// Formats an optional position as `:LINE:COL`, or as nothing.
-struct Location(Option<SourcePos>);
-
-impl fmt::Display for Location {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.0 {
-            Some(pos) => write!(f, ":{}:{}", pos.line, pos.column),
-            None => Ok(()),
-        }
-    }
 }
 
 impl SwpError {
     /// An error at a position in `origin`.
     pub(crate) fn at(origin: &str, pos: SourcePos, kind: SwpErrorKind) -> Self {
-        Self { origin: origin.to_owned(), pos: Some(pos), kind }
+        Self { location: Location::new(origin, Some(Position::Text(pos))), kind }
     }
 
     /// A file could not be read.
     pub(crate) fn io(path: &Path, error: std::io::Error) -> Self {
-        Self { origin: path.display().to_string(), pos: None, kind: SwpErrorKind::Io { path: path.to_owned(), error } }
+        let location = Location::new(path.display().to_string(), None);
+        Self { location, kind: SwpErrorKind::Io { path: path.to_owned(), error } }
     }
 
     /// `bytes[valid_up_to]` starts an invalid UTF-8 sequence.
@@ -71,26 +59,32 @@ impl SwpError {
     /// The name of the file (or other text) the error is about.
     #[must_use]
     pub fn origin(&self) -> &str {
-        &self.origin
+        &self.location.origin
+    }
+
+    /// The file and the place in it.
+    #[must_use]
+    pub fn location(&self) -> &Location {
+        &self.location
     }
 
     /// The 1-based line of the error, or 0 if the error has no position (I/O errors).
     #[must_use]
     pub fn line(&self) -> usize {
-        self.pos.map_or(0, |p| p.line)
+        self.location.pos().map_or(0, |p| p.line)
     }
 
     /// The 1-based column of the error, counted in characters, or 0 if the error has no
     /// position (I/O errors).
     #[must_use]
     pub fn column(&self) -> usize {
-        self.pos.map_or(0, |p| p.column)
+        self.location.pos().map_or(0, |p| p.column)
     }
 
     /// The position of the error, or `None` for I/O errors.
     #[must_use]
     pub fn pos(&self) -> Option<SourcePos> {
-        self.pos
+        self.location.pos()
     }
 
     /// What went wrong.

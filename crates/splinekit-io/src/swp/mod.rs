@@ -169,6 +169,7 @@ use glam::DVec3;
 use splinekit::Tcb;
 use splinekit::sweep::MeshLayout;
 
+pub use crate::location::SourcePos;
 pub use error::{SwpError, SwpErrorKind};
 pub use validate::{SwpCurveRole, SwpInvalid, SwpInvalidKind, SwpNumber, SwpObject};
 
@@ -183,37 +184,6 @@ pub const MAX_STEPS: u32 = 1_000_000;
 /// Adaptive tessellation of a helix needs a number of points proportional to its turns; ten
 /// thousand turns is far more than any model needs and keeps a typo from asking for gigabytes.
 pub const MAX_HELIX_TURNS: f64 = 10_000.0;
-
-/// A 1-based position in a source text: line, and column counted in characters.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct SourcePos {
-    /// Line number, starting at 1. Lines end at LF (a CRLF counts as one line end).
-    pub line: usize,
-    /// Column number, starting at 1, counted in Unicode scalar values (`char`s).
-    pub column: usize,
-}
-
-impl SourcePos {
-    /// Creates a position from a 1-based line and column.
-    #[must_use]
-    pub const fn new(line: usize, column: usize) -> Self {
-        Self { line, column }
-    }
-}
-
-impl Default for SourcePos {
-    /// Line 1, column 1: the start of a text.
-    fn default() -> Self {
-        Self::new(1, 1)
-    }
-}
-
-impl std::fmt::Display for SourcePos {
-    /// Formats as `LINE:COL`.
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}:{}", self.line, self.column)
-    }
-}
 
 /// The contents of an SWP file: curves and the surfaces swept from them.
 ///

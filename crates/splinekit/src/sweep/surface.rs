@@ -132,13 +132,12 @@ pub enum SurfaceError {
     #[error("the surface is degenerate: all samples coincide or every row collapses to a point")]
     Degenerate,
     /// The radius or height keys of a [`Lathe`] do not make a Bézier spline.
-    #[error("{curve} keys: {source}")]
+    #[error("{curve} keys: {error}")]
     Keys {
         /// `radius` or `height`.
         curve: &'static str,
         /// What is wrong with them.
-        #[source]
-        source: SplineError,
+        error: SplineError,
     },
 }
 
@@ -626,7 +625,7 @@ impl Lathe {
             let pts: Vec<DVec2> = keys.iter().map(|&k| DVec2::new(k, 0.0)).collect();
             BezierSpline::new(&pts, false)
                 .map(|b| b.to_piecewise())
-                .map_err(|source| SurfaceError::Keys { curve, source })
+                .map_err(|error| SurfaceError::Keys { curve, error })
         };
         let radius = compile("radius", radius_keys)?;
         let height = compile("height", height_keys)?;

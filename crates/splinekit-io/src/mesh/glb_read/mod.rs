@@ -138,7 +138,7 @@ pub(crate) fn parse_glb(bytes: &[u8], origin: &str) -> Result<LoadedMesh, MeshIo
 
 /// An error in the glTF document or the binary layout: `at` says where, `message` what.
 fn invalid(origin: &str, at: impl Into<String>, message: impl Into<String>) -> MeshIoError {
-    load::error_in(origin, MeshIoErrorKind::InvalidGltf { at: at.into(), message: message.into() })
+    MeshIoError::in_structure(origin, at.into(), MeshIoErrorKind::InvalidGltf { message: message.into() })
 }
 
 /// "expected an index below N (the number of WHAT)", or "expected none (there are no WHAT)".
