@@ -50,6 +50,14 @@
 //! # Ok::<(), splinekit_io::SwpError>(())
 //! ```
 //!
+//! # Errors
+//!
+//! Every error's message is whole: [`SwpError`] and [`MeshIoError`] start with a [`Location`]
+//! (the file, and a line and column, or a place in a binary file's structure), say what was
+//! found and what was expected, and include the message of any error they wrap. No error of
+//! this crate returns a [`source`](std::error::Error::source), so a program that prints an
+//! error's chain (anyhow's `{:#}`) shows each cause once.
+//!
 //! # Feature flags
 //!
 //! None yet.
