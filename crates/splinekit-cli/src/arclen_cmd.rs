@@ -92,7 +92,7 @@ impl Method {
 }
 
 /// A finite number.
-fn finite(text: &str) -> Result<f64, String> {
+pub(crate) fn finite(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(_) => Err("must be a finite number".into()),
@@ -101,7 +101,7 @@ fn finite(text: &str) -> Result<f64, String> {
 }
 
 /// A positive finite number.
-fn positive_finite(text: &str) -> Result<f64, String> {
+pub(crate) fn positive_finite(text: &str) -> Result<f64, String> {
     match finite(text)? {
         x if x > 0.0 => Ok(x),
         _ => Err("must be greater than 0".into()),

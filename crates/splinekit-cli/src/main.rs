@@ -13,6 +13,7 @@ mod gallery_cmd;
 mod info_cmd;
 mod mesh_info;
 mod mesh_read;
+mod nearest_cmd;
 mod output;
 mod render_cmd;
 mod select;
@@ -45,7 +46,8 @@ static ALLOCATOR: alloc::HugePageAlloc = alloc::HugePageAlloc;
 /// cylinders, and pictures of them (PNG, SVG) drawn without a display.
 ///
 /// Reads SWP curve descriptions (bez2/bez3 Bézier, bsp2/bsp3 uniform B-spline, cr2/cr3
-/// Catmull-Rom, her2/her3 Hermite, circ) and prints results as text, CSV or JSON on
+/// Catmull-Rom, her2/her3 Hermite, tcb2/tcb3 Kochanek–Bartels, bo2/bo3 Bessel–Overhauser,
+/// circ, helix, trefoil) and meshes (OBJ, PLY, STL, glb), and prints results as text, CSV or JSON on
 /// standard output. Errors go to standard error and give a non-zero exit status (1; 2 for
 /// command-line usage errors); SWP syntax errors name the file, line and column.
 #[derive(Debug, Parser)]
@@ -54,6 +56,7 @@ static ALLOCATOR: alloc::HugePageAlloc = alloc::HugePageAlloc;
     splinekit arclen scene.swp --curve path --method gauss3\n  \
     splinekit arclen scene.swp --method adaptive --at-s 0.417 --spacing 0.5 --json\n  \
     splinekit curve scene.swp --curve 1 --steps 50 --format json\n  \
+    splinekit nearest scene.swp --curve path --point 0.5 2 --json\n  \
     splinekit sweep wineglass.swp -o out --format glb\n  \
     splinekit info wineglass.swp\n  \
     splinekit render wineglass.swp -o wineglass.png\n  \
@@ -68,6 +71,7 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     Arclen(arclen_cmd::ArclenArgs),
+    Nearest(nearest_cmd::NearestArgs),
     Curve(curve_cmd::CurveArgs),
     Sweep(sweep_cmd::SweepArgs),
     Info(info_cmd::InfoArgs),
@@ -89,6 +93,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
     splinekit_io::atomic::set_replace_read_only(force);
     match cli.command {
         Command::Arclen(args) => arclen_cmd::run(&args, &mut out)?,
+        Command::Nearest(args) => nearest_cmd::run(&args, &mut out)?,
         Command::Curve(args) => curve_cmd::run(&args, &mut out)?,
         Command::Sweep(args) => sweep_cmd::run(&args, &mut out)?,
         Command::Info(args) => info_cmd::run(&args, &mut out)?,

@@ -49,8 +49,8 @@ pub use arclen::{
 };
 pub use curve::{
     Aabb, AnyCurve, BEZIER_BASIS, BSPLINE_BASIS, BSpline, BesselOverhauser, BezierSpline, CATMULL_ROM_BASIS,
-    CatmullRom, Circle, CubicBezier, Helix, Hermite, KochanekBartels, ParamCurve, PiecewiseCubic, SplineError, Tcb,
-    Trefoil,
+    CatmullRom, Circle, CubicBezier, Helix, Hermite, KochanekBartels, Nearest, ParamCurve, PiecewiseCubic, SplineError,
+    Tcb, Trefoil,
 };
 pub use mesh::{Adjacency, FaceVarying, MeshError, PolyMesh, TriMesh, VertexCurvature, vertex_curvature};
 pub use vector::Vector;

@@ -282,6 +282,10 @@ impl<P: Vector> ParamCurve<P> for CubicBezier<P> {
     fn bounding_box(&self) -> Aabb<P> {
         CubicBezier::bounding_box(self)
     }
+    /// Exact: `P″` is linear in `t`, so its length is largest at an end of the interval.
+    fn deriv2_bound(&self, u0: f64, u1: f64) -> f64 {
+        CubicBezier::deriv2(self, u0).length().max(CubicBezier::deriv2(self, u1).length())
+    }
 }
 
 /// Parameters in `(t0, t1)` where the speed `|a + b·t + c·t²|` has a local minimum: the

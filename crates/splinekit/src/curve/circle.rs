@@ -48,6 +48,10 @@ impl<P: Vector> ParamCurve<P> for Circle {
         let r = self.radius;
         Aabb { min: P::from_dvec3(DVec3::new(-r, -r, 0.0)), max: P::from_dvec3(DVec3::new(r, r, 0.0)) }
     }
+    /// Exact: `|P″| = r·(2π)²` everywhere.
+    fn deriv2_bound(&self, _u0: f64, _u1: f64) -> f64 {
+        self.radius * TAU * TAU
+    }
     fn unit_tangent(&self, u: f64) -> P {
         let (s, c) = (TAU * u).sin_cos();
         P::from_dvec3(DVec3::new(-s, c, 0.0))

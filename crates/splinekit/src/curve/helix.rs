@@ -236,6 +236,10 @@ impl<P: Vector> ParamCurve<P> for Helix {
         }
         Aabb { min: P::from_dvec3(lo), max: P::from_dvec3(hi) }
     }
+    /// Exact: `|P″| = r·ω²` everywhere (the rise is linear in `u`).
+    fn deriv2_bound(&self, _u0: f64, _u1: f64) -> f64 {
+        self.radius * self.omega() * self.omega()
+    }
     /// The direction of travel `sign(turns)·(−r·sin θ, r·cos θ, c)`, normalized (2D: without
     /// the `c`); for `r = c = 0` (a point) the direction of `(−sin θ, cos θ)`.
     fn unit_tangent(&self, u: f64) -> P {

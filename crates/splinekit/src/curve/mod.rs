@@ -37,6 +37,7 @@ mod catmull_rom;
 mod circle;
 mod helix;
 mod hermite;
+mod nearest;
 mod piecewise;
 mod planar;
 mod tcb;
@@ -49,6 +50,7 @@ pub use catmull_rom::{CATMULL_ROM_BASIS, CatmullRom};
 pub use circle::Circle;
 pub use helix::Helix;
 pub use hermite::Hermite;
+pub use nearest::{MAX_NEAREST_INTERVALS, Nearest, accuracy_floor};
 pub use piecewise::{BezierSpline, PiecewiseCubic};
 pub use tcb::{BesselOverhauser, KochanekBartels, Tcb};
 pub use trefoil::Trefoil;
@@ -176,6 +178,29 @@ pub trait ParamCurve<P: Vector> {
     fn arclen_range(&self, u0: f64, u1: f64, accuracy: f64) -> ArclenEstimate;
     /// Tight bounding box of the curve over its domain.
     fn bounding_box(&self) -> Aabb<P>;
+    /// An upper bound of `|P″(u)|` over `u ∈ [u0, u1]` (`u0 ≤ u1`, within the domain): the
+    /// chord bound of [`nearest`](Self::nearest) rests on it.
+    fn deriv2_bound(&self, u0: f64, u1: f64) -> f64;
+
+    /// The point of the curve nearest to `q`, over the whole curve: its distance is within
+    /// `accuracy` (absolute, length units) of the smallest distance from `q` to any point of
+    /// the curve, proved by branch and bound on chord bounds, not found by a local search
+    /// from a guess (see [`Nearest`] for what is returned, and the `nearest` module docs in
+    /// the source for the bound).
+    ///
+    /// ```
+    /// use glam::DVec2;
+    /// use splinekit::{BezierSpline, ParamCurve};
+    /// let points = [DVec2::ZERO, DVec2::new(0.0, 1.0), DVec2::new(1.0, 1.0), DVec2::X];
+    /// let arch = BezierSpline::new(&points, false)?
+    ///     .to_piecewise();
+    /// let n = arch.nearest(DVec2::new(0.5, 2.0), 1e-12);
+    /// assert!((n.u - 0.5).abs() < 1e-9 && (n.distance - 1.25).abs() < 1e-12);
+    /// # Ok::<(), splinekit::SplineError>(())
+    /// ```
+    fn nearest(&self, q: P, accuracy: f64) -> Nearest<P> {
+        nearest::nearest(self, q, accuracy)
+    }
 
     /// The parameter domain `(0, num_segments)`.
     fn domain(&self) -> (f64, f64) {

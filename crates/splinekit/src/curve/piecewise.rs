@@ -112,6 +112,19 @@ impl<P: Vector> ParamCurve<P> for PiecewiseCubic<P> {
         let first = self.segments[0].bounding_box();
         self.segments[1..].iter().fold(first, |bb, s| bb.union(s.bounding_box()))
     }
+
+    /// The largest of the segments' exact bounds over the parts of `[u0, u1]` they cover.
+    fn deriv2_bound(&self, u0: f64, u1: f64) -> f64 {
+        let (k0, _) = self.locate(u0);
+        let (k1, _) = self.locate(u1);
+        (k0..=k1)
+            .map(|k| {
+                let a = if k == k0 { u0 - k as f64 } else { 0.0 };
+                let b = if k == k1 { u1 - k as f64 } else { 1.0 };
+                ParamCurve::<P>::deriv2_bound(&self.segments[k], a, b.max(a))
+            })
+            .fold(0.0, f64::max)
+    }
 }
 
 /// Piecewise cubic Bézier curve from `3m + 1` control points: segment `k` uses

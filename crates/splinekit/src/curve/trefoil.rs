@@ -351,6 +351,11 @@ fn gauss_legendre<F: Fn(f64) -> f64>(f: &F, c: f64, h: f64, m: usize) -> f64 {
 
 impl<P: Vector> ParamCurve<P> for Trefoil {
     one_segment_from_at!();
+    /// The knot's exact maximum [`max_deriv2`](Trefoil::max_deriv2) (the xy-projection's is no
+    /// larger).
+    fn deriv2_bound(&self, _u0: f64, _u1: f64) -> f64 {
+        self.max_deriv2()
+    }
     /// Arc length to within `accuracy`, with a rigorous error bound as the estimate.
     ///
     /// In `θ = 6πu` the length is `(s/3)·∫g dθ` with `g` of period 2π (see the module docs).
