@@ -17,9 +17,12 @@
 //! it; the best distance found so far (at chord feet and interval ends) is the upper bound.
 //! The interval with the smallest lower bound is split in two until that bound is within
 //! `accuracy` of the best distance, which is then within `accuracy` of the true minimum over
-//! the whole curve (every interval not split has a larger lower bound). A local Newton step
-//! from the best point only ever lowers the upper bound. No starting guess, so no local
-//! minimum is mistaken for the global one.
+//! the whole curve (every interval not split has a larger lower bound). An interval on which
+//! `|P(u) − q|²` is provably monotone (its derivative's sign at the middle outlasts the
+//! derivative's bounded slope) or convex (its second derivative bounded below by a positive
+//! number) is solved outright: at an end, or by Newton's method with the tangent-parabola
+//! bound. A local Newton step from the best point only ever lowers the upper bound. No
+//! starting guess, so no local minimum is mistaken for the global one.
 //!
 //! Floating point: distances are computed to about `ε·(|q| + size of the curve)`, so the
 //! accuracy is raised to [`accuracy_floor`] of that scale. Work is bounded by
@@ -144,17 +147,24 @@ pub(crate) fn nearest<P: Vector, C: ParamCurve<P> + ?Sized>(curve: &C, q: P, acc
         push(&mut queue, &mut best, u0, u1, (previous, end));
         previous = end;
     }
+    polish(curve, q, &mut best, lo, hi);
     let mut splits = 0;
-    let mut proved = f64::NEG_INFINITY;
+    // the smallest lower bound of the intervals solved exactly, and of the interval the search
+    // stopped at
+    let (mut solved, mut stopped) = (f64::INFINITY, f64::INFINITY);
     while let Some(top) = queue.pop() {
-        proved = top.lower;
         if top.lower >= best.distance - accuracy {
+            stopped = top.lower;
             break;
+        }
+        if let Some(lower) = solve_convex(curve, q, top.u0, top.u1, accuracy, &mut best) {
+            solved = solved.min(lower);
+            continue;
         }
         let mid = 0.5 * (top.u0 + top.u1);
         if splits == MAX_NEAREST_INTERVALS || !(mid > top.u0 && mid < top.u1) {
             // out of work, or an interval at the rounding of its parameter: keep its bound
-            queue.push(top);
+            stopped = top.lower;
             break;
         }
         splits += 1;
@@ -163,10 +173,99 @@ pub(crate) fn nearest<P: Vector, C: ParamCurve<P> + ?Sized>(curve: &C, q: P, acc
         push(&mut queue, &mut best, top.u0, mid, (a, m));
         push(&mut queue, &mut best, mid, top.u1, (m, b));
     }
-    let proved = queue.peek().map_or(proved, |p| p.lower.min(proved)).min(best.distance);
+    let waiting = queue.peek().map_or(f64::INFINITY, |p| p.lower);
+    let proved = stopped.min(waiting).min(solved).min(best.distance);
     polish(curve, q, &mut best, lo, hi);
     let error = (best.distance - proved).max(0.0);
     Nearest { u: best.u, point: best.point, distance: best.distance, error, accuracy }
+}
+
+/// Solves the interval `[u0, u1]` exactly when `f(u) = |P(u) − q|²` is provably monotone or
+/// convex on it, offering its minimum to `best`; returns a lower bound of the distance over
+/// the interval, or `None` when neither can be shown (the interval is then split).
+///
+/// A bound looser than `accuracy / 4` below the point found also gives `None`.
+///
+/// `f″/2 = |P′|² + (P − q)·P″`, and over the interval `|P′| ≥ |P′(m)| − M·h/2` and
+/// `|P − q| ≤ |P(m) − q| + (|P′(m)| + M·h/2)·h/2` (`m` the middle, `M` the second-derivative
+/// bound): when these give `f″ ≥ c > 0`, `f` has one minimum, found by Newton's method on
+/// `f′` kept inside a bracket, and `f(u) ≥ f(x) − f′(x)²/(2c)` at any `x` bounds it from below
+/// (the tangent parabola), which is tight once `f′(x)` is at rounding level.
+fn solve_convex<P: Vector, C: ParamCurve<P> + ?Sized>(
+    curve: &C,
+    q: P,
+    u0: f64,
+    u1: f64,
+    accuracy: f64,
+    best: &mut Best<P>,
+) -> Option<f64> {
+    let h = u1 - u0;
+    let m = 0.5 * (u0 + u1);
+    let (p, d1) = (curve.eval(m), curve.deriv(m));
+    let bound = curve.deriv2_bound(u0, u1);
+    let speed = d1.length();
+    let (speed_lo, speed_hi) = (speed - bound * h / 2.0, speed + bound * h / 2.0);
+    let reach = (p - q).length() + speed_hi * h / 2.0;
+    // monotone: |f″/2| ≤ |P′|² + |P − q|·|P″| over the interval, so f′/2 = (P − q)·P′ keeps
+    // the sign it has at the middle when that is farther from 0 than its slope can carry it;
+    // the minimum is then at an end
+    let g_mid = (p - q).dot(d1);
+    if g_mid.abs() > (speed_hi * speed_hi + reach * bound) * h / 2.0 {
+        let end = if g_mid > 0.0 { u0 } else { u1 };
+        let point = curve.eval(end);
+        best.offer(end, point, q);
+        return Some((point - q).length());
+    }
+    // c = a lower bound of f″ (twice the bound of f″/2)
+    let c = 2.0 * (speed_lo * speed_lo - reach * bound);
+    if !(speed_lo > 0.0 && c > 0.0) {
+        return None;
+    }
+    // g = f′/2 = (P − q)·P′, increasing on the interval
+    let g = |u: f64| (curve.eval(u) - q).dot(curve.deriv(u));
+    let (ga, gb) = (g(u0), g(u1));
+    let x = if ga >= 0.0 {
+        u0
+    } else if gb <= 0.0 {
+        u1
+    } else {
+        let (mut a, mut b) = (u0, u1);
+        let mut x = m;
+        for _ in 0..60 {
+            let (px, d1, d2) = (curve.eval(x), curve.deriv(x), curve.deriv2(x));
+            let gx = (px - q).dot(d1);
+            if gx == 0.0 {
+                break;
+            }
+            if gx < 0.0 {
+                a = x;
+            } else {
+                b = x;
+            }
+            let slope = d1.dot(d1) + (px - q).dot(d2);
+            let newton = x - gx / slope;
+            let next = if newton > a && newton < b { newton } else { 0.5 * (a + b) };
+            // converged to the rounding of the parameter (Newton then only dithers)
+            let settled = (next - x).abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0);
+            x = next;
+            if settled || !(b > a) {
+                break;
+            }
+        }
+        x
+    };
+    let px = curve.eval(x);
+    best.offer(x, px, q);
+    let fx = (px - q).length_squared();
+    // at an end where f′ points outward the end is the minimum; inside, the tangent parabola
+    let lower_sq = if (x == u0 && ga >= 0.0) || (x == u1 && gb <= 0.0) {
+        fx
+    } else {
+        let gx = (px - q).dot(curve.deriv(x));
+        fx - 2.0 * gx * gx / c
+    };
+    let lower = lower_sq.max(0.0).sqrt();
+    (lower >= fx.sqrt() - 0.25 * accuracy).then_some(lower)
 }
 
 /// A few Newton steps on `|P(u) − q|²` from the best point, kept only where they lower the
