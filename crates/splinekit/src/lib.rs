@@ -48,9 +48,9 @@ pub use arclen::{
     inv_arclen, resample_equal, resample_every,
 };
 pub use curve::{
-    Aabb, AnyCurve, BEZIER_BASIS, BSPLINE_BASIS, BSpline, BesselOverhauser, BezierSpline, CATMULL_ROM_BASIS,
-    CatmullRom, Circle, CubicBezier, Helix, Hermite, KochanekBartels, Nearest, ParamCurve, PiecewiseCubic, SplineError,
-    Tcb, Trefoil,
+    Aabb, AnyCurve, BEZIER_BASIS, BSPLINE_BASIS, BSpline, BesselOverhauser, BezierCurve, BezierSpline,
+    CATMULL_ROM_BASIS, CatmullRom, Circle, CubicBezier, Helix, Hermite, KochanekBartels, Nearest, ParamCurve,
+    PiecewiseCubic, SplineError, Tcb, Trefoil,
 };
 pub use mesh::{Adjacency, FaceVarying, MeshError, PolyMesh, TriMesh, VertexCurvature, vertex_curvature};
 pub use vector::Vector;

@@ -32,6 +32,7 @@ macro_rules! one_segment_from_at {
 
 mod any;
 mod bezier;
+mod bezier_n;
 mod bspline;
 mod catmull_rom;
 mod circle;
@@ -45,6 +46,7 @@ mod trefoil;
 
 pub use any::AnyCurve;
 pub use bezier::{BEZIER_BASIS, CubicBezier};
+pub use bezier_n::{BezierCurve, MAX_BEZIER_POINTS};
 pub use bspline::{BSPLINE_BASIS, BSpline};
 pub use catmull_rom::{CATMULL_ROM_BASIS, CatmullRom};
 pub use circle::Circle;
