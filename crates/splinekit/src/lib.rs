@@ -49,7 +49,7 @@ pub use arclen::{
 };
 pub use curve::{
     Aabb, AnyCurve, BEZIER_BASIS, BSPLINE_BASIS, BSpline, BesselOverhauser, BezierCurve, BezierSpline,
-    CATMULL_ROM_BASIS, CatmullRom, Circle, CubicBezier, Helix, Hermite, KochanekBartels, Nearest, ParamCurve,
+    CATMULL_ROM_BASIS, CatmullRom, Circle, CubicBezier, Helix, Hermite, KochanekBartels, Nearest, Nurbs, ParamCurve,
     PiecewiseCubic, SplineError, Tcb, Trefoil,
 };
 pub use mesh::{Adjacency, FaceVarying, MeshError, PolyMesh, TriMesh, VertexCurvature, vertex_curvature};

@@ -168,3 +168,22 @@ fn points_on_the_curve_are_found_and_answers_repeat() {
     let helix = Helix::new(1.0, 0.0, 1.0);
     assert!((ParamCurve::<DVec3>::nearest(&helix, DVec3::new(2.0, 0.0, 0.0), 1e-12).distance - 1.0).abs() < 1e-12);
 }
+
+/// A chain that jumps where its first segment ends: the first segment's end (its limit, not
+/// the second segment's start at the same parameter) is the nearest place.
+#[test]
+fn a_jump_between_segments_is_not_bridged() {
+    let line = |a: DVec2, b: DVec2| splinekit::CubicBezier::new(a, a.lerp(b, 1.0 / 3.0), a.lerp(b, 2.0 / 3.0), b);
+    let chain = splinekit::PiecewiseCubic::new(
+        vec![line(DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.0)), line(DVec2::new(5.0, 3.0), DVec2::new(6.0, 3.0))],
+        false,
+    )
+    .unwrap();
+    let q = DVec2::new(1.2, 0.0);
+    let n = chain.nearest(q, 1e-9);
+    assert!((n.distance - 0.2).abs() <= 1e-9, "{n:?}");
+    assert!(n.u < 1.0 && n.u > 1.0 - 1e-6, "{n:?}");
+    // and a point between the pieces is not near the chord that would join them
+    let n = chain.nearest(DVec2::new(3.0, 1.5), 1e-9);
+    assert!((n.distance - DVec2::new(2.0, 1.5).length()).abs() <= 1e-9, "{n:?}");
+}

@@ -64,6 +64,9 @@ impl<P: Vector> ParamCurve<P> for AnyCurve<P> {
     fn bounding_box(&self) -> Aabb<P> {
         dispatch!(self, c => c.bounding_box())
     }
+    fn segment_end(&self, k: usize) -> P {
+        dispatch!(self, c => ParamCurve::<P>::segment_end(c, k))
+    }
     fn deriv2_bound(&self, u0: f64, u1: f64) -> f64 {
         dispatch!(self, c => ParamCurve::<P>::deriv2_bound(c, u0, u1))
     }

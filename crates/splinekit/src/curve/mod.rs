@@ -34,11 +34,13 @@ mod any;
 mod bezier;
 mod bezier_n;
 mod bspline;
+mod by_segment;
 mod catmull_rom;
 mod circle;
 mod helix;
 mod hermite;
 mod nearest;
+mod nurbs;
 mod piecewise;
 mod planar;
 mod tcb;
@@ -53,6 +55,7 @@ pub use circle::Circle;
 pub use helix::Helix;
 pub use hermite::Hermite;
 pub use nearest::{MAX_NEAREST_INTERVALS, Nearest, accuracy_floor};
+pub use nurbs::{MAX_NURBS_DEGREE, MAX_NURBS_POINTS, Nurbs};
 pub use piecewise::{BezierSpline, PiecewiseCubic};
 pub use tcb::{BesselOverhauser, KochanekBartels, Tcb};
 pub use trefoil::Trefoil;
@@ -103,6 +106,46 @@ pub enum SplineError {
     BadAlpha {
         /// The value given.
         alpha: f64,
+    },
+    /// A NURBS knot vector of the wrong length.
+    #[error("a knot vector of {expected} knots (control points + degree + 1), got {given}")]
+    KnotCount {
+        /// The length needed.
+        expected: usize,
+        /// The length given.
+        given: usize,
+    },
+    /// A knot that is not finite, is smaller than the one before it, or leaves no domain.
+    #[error("knot {index} {why}")]
+    BadKnot {
+        /// Its index, from 0.
+        index: usize,
+        /// What is wrong.
+        why: &'static str,
+    },
+    /// A degree of 0 or above the largest supported.
+    #[error("degree must be from 1 to {max}, got {degree}")]
+    BadDegree {
+        /// The degree given.
+        degree: usize,
+        /// The largest supported.
+        max: usize,
+    },
+    /// Not one weight per control point.
+    #[error("one weight per control point is needed, got {points} points and {weights} weights")]
+    WeightCount {
+        /// Control points.
+        points: usize,
+        /// Weights.
+        weights: usize,
+    },
+    /// A weight that is not a positive finite number.
+    #[error("weight {index} must be a positive finite number, got {weight}")]
+    BadWeight {
+        /// The control point, from 0.
+        index: usize,
+        /// The weight given.
+        weight: f64,
     },
     /// A chain with no segments.
     #[error("a curve needs at least one segment")]
@@ -180,6 +223,12 @@ pub trait ParamCurve<P: Vector> {
     fn arclen_range(&self, u0: f64, u1: f64, accuracy: f64) -> ArclenEstimate;
     /// Tight bounding box of the curve over its domain.
     fn bounding_box(&self) -> Aabb<P>;
+    /// The end of segment `k` (`k < num_segments`) as the segment itself reaches it: the limit
+    /// of `eval(u)` as `u` rises to `k + 1`, which differs from `eval(k + 1)` where a chain
+    /// jumps. By default `eval(k + 1)` (curves without jumps).
+    fn segment_end(&self, k: usize) -> P {
+        self.eval((k + 1) as f64)
+    }
     /// An upper bound of `|P″(u)|` over `u ∈ [u0, u1]` (`u0 ≤ u1`, within the domain): the
     /// chord bound of [`nearest`](Self::nearest) rests on it.
     fn deriv2_bound(&self, u0: f64, u1: f64) -> f64;

@@ -65,24 +65,29 @@ pub fn accuracy_floor(q_length: f64, extent: f64) -> f64 {
 }
 
 /// An interval waiting in the queue, ordered by its lower bound (smallest first).
-struct Pending {
+struct Pending<P> {
     lower: f64,
     u0: f64,
     u1: f64,
+    /// The curve at `u0` and, as the interval's own piece reaches it, at `u1` (a chain may
+    /// jump where a segment ends; the next segment's start is not this interval's end).
+    ends: (P, P),
+    /// Whether the curve is continuous at `u1` (the interval can be solved outright).
+    joined: bool,
 }
 
-impl PartialEq for Pending {
+impl<P> PartialEq for Pending<P> {
     fn eq(&self, other: &Self) -> bool {
         self.cmp(other) == Ordering::Equal
     }
 }
-impl Eq for Pending {}
-impl PartialOrd for Pending {
+impl<P> Eq for Pending<P> {}
+impl<P> PartialOrd for Pending<P> {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         Some(self.cmp(other))
     }
 }
-impl Ord for Pending {
+impl<P> Ord for Pending<P> {
     /// Reversed, so that `BinaryHeap` (a max-heap) pops the smallest lower bound; ties by
     /// parameter, so that the search is deterministic.
     fn cmp(&self, other: &Self) -> Ordering {
@@ -123,29 +128,30 @@ pub(crate) fn nearest<P: Vector, C: ParamCurve<P> + ?Sized>(curve: &C, q: P, acc
     let start = curve.eval(lo);
     let mut best = Best { u: lo, point: start, distance: (start - q).length() };
     let mut queue = BinaryHeap::new();
-    // `ends` are the points at u0 and u1, already offered to `best`
-    let push = |queue: &mut BinaryHeap<Pending>, best: &mut Best<P>, u0: f64, u1: f64, ends: (P, P)| {
-        let foot = chord_foot(ends.0, ends.1, q);
-        let chord_point = ends.0 + (ends.1 - ends.0) * foot;
-        let h = u1 - u0;
-        let sag = curve.deriv2_bound(u0, u1) * h * h / 8.0;
-        let lower = (q - chord_point).length() - sag;
-        // the curve at the chord's foot is often the best point of the interval
-        let u = u0 + foot * h;
-        if u > u0 && u < u1 {
-            best.offer(u, curve.eval(u), q);
-        }
-        queue.push(Pending { lower, u0, u1 });
-    };
+    // `ends` are the points at u0 and u1 (see `Pending`)
+    let push =
+        |queue: &mut BinaryHeap<Pending<P>>, best: &mut Best<P>, u0: f64, u1: f64, ends: (P, P), joined: bool| {
+            let foot = chord_foot(ends.0, ends.1, q);
+            let chord_point = ends.0 + (ends.1 - ends.0) * foot;
+            let h = u1 - u0;
+            let sag = curve.deriv2_bound(u0, u1) * h * h / 8.0;
+            let lower = (q - chord_point).length() - sag;
+            // the curve at the chord's foot is often the best point of the interval
+            let u = u0 + foot * h;
+            if u > u0 && u < u1 {
+                best.offer(u, curve.eval(u), q);
+            }
+            queue.push(Pending { lower, u0, u1, ends, joined });
+        };
     let segments = curve.num_segments().max(1);
-    let mut previous = start;
     for k in 0..segments {
         let u0 = lo + (hi - lo) * (k as f64 / segments as f64);
         let u1 = if k + 1 == segments { hi } else { lo + (hi - lo) * ((k + 1) as f64 / segments as f64) };
-        let end = curve.eval(u1);
-        best.offer(u1, end, q);
-        push(&mut queue, &mut best, u0, u1, (previous, end));
-        previous = end;
+        let (first, next) = (curve.eval(u0), curve.eval(u1));
+        best.offer(u0, first, q);
+        best.offer(u1, next, q);
+        let end = curve.segment_end(k);
+        push(&mut queue, &mut best, u0, u1, (first, end), end == next);
     }
     polish(curve, q, &mut best, lo, hi);
     let mut splits = 0;
@@ -157,7 +163,9 @@ pub(crate) fn nearest<P: Vector, C: ParamCurve<P> + ?Sized>(curve: &C, q: P, acc
             stopped = top.lower;
             break;
         }
-        if let Some(lower) = solve_convex(curve, q, top.u0, top.u1, accuracy, &mut best) {
+        if top.joined
+            && let Some(lower) = solve_convex(curve, q, top.u0, top.u1, accuracy, &mut best)
+        {
             solved = solved.min(lower);
             continue;
         }
@@ -168,10 +176,10 @@ pub(crate) fn nearest<P: Vector, C: ParamCurve<P> + ?Sized>(curve: &C, q: P, acc
             break;
         }
         splits += 1;
-        let (a, m, b) = (curve.eval(top.u0), curve.eval(mid), curve.eval(top.u1));
+        let ((a, b), m) = (top.ends, curve.eval(mid));
         best.offer(mid, m, q);
-        push(&mut queue, &mut best, top.u0, mid, (a, m));
-        push(&mut queue, &mut best, mid, top.u1, (m, b));
+        push(&mut queue, &mut best, top.u0, mid, (a, m), true);
+        push(&mut queue, &mut best, mid, top.u1, (m, b), top.joined);
     }
     let waiting = queue.peek().map_or(f64::INFINITY, |p| p.lower);
     let proved = stopped.min(waiting).min(solved).min(best.distance);

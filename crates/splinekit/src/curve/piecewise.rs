@@ -1,6 +1,7 @@
 //! [`PiecewiseCubic`], the compiled form of every spline kind, and [`BezierSpline`].
 
 use crate::arclen::ArclenEstimate;
+use crate::curve::by_segment::arclen_by_segment;
 use crate::curve::{Aabb, CubicBezier, ParamCurve, SplineError};
 use crate::vector::Vector;
 
@@ -84,33 +85,18 @@ impl<P: Vector> ParamCurve<P> for PiecewiseCubic<P> {
     /// pieces in proportion to their parameter width, so the total error stays within
     /// `accuracy`.
     fn arclen_range(&self, u0: f64, u1: f64, accuracy: f64) -> ArclenEstimate {
-        if u1 < u0 {
-            let e = self.arclen_range(u1, u0, accuracy);
-            return ArclenEstimate { length: -e.length, error: e.error };
-        }
-        let width = u1 - u0;
-        if !(width > 0.0) {
-            return ArclenEstimate::default();
-        }
-        let m = self.segments.len();
-        let (k0, _) = self.locate(u0);
-        let (k1, _) = self.locate(u1);
-        let mut total = ArclenEstimate::default();
-        for k in k0..=k1.min(m - 1) {
-            let a = if k == k0 { u0 - k as f64 } else { 0.0 };
-            let b = if k == k1 { u1 - k as f64 } else { 1.0 };
-            if b > a {
-                let e = self.segments[k].arclen_range(a, b, accuracy * ((b - a) / width));
-                total.length += e.length;
-                total.error += e.error;
-            }
-        }
-        total
+        arclen_by_segment(self.segments.len(), u0, u1, accuracy, |k, a, b, share| {
+            self.segments[k].arclen_range(a - k as f64, b - k as f64, share)
+        })
     }
 
     fn bounding_box(&self) -> Aabb<P> {
         let first = self.segments[0].bounding_box();
         self.segments[1..].iter().fold(first, |bb, s| bb.union(s.bounding_box()))
+    }
+
+    fn segment_end(&self, k: usize) -> P {
+        self.segments[k.min(self.segments.len() - 1)].p3
     }
 
     /// The largest of the segments' exact bounds over the parts of `[u0, u1]` they cover.

@@ -1,0 +1,477 @@
+//! NURBS: rational B-spline curves of any degree, with exact conics.
+
+use core::f64::consts::FRAC_1_SQRT_2;
+
+use glam::{DVec3, DVec4};
+
+use crate::arclen::{self, ArclenEstimate};
+use crate::curve::by_segment::arclen_by_segment;
+use crate::curve::{Aabb, ParamCurve, SplineError};
+use crate::vector::Vector;
+
+/// The most control points a [`Nurbs`] takes.
+pub const MAX_NURBS_POINTS: usize = 1 << 20;
+/// The highest degree a [`Nurbs`] takes (de Boor's algorithm costs `degree²` per point).
+pub const MAX_NURBS_DEGREE: usize = 32;
+
+/// A NURBS curve: `C(x) = Σ Nᵢ,ₚ(x)·wᵢ·pᵢ / Σ Nᵢ,ₚ(x)·wᵢ` over a non-decreasing knot vector,
+/// with degree `p ≥ 1`, `n` control points `pᵢ` and weights `wᵢ > 0`.
+///
+/// # Parametrization
+/// Each knot span of positive length `[xₖ, xₖ₊₁]` inside the domain `[x_p, x_n]` is one unit
+/// segment of the curve parameter `u` (`u ∈ [0, spans]`), mapped linearly, as for the other
+/// kinds; [`knot_at`](Self::knot_at) gives the knot-vector parameter `x` of a `u`.
+///
+/// # Interpolation
+/// With a clamped knot vector (the first and last knots repeated `p + 1` times, the default)
+/// the curve starts at the first control point and ends at the last; [`Nurbs::periodic`]
+/// makes a closed curve through none of them.
+///
+/// # Continuity
+/// `C^(p−k)` at a knot of multiplicity `k`, `C∞` inside a span.
+///
+/// # Usage
+/// ```
+/// use glam::DVec2;
+/// use splinekit::{Nurbs, ParamCurve};
+/// let circle = Nurbs::<DVec2>::circle(2.0);
+/// for i in 0..=100 {
+///     assert!((circle.eval(circle.num_segments() as f64 * i as f64 / 100.0).length() - 2.0).abs() < 1e-14);
+/// }
+/// assert!((circle.arclen(1e-12) - 4.0 * std::f64::consts::PI).abs() < 1e-11);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Nurbs<P> {
+    degree: usize,
+    knots: Vec<f64>,
+    points: Vec<P>,
+    weights: Vec<f64>,
+    closed: bool,
+    /// The knot spans `k` (`knots[k] < knots[k + 1]`, `degree ≤ k < n`), one per segment.
+    spans: Vec<usize>,
+    /// Per span, its rational Bézier piece: `degree + 1` homogeneous points `(w·p, w)`.
+    pieces: Vec<Vec<DVec4>>,
+}
+
+impl<P: Vector> Nurbs<P> {
+    /// A NURBS of `degree` through `points` with `weights` (one each, finite, positive) over
+    /// `knots` (`points.len() + degree + 1` finite non-decreasing values), or over the clamped
+    /// uniform knot vector when `knots` is `None`. Needs at least `degree + 1` points.
+    pub fn new(degree: usize, points: Vec<P>, weights: Vec<f64>, knots: Option<Vec<f64>>) -> Result<Self, SplineError> {
+        let n = points.len();
+        check_definition(degree, &points, &weights)?;
+        let knots = match knots {
+            Some(knots) => {
+                if knots.len() != n + degree + 1 {
+                    return Err(SplineError::KnotCount { expected: n + degree + 1, given: knots.len() });
+                }
+                if let Some(index) = knots.iter().position(|k| !k.is_finite()) {
+                    return Err(SplineError::BadKnot { index, why: "is not finite" });
+                }
+                if let Some(index) = knots.windows(2).position(|w| w[1] < w[0]) {
+                    return Err(SplineError::BadKnot { index: index + 1, why: "is smaller than the knot before it" });
+                }
+                knots
+            }
+            None => clamped_uniform(n, degree),
+        };
+        Self::build(degree, knots, points, weights, false)
+    }
+
+    /// A closed (periodic) NURBS of `degree` over `points` with `weights` (at least
+    /// `degree + 1`... and at least 3 points): uniform knots, the first `degree` points
+    /// repeated at the end, so that the curve is `C^(degree−1)` everywhere, also where it
+    /// closes. It passes through no control point (for `degree ≥ 2`).
+    pub fn periodic(degree: usize, points: Vec<P>, weights: Vec<f64>) -> Result<Self, SplineError> {
+        check_definition(degree, &points, &weights)?;
+        if points.len() < 3 {
+            return Err(SplineError::InsufficientPoints { kind: "closed NURBS", needed: 3, given: points.len() });
+        }
+        let mut wrapped = points.clone();
+        let mut wrapped_weights = weights.clone();
+        for i in 0..degree {
+            wrapped.push(points[i % points.len()]);
+            wrapped_weights.push(weights[i % weights.len()]);
+        }
+        let knots = (0..wrapped.len() + degree + 1).map(|i| i as f64).collect();
+        Self::build(degree, knots, wrapped, wrapped_weights, true)
+    }
+
+    /// The exact circle of `radius` about the origin in the xy-plane, counter-clockwise from
+    /// `(radius, 0)`: nine control points of a quadratic with weights 1 and `1/√2` at the
+    /// corners of the square around it, four spans (quarter circles).
+    #[must_use]
+    pub fn circle(radius: f64) -> Self {
+        Self::ellipse(radius, radius)
+    }
+
+    /// The exact axis-aligned ellipse with semi-axes `rx` (along x) and `ry`, counter-clockwise
+    /// from `(rx, 0)` (the circle's NURBS, scaled).
+    #[must_use]
+    pub fn ellipse(rx: f64, ry: f64) -> Self {
+        let corners = [
+            (1.0, 0.0),
+            (1.0, 1.0),
+            (0.0, 1.0),
+            (-1.0, 1.0),
+            (-1.0, 0.0),
+            (-1.0, -1.0),
+            (0.0, -1.0),
+            (1.0, -1.0),
+            (1.0, 0.0),
+        ];
+        let points = corners.iter().map(|&(x, y)| P::from_dvec3(DVec3::new(rx * x, ry * y, 0.0))).collect();
+        let weights = (0..9).map(|i| if i % 2 == 1 { FRAC_1_SQRT_2 } else { 1.0 }).collect();
+        let knots = vec![0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0];
+        // a valid definition by construction
+        Self::build(2, knots, points, weights, true).unwrap_or_else(|_| unreachable!("the circle's NURBS is valid"))
+    }
+
+    fn build(
+        degree: usize,
+        knots: Vec<f64>,
+        points: Vec<P>,
+        weights: Vec<f64>,
+        closed: bool,
+    ) -> Result<Self, SplineError> {
+        let n = points.len();
+        let spans: Vec<usize> = (degree..n).filter(|&k| knots[k] < knots[k + 1]).collect();
+        if spans.is_empty() {
+            return Err(SplineError::BadKnot {
+                index: degree,
+                why: "leaves the curve's domain empty (all its knots are equal)",
+            });
+        }
+        let mut curve = Self { degree, knots, points, weights, closed, spans, pieces: Vec::new() };
+        curve.pieces = curve.spans.iter().map(|&span| curve.bezier_piece(span)).collect();
+        Ok(curve)
+    }
+
+    /// The rational Bézier piece of `span`: its control points are the blossoms
+    /// `f(a, …, a, b, …, b)` (`degree − i` times `a = knots[span]`, `i` times `b`), each by de
+    /// Boor's algorithm with one argument per level.
+    fn bezier_piece(&self, span: usize) -> Vec<DVec4> {
+        let p = self.degree;
+        let (a, b) = (self.knots[span], self.knots[span + 1]);
+        (0..=p)
+            .map(|i| {
+                let mut d: Vec<DVec4> = (span - p..=span).map(|j| self.homogeneous(j)).collect();
+                for r in 1..=p {
+                    let t = if r <= p - i { a } else { b };
+                    for j in (r..=p).rev() {
+                        let k = span - p + j;
+                        let (lo, hi) = (self.knots[k], self.knots[k + p + 1 - r]);
+                        let alpha = if hi > lo { (t - lo) / (hi - lo) } else { 0.0 };
+                        d[j] = d[j - 1] * (1.0 - alpha) + d[j] * alpha;
+                    }
+                }
+                d[p]
+            })
+            .collect()
+    }
+
+    /// The degree.
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// The knot vector (for a periodic curve, over the wrapped control points).
+    #[must_use]
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// The control points (for a periodic curve, with the first `degree` repeated at the end).
+    #[must_use]
+    pub fn points(&self) -> &[P] {
+        &self.points
+    }
+
+    /// The weights, one per control point.
+    #[must_use]
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// Whether the curve was made closed.
+    #[must_use]
+    pub fn is_closed(&self) -> bool {
+        self.closed
+    }
+
+    /// The knot-vector parameter `x` of the curve parameter `u`.
+    #[must_use]
+    pub fn knot_at(&self, u: f64) -> f64 {
+        self.locate(u).2
+    }
+
+    /// For `u`: its segment, that segment's knot span, the knot parameter `x` and `dx/du`.
+    fn locate(&self, u: f64) -> (usize, usize, f64, f64) {
+        let m = self.spans.len();
+        let k = if u > 0.0 { (u.floor() as usize).min(m - 1) } else { 0 };
+        let span = self.spans[k];
+        let (a, b) = (self.knots[span], self.knots[span + 1]);
+        (k, span, a + (u - k as f64) * (b - a), b - a)
+    }
+
+    /// The homogeneous control point `(w·p, w)`.
+    fn homogeneous(&self, i: usize) -> DVec4 {
+        let w = self.weights[i];
+        (self.points[i].to_dvec3() * w).extend(w)
+    }
+
+    /// The derivatives of order 0..=3 of the homogeneous curve `(A(x), w(x))` at `x` in
+    /// `span`, by de Boor's algorithm on the derivative control points.
+    fn homogeneous_derivs(&self, span: usize, x: f64) -> [DVec4; 4] {
+        let p = self.degree;
+        // the p + 1 control points acting on the span, and their derivative differences
+        let mut ctrl: Vec<DVec4> = (span - p..=span).map(|i| self.homogeneous(i)).collect();
+        let mut out = [DVec4::ZERO; 4];
+        for (order, slot) in out.iter_mut().enumerate() {
+            let degree = p - order;
+            // de Boor at x over the current points, which have degree `degree` and knots
+            // knots[span - degree + 1 ..] (the derivative drops the outer knots)
+            let mut d = ctrl.clone();
+            for r in 1..=degree {
+                for j in (r..=degree).rev() {
+                    let i = span - degree + j;
+                    let (lo, hi) = (self.knots[i], self.knots[i + degree + 1 - r]);
+                    let alpha = if hi > lo { (x - lo) / (hi - lo) } else { 0.0 };
+                    d[j] = d[j - 1] * (1.0 - alpha) + d[j] * alpha;
+                }
+            }
+            *slot = d[degree];
+            if degree == 0 {
+                break;
+            }
+            // the derivative's control points: degree·(Qⱼ − Qⱼ₋₁)/(knots[i + degree] − knots[i])
+            ctrl = (1..=degree)
+                .map(|j| {
+                    let i = span - degree + j;
+                    let h = self.knots[i + degree] - self.knots[i];
+                    if h > 0.0 { (ctrl[j] - ctrl[j - 1]) * (degree as f64 / h) } else { DVec4::ZERO }
+                })
+                .collect();
+        }
+        out
+    }
+
+    /// Position and derivatives up to order 3 with respect to the knot parameter `x`.
+    fn derivs_x(&self, span: usize, x: f64) -> [DVec3; 4] {
+        let [a0, a1, a2, a3] = self.homogeneous_derivs(span, x);
+        let (w0, w1, w2, w3) = (a0.w, a1.w, a2.w, a3.w);
+        let c0 = a0.truncate() / w0;
+        let c1 = (a1.truncate() - c0 * w1) / w0;
+        let c2 = (a2.truncate() - c1 * (2.0 * w1) - c0 * w2) / w0;
+        let c3 = (a3.truncate() - c2 * (3.0 * w1) - c1 * (3.0 * w2) - c0 * w3) / w0;
+        [c0, c1, c2, c3]
+    }
+
+    /// The `order`-th derivative (0 to 3) with respect to the curve parameter `u`.
+    fn at(&self, u: f64, order: usize) -> P {
+        let (_, span, x, dxdu) = self.locate(u);
+        P::from_dvec3(self.derivs_x(span, x)[order] * dxdu.powi(order as i32))
+    }
+
+    /// Inserts the knot `x` once (Boehm's algorithm); the curve is unchanged. `x` must lie in
+    /// the domain `[x_p, x_n)`; otherwise, or for a knot already of multiplicity `degree`, the
+    /// curve is returned as it is.
+    #[must_use]
+    pub fn insert_knot(&self, x: f64) -> Self {
+        let p = self.degree;
+        let (first, last) = (self.knots[p], self.knots[self.points.len()]);
+        let multiplicity = self.knots.iter().filter(|&&k| k == x).count();
+        if !(x >= first && x < last) || multiplicity >= p {
+            return self.clone();
+        }
+        // the span k with knots[k] ≤ x < knots[k + 1]
+        let Some(k) = (p..self.points.len()).find(|&k| self.knots[k] <= x && x < self.knots[k + 1]) else {
+            return self.clone();
+        };
+        let mut homogeneous: Vec<DVec4> = (0..self.points.len()).map(|i| self.homogeneous(i)).collect();
+        let mut inserted = Vec::with_capacity(homogeneous.len() + 1);
+        for i in 0..=homogeneous.len() {
+            let q = if i + p <= k {
+                homogeneous[i]
+            } else if i > k {
+                homogeneous[i - 1]
+            } else {
+                let alpha = (x - self.knots[i]) / (self.knots[i + p] - self.knots[i]);
+                homogeneous[i - 1] * (1.0 - alpha) + homogeneous[i] * alpha
+            };
+            inserted.push(q);
+        }
+        homogeneous.clear();
+        let mut knots = self.knots.clone();
+        knots.insert(k + 1, x);
+        let weights: Vec<f64> = inserted.iter().map(|h| h.w).collect();
+        let points: Vec<P> = inserted.iter().map(|h| P::from_dvec3(h.truncate() / h.w)).collect();
+        let mut curve = Self::build(p, knots, points, weights, self.closed).unwrap_or_else(|_| self.clone());
+        curve.closed = self.closed;
+        curve
+    }
+
+    /// The rational Bézier pieces, one per segment: homogeneous control points `(w·p, w)`,
+    /// `degree + 1` per piece, over `t ∈ [0, 1]` for the segment's knot span.
+    #[must_use]
+    pub fn bezier_pieces(&self) -> &[Vec<DVec4>] {
+        &self.pieces
+    }
+}
+
+/// The part of a homogeneous Bézier piece over `[t0, t1] ⊂ [0, 1]`.
+fn sub_piece(points: &[DVec4], t0: f64, t1: f64) -> Vec<DVec4> {
+    let right = split(points, t0).1;
+    let t = if t0 < 1.0 { (t1 - t0) / (1.0 - t0) } else { 0.0 };
+    split(&right, t).0
+}
+
+/// de Casteljau's split of homogeneous control points at `t`.
+fn split(points: &[DVec4], t: f64) -> (Vec<DVec4>, Vec<DVec4>) {
+    let n = points.len();
+    let mut work = points.to_vec();
+    let mut left = vec![work[0]];
+    let mut right = vec![work[n - 1]; n];
+    for level in 1..n {
+        for i in 0..n - level {
+            work[i] = work[i].lerp(work[i + 1], t);
+        }
+        left.push(work[0]);
+        right[n - 1 - level] = work[n - 1 - level];
+    }
+    (left, right)
+}
+
+/// Checks the degree, the point and weight counts and values.
+fn check_definition<P: Vector>(degree: usize, points: &[P], weights: &[f64]) -> Result<(), SplineError> {
+    if degree == 0 || degree > MAX_NURBS_DEGREE {
+        return Err(SplineError::BadDegree { degree, max: MAX_NURBS_DEGREE });
+    }
+    if points.len() < degree + 1 {
+        return Err(SplineError::InsufficientPoints { kind: "NURBS", needed: degree + 1, given: points.len() });
+    }
+    if points.len() > MAX_NURBS_POINTS {
+        return Err(SplineError::BadPointCount { kind: "NURBS", rule: "at most 1048576", given: points.len() });
+    }
+    if weights.len() != points.len() {
+        return Err(SplineError::WeightCount { points: points.len(), weights: weights.len() });
+    }
+    if let Some(index) = points.iter().position(|p| !p.is_finite_vector()) {
+        return Err(SplineError::NonFinite { index });
+    }
+    if let Some(index) = weights.iter().position(|w| !(w.is_finite() && *w > 0.0)) {
+        return Err(SplineError::BadWeight { index, weight: weights[index] });
+    }
+    Ok(())
+}
+
+/// The clamped uniform knot vector of `n` points and `degree`: `degree + 1` zeros, the
+/// interior knots `1 … n − degree − 1`, `degree + 1` times `n − degree`.
+fn clamped_uniform(n: usize, degree: usize) -> Vec<f64> {
+    let last = (n - degree) as f64;
+    (0..n + degree + 1).map(|i| (i as f64 - degree as f64).clamp(0.0, last)).collect()
+}
+
+impl<P: Vector> ParamCurve<P> for Nurbs<P> {
+    fn num_segments(&self) -> usize {
+        self.spans.len()
+    }
+    fn eval(&self, u: f64) -> P {
+        self.at(u, 0)
+    }
+    fn deriv(&self, u: f64) -> P {
+        self.at(u, 1)
+    }
+    fn deriv2(&self, u: f64) -> P {
+        self.at(u, 2)
+    }
+    fn deriv3(&self, u: f64) -> P {
+        self.at(u, 3)
+    }
+    /// The last point of the segment's rational Bézier piece.
+    fn segment_end(&self, k: usize) -> P {
+        let piece = &self.pieces[k.min(self.pieces.len() - 1)];
+        let last = piece[piece.len() - 1];
+        P::from_dvec3(last.truncate() / last.w)
+    }
+    /// Adaptive Gauss–Kronrod quadrature of the speed, span by span (the speed of a rational
+    /// curve is no polynomial's square root, so the error is an estimate; tested against
+    /// high-precision quadrature and the circle's exact length).
+    fn arclen_range(&self, u0: f64, u1: f64, accuracy: f64) -> ArclenEstimate {
+        arclen_by_segment(self.spans.len(), u0, u1, accuracy, |_, a, b, share| {
+            arclen::integrate_speed(|u| ParamCurve::<P>::deriv(self, u).length(), a, b, share)
+        })
+    }
+    /// The box of the rational Bézier pieces' extremes, to the rounding of the coordinates
+    /// (branch and bound on the pieces' projected control points, which hold the curve).
+    fn bounding_box(&self) -> Aabb<P> {
+        let pieces = &self.pieces;
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for piece in pieces {
+            for axis in 0..P::DIM {
+                lo[axis] = lo[axis].min(-extreme(piece, axis, -1.0));
+                hi[axis] = hi[axis].max(extreme(piece, axis, 1.0));
+            }
+        }
+        Aabb { min: P::from_dvec3(lo), max: P::from_dvec3(hi) }
+    }
+    /// From the rational Bézier piece over the interval (translated to start at the origin):
+    /// with `w ≥ w_min`, `|C| ≤ R`, and the homogeneous hodographs' hull bounds,
+    /// `|C′| ≤ (|A′| + |w′|·R)/w_min` and `|C″| ≤ (|A″| + 2|w′|·|C′| + |w″|·R)/w_min`, times
+    /// `(dx/du)²`.
+    fn deriv2_bound(&self, u0: f64, u1: f64) -> f64 {
+        if !(u1 > u0) {
+            return ParamCurve::<P>::deriv2(self, u0).length();
+        }
+        let (k0, k1) = (self.locate(u0).0, self.locate(u1).0);
+        let mut bound: f64 = 0.0;
+        for k in k0..=k1 {
+            let t0 = if k == k0 { u0 - k as f64 } else { 0.0 };
+            let t1 = if k == k1 { u1 - k as f64 } else { 1.0 };
+            let piece = sub_piece(&self.pieces[k], t0.clamp(0.0, 1.0), t1.clamp(t0.clamp(0.0, 1.0), 1.0));
+            let origin = piece[0].truncate() / piece[0].w;
+            let h: Vec<DVec4> = piece.iter().map(|q| (q.truncate() - origin * q.w).extend(q.w)).collect();
+            let n = (h.len() - 1) as f64;
+            let w_min = h.iter().map(|q| q.w).fold(f64::INFINITY, f64::min);
+            let reach = h.iter().map(|q| q.truncate().length() / q.w).fold(0.0, f64::max);
+            let d1: Vec<DVec4> = h.windows(2).map(|w| (w[1] - w[0]) * n).collect();
+            let d2: Vec<DVec4> = d1.windows(2).map(|w| (w[1] - w[0]) * (n - 1.0)).collect();
+            let norm = |v: &[DVec4]| v.iter().map(|q| q.truncate().length()).fold(0.0, f64::max);
+            let wnorm = |v: &[DVec4]| v.iter().map(|q| q.w.abs()).fold(0.0, f64::max);
+            let (a1, w1) = (norm(&d1), wnorm(&d1));
+            let (a2, w2) = (norm(&d2), wnorm(&d2));
+            let c1 = (a1 + w1 * reach) / w_min;
+            let c2 = (a2 + 2.0 * w1 * c1 + w2 * reach) / w_min;
+            // the piece runs over t ∈ [0, 1] for u ∈ [k + t0, k + t1]: d/du = d/dt / (t1 − t0)
+            let width = t1 - t0;
+            let scale = if width > 0.0 { 1.0 / width } else { 0.0 };
+            bound = bound.max(c2 * scale * scale);
+        }
+        bound
+    }
+}
+
+/// The largest (`sign = 1`) or, negated, smallest (`sign = −1`) value of coordinate `axis`
+/// of a rational Bézier piece, by branch and bound on its projected control points.
+fn extreme(piece: &[DVec4], axis: usize, sign: f64) -> f64 {
+    let value = |q: &DVec4| sign * q[axis] / q.w;
+    let ends = |p: &[DVec4]| value(&p[0]).max(value(&p[p.len() - 1]));
+    let top = |p: &[DVec4]| p.iter().map(value).fold(f64::NEG_INFINITY, f64::max);
+    let scale = piece.iter().map(|q| (q[axis] / q.w).abs()).fold(0.0, f64::max);
+    let slack = 8.0 * f64::EPSILON * scale;
+    let mut best = ends(piece);
+    let mut pending = vec![piece.to_vec()];
+    let mut budget = 4096;
+    while let Some(p) = pending.pop() {
+        if top(&p) <= best + slack || budget == 0 {
+            continue;
+        }
+        budget -= 1;
+        let (a, b) = split(&p, 0.5);
+        best = best.max(value(&a[a.len() - 1]));
+        pending.push(a);
+        pending.push(b);
+    }
+    best
+}
