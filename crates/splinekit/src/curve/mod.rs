@@ -38,7 +38,6 @@ mod circle;
 mod helix;
 mod hermite;
 mod piecewise;
-mod planar;
 mod tcb;
 mod trefoil;
 
