@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::Path;
 
 use splinekit::PolyMesh;
-use splinekit::mesh::{DEFAULT_DEGENERATE_TOLERANCE, DEFAULT_LISTED, Degeneracy, TopologyReport};
+use splinekit::mesh::{DEFAULT_DEGENERATE_TOLERANCE, DEFAULT_LISTED, Degeneracy, NonManifold, TopologyReport};
 use splinekit_io::mesh::{LoadedMesh, MeshFormat};
 
 use crate::output::{json_array, json_str};
@@ -125,6 +125,17 @@ fn ints<T: std::fmt::Display>(values: impl IntoIterator<Item = T>) -> String {
     format!("[{}]", items.join(", "))
 }
 
+/// One `--json` entry of a non-manifold edge or vertex or an inconsistent edge.
+fn write_nonmanifold(o: &mut impl Write, p: &NonManifold) -> std::io::Result<()> {
+    match p {
+        NonManifold::Edge { a, b, faces } => write!(o, "{{\"vertices\": [{a}, {b}], \"faces\": {}}}", ints(faces)),
+        NonManifold::Vertex { vertex, fans } => write!(o, "{{\"vertex\": {vertex}, \"fans\": {fans}}}"),
+        NonManifold::Inconsistent { a, b, faces } => {
+            write!(o, "{{\"vertices\": [{a}, {b}], \"faces\": {}}}", ints(faces))
+        }
+    }
+}
+
 fn write_json(
     out: &mut impl Write,
     file: &str,
@@ -159,17 +170,11 @@ fn write_json(
     writeln!(out, "    \"count\": {},", r.num_problems())?;
     let indent = "    ";
     write!(out, "    \"nonmanifold_edges\": ")?;
-    json_array(out, indent, &r.nonmanifold_edges, |o, e| {
-        write!(o, "{{\"vertices\": [{}, {}], \"faces\": {}}}", e.a, e.b, ints(&e.faces))
-    })?;
+    json_array(out, indent, r.nonmanifold.iter().filter(|p| p.is_edge()), write_nonmanifold)?;
     write!(out, ",\n    \"nonmanifold_vertices\": ")?;
-    json_array(out, indent, &r.nonmanifold_vertices, |o, v| {
-        write!(o, "{{\"vertex\": {}, \"fans\": {}}}", v.vertex, v.fans)
-    })?;
+    json_array(out, indent, r.nonmanifold.iter().filter(|p| p.is_vertex()), write_nonmanifold)?;
     write!(out, ",\n    \"inconsistent_edges\": ")?;
-    json_array(out, indent, &r.inconsistent_edges, |o, e| {
-        write!(o, "{{\"vertices\": [{}, {}], \"faces\": {}}}", e.a, e.b, ints(e.faces))
-    })?;
+    json_array(out, indent, r.nonmanifold.iter().filter(|p| p.is_inconsistent()), write_nonmanifold)?;
     write!(out, ",\n    \"misoriented_faces\": {}", ints(&r.misoriented_faces))?;
     write!(out, ",\n    \"degenerate_faces\": ")?;
     json_array(out, indent, &r.degenerate_faces, |o, d| match d.kind {

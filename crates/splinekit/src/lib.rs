@@ -36,7 +36,6 @@ pub mod arclen;
 pub mod curve;
 pub mod flatten;
 pub mod frame;
-mod gauss;
 pub mod mesh;
 pub mod subdiv;
 pub mod sweep;

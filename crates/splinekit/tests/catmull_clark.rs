@@ -181,7 +181,7 @@ fn counts_topology_and_orientation() {
             assert_eq!(fine.num_faces(), corners, "{name}: one quad per corner");
             assert!(fine.faces().all(|q| q.len() == 4), "{name}: all quads");
             assert_eq!(fine_adj.num_edges(), 2 * e + corners, "{name}: 2E + corners");
-            assert!(fine_adj.problems.is_empty(), "{name}: consistently oriented and manifold");
+            assert!(fine_adj.nonmanifold.is_empty(), "{name}: consistently oriented and manifold");
             assert_eq!(fine_adj.num_boundary_edges(), 2 * adj.num_boundary_edges(), "{name}: boundary");
             assert_eq!(euler(&fine), chi, "{name}: Euler characteristic");
             assert_eq!(fine_adj.num_boundary_edges() > 0, boundary);

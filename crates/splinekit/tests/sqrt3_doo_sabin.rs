@@ -63,7 +63,7 @@ fn bump(x: f64, y: f64) -> f64 {
 /// (V, E, F, boundary edges), checking that the mesh is manifold and consistently oriented.
 fn counts(mesh: &PolyMesh) -> (usize, usize, usize, usize) {
     let adj = Adjacency::build(mesh);
-    assert!(adj.problems.is_empty(), "{:?}", adj.problems);
+    assert!(adj.nonmanifold.is_empty(), "{:?}", adj.nonmanifold);
     assert!(adj.nonmanifold_vertices(mesh).is_empty());
     (mesh.num_vertices(), adj.num_edges(), mesh.num_faces(), adj.num_boundary_edges())
 }

@@ -1,7 +1,7 @@
 //! The cubic Bézier segment, the shared currency of every spline kind.
 
+use crate::arclen::planar::PlanarSpeed;
 use crate::arclen::{self, ArclenEstimate};
-use crate::curve::planar::PlanarSpeed;
 use crate::curve::{Aabb, ParamCurve};
 use crate::vector::Vector;
 

@@ -42,7 +42,6 @@ mod hermite;
 mod nearest;
 mod nurbs;
 mod piecewise;
-mod planar;
 mod tcb;
 mod trefoil;
 

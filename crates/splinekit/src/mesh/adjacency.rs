@@ -10,17 +10,20 @@
 //!
 //! Only *manifold, consistently oriented* edges are paired: an edge used by exactly two
 //! faces in opposite directions. Every other edge is left unpaired in [`Adjacency::twin`] and
-//! reported in [`Adjacency::problems`]: an edge used by more than two faces, or by two faces
-//! in the same direction (inconsistent orientation).
+//! reported in [`Adjacency::nonmanifold`]: an edge used by more than two faces
+//! ([`NonManifold::Edge`]), or by two faces in the same direction (inconsistent orientation,
+//! [`NonManifold::Inconsistent`]); [`Adjacency::sides`] gives its half-edges.
 //!
 //! Cost: `O(corners · valence)` time, no hashing; deterministic.
 
-use super::PolyMesh;
+use super::{NonManifold, PolyMesh};
 
 /// "No such corner": a boundary half-edge's twin, an isolated vertex's first corner.
 pub const NONE: u32 = u32::MAX;
 
-/// An edge problem found while pairing half-edges.
+/// [`Adjacency::nonmanifold`] by half-edge instead of by face, kept only for code that has
+/// not moved to [`NonManifold`] yet (it goes once nothing reads [`Adjacency::problems`]).
+#[doc(hidden)]
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum EdgeProblem {
     /// The undirected edge `{a, b}` is used by more than two face sides; `corners` lists the
@@ -63,7 +66,12 @@ pub struct Adjacency {
     pub vertex_offsets: Vec<u32>,
     /// Corners grouped by start vertex, ascending within each vertex.
     pub vertex_corners: Vec<u32>,
-    /// Edges that could not be paired, in corner order.
+    /// Edges that could not be paired, in corner order of their first half-edge:
+    /// [`NonManifold::Edge`] and [`NonManifold::Inconsistent`], their faces numbered as here
+    /// (ascending; [`Self::sides`] gives the half-edges).
+    pub nonmanifold: Vec<NonManifold>,
+    /// [`Self::nonmanifold`] as [`EdgeProblem`]s (see there).
+    #[doc(hidden)]
     pub problems: Vec<EdgeProblem>,
 }
 
@@ -108,6 +116,7 @@ impl Adjacency {
         let mut edge_of = vec![NONE; nc];
         let mut edge_corner = Vec::with_capacity(nc / 2 + 1);
         let mut problems = Vec::new();
+        let mut nonmanifold = Vec::new();
         for c in 0..nc {
             if edge_of[c] != NONE {
                 continue;
@@ -140,9 +149,12 @@ impl Adjacency {
             // A problem edge: every half-edge along it stays unpaired, each its own edge.
             let mut corners: Vec<u32> = same.chain(reverse).copied().collect();
             corners.sort_unstable();
+            let faces: Vec<u32> = corners.iter().map(|&d| face_of[d as usize]).collect();
             if n_same == 2 && n_rev == 0 {
+                nonmanifold.push(NonManifold::Inconsistent { a, b, faces: [faces[0], faces[1]] });
                 problems.push(EdgeProblem::Inconsistent { a, b, corners: [corners[0], corners[1]] });
             } else {
+                nonmanifold.push(NonManifold::Edge { a: a.min(b), b: a.max(b), faces });
                 problems.push(EdgeProblem::NonManifold { a: a.min(b), b: a.max(b), corners: corners.clone() });
             }
             edge_of[c] = e;
@@ -153,7 +165,7 @@ impl Adjacency {
         }
         // Renumber edges in corner order of their first corner (they already are: an edge is
         // created at its smallest corner, except the extra edges of problem edges).
-        Self { face_of, twin, to, edge_of, edge_corner, vertex_offsets, vertex_corners, problems }
+        Self { face_of, twin, to, edge_of, edge_corner, vertex_offsets, vertex_corners, nonmanifold, problems }
     }
 
     /// Number of edges.
@@ -174,6 +186,18 @@ impl Adjacency {
         &self.vertex_corners[self.vertex_offsets[v as usize] as usize..self.vertex_offsets[v as usize + 1] as usize]
     }
 
+    /// The half-edges along the undirected edge `{a, b}` (the corners running `a → b` or
+    /// `b → a`), ascending: the sides of a [`NonManifold::Edge`] or
+    /// [`NonManifold::Inconsistent`] edge of [`Self::nonmanifold`].
+    #[must_use]
+    pub fn sides(&self, a: u32, b: u32) -> Vec<u32> {
+        let along =
+            |from: u32, to: u32| self.corners_of(from).iter().copied().filter(move |&c| self.to[c as usize] == to);
+        let mut sides: Vec<u32> = along(a, b).chain(along(b, a)).collect();
+        sides.sort_unstable();
+        sides
+    }
+
     /// The corner before `c` in its face (its half-edge ends where `c`'s starts).
     #[must_use]
     pub fn prev(&self, mesh: &PolyMesh, c: u32) -> u32 {
@@ -182,11 +206,16 @@ impl Adjacency {
     }
 
     /// The vertices whose corners do not form a single fan (a disc or half-disc) through
-    /// paired edges: non-manifold vertices, ascending. Vertices with no faces are not
-    /// included.
+    /// paired edges, as [`NonManifold::Vertex`] with their number of [`Self::fans`],
+    /// ascending. Vertices with no faces are not included.
     #[must_use]
-    pub fn nonmanifold_vertices(&self, mesh: &PolyMesh) -> Vec<u32> {
-        (0..mesh.num_vertices() as u32).filter(|&v| self.fans(mesh, v).len() > 1).collect()
+    pub fn nonmanifold_vertices(&self, mesh: &PolyMesh) -> Vec<NonManifold> {
+        (0..mesh.num_vertices() as u32)
+            .filter_map(|vertex| {
+                let fans = self.fans(mesh, vertex).len();
+                (fans > 1).then_some(NonManifold::Vertex { vertex, fans: fans as u32 })
+            })
+            .collect()
     }
 
     /// The fans around vertex `v`: maximal runs of its corners joined through paired edges,
@@ -241,7 +270,7 @@ mod tests {
     fn tetrahedron_is_closed() {
         let m = mesh(4, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]);
         let a = Adjacency::build(&m);
-        assert!(a.problems.is_empty());
+        assert!(a.nonmanifold.is_empty());
         assert_eq!(a.num_edges(), 6);
         assert_eq!(a.num_boundary_edges(), 0);
         for c in 0..12u32 {
@@ -258,12 +287,14 @@ mod tests {
         // Three triangles on edge {0,1}: non-manifold.
         let m = mesh(5, &[[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
         let a = Adjacency::build(&m);
-        assert_eq!(a.problems.len(), 1);
-        assert!(matches!(&a.problems[0], EdgeProblem::NonManifold { a: 0, b: 1, corners } if corners == &[0, 3, 6]));
+        assert_eq!(a.nonmanifold, vec![NonManifold::Edge { a: 0, b: 1, faces: vec![0, 1, 2] }]);
+        assert_eq!(a.sides(0, 1), vec![0, 3, 6]);
+        assert_eq!(a.sides(1, 0), vec![0, 3, 6]);
         // Two triangles using 0→1 in the same direction.
         let m = mesh(4, &[[0, 1, 2], [0, 1, 3]]);
         let a = Adjacency::build(&m);
-        assert_eq!(a.problems, vec![EdgeProblem::Inconsistent { a: 0, b: 1, corners: [0, 3] }]);
+        assert_eq!(a.nonmanifold, vec![NonManifold::Inconsistent { a: 0, b: 1, faces: [0, 1] }]);
+        assert_eq!(a.sides(0, 1), vec![0, 3]);
         assert_eq!(a.num_boundary_edges(), 6);
     }
 
@@ -271,7 +302,7 @@ mod tests {
     fn bowtie_vertex_has_two_fans() {
         let m = mesh(5, &[[0, 1, 2], [0, 3, 4]]);
         let a = Adjacency::build(&m);
-        assert_eq!(a.nonmanifold_vertices(&m), vec![0]);
+        assert_eq!(a.nonmanifold_vertices(&m), vec![NonManifold::Vertex { vertex: 0, fans: 2 }]);
         assert_eq!(a.fans(&m, 0).len(), 2);
         // A quad and a triangle sharing an edge.
         let mut q = PolyMesh::from_triangles(vec![DVec3::ZERO; 5], &[[1, 4, 2]]);

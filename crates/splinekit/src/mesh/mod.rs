@@ -7,16 +7,19 @@ use std::collections::HashMap;
 
 mod adjacency;
 pub mod curvature;
+mod nonmanifold;
 mod poly;
 mod validate;
 
-pub use adjacency::{Adjacency, EdgeProblem, NONE};
+#[doc(hidden)]
+pub use adjacency::EdgeProblem;
+pub use adjacency::{Adjacency, NONE};
 pub use curvature::{VertexCurvature, WELD_TOLERANCE, vertex_curvature};
+pub use nonmanifold::NonManifold;
 pub use poly::{FaceVarying, PolyMesh};
 pub use validate::{
     BoundaryLoop, Component, DEFAULT_DEGENERATE_TOLERANCE, DEFAULT_LISTED, Degeneracy, DegenerateFace, DuplicateFace,
-    InconsistentEdge, InvalidIndex, NonManifoldEdge, NonManifoldVertex, ShortFace, SplitReport, TopologyReport,
-    split_nonmanifold,
+    InvalidIndex, ShortFace, SplitReport, TopologyReport, split_nonmanifold,
 };
 
 use glam::{DVec2, DVec3};

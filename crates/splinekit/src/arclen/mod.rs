@@ -11,7 +11,7 @@
 //! Planar cubic segments (every 2D curve, and 3D segments whose velocity lies in a plane)
 //! choose their Gauss–Legendre rule from a rigorous error bound: the speed is analytic up
 //! to the complex roots of the velocity, and the Bernstein ellipse through the nearest one
-//! bounds the quadrature error before any node is evaluated (`curve/planar.rs`). Other
+//! bounds the quadrature error before any node is evaluated (`arclen/planar.rs`). Other
 //! segments use the adaptive integrator below.
 //!
 //! [`integrate_speed`] integrates the speed `|P′(t)|` with the 15-point Gauss–Kronrod
@@ -21,6 +21,10 @@
 //! estimate; it is conservative (the Kronrod value returned is far more accurate than the
 //! Gauss value the difference measures). Cost grows with `log(1/accuracy)` per
 //! non-smooth point (cusps, where the speed has a kink) and very slowly elsewhere.
+
+mod gauss;
+mod gauss_tables;
+pub(crate) mod planar;
 
 use crate::curve::ParamCurve;
 use crate::vector::Vector;

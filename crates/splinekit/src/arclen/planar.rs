@@ -45,8 +45,7 @@
 //! bound is rigorous for them. A 3D cubic is handled here when its velocity coefficients
 //! lie in a plane; the distance of the coefficients from that plane, if any, is charged too.
 
-use crate::arclen::ArclenEstimate;
-use crate::gauss;
+use super::{ArclenEstimate, gauss};
 use crate::vector::Vector;
 use glam::DVec2;
 
