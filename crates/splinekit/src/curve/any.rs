@@ -1,11 +1,11 @@
 //! [`AnyCurve`]: one type for every curve a file can hold.
 
 use crate::arclen::ArclenEstimate;
-use crate::curve::{Aabb, Circle, Helix, ParamCurve, PiecewiseCubic, Trefoil};
+use crate::curve::{Aabb, BezierCurve, Circle, Helix, Nurbs, ParamCurve, PiecewiseCubic, Trefoil};
 use crate::vector::Vector;
 
-/// Any curve splinekit can evaluate: a chain of cubics (every spline kind) or an exact
-/// parametric curve (circle, helix, trefoil knot).
+/// Any curve splinekit can evaluate: a chain of cubics (the cubic spline kinds), an exact
+/// parametric curve (circle, helix, trefoil knot), a Bézier curve of any degree or a NURBS.
 #[derive(Clone, Debug, PartialEq)]
 pub enum AnyCurve<P> {
     /// A compiled spline.
@@ -16,6 +16,10 @@ pub enum AnyCurve<P> {
     Helix(Helix),
     /// The exact trefoil knot (closed).
     Trefoil(Trefoil),
+    /// A Bézier curve of any degree (one segment).
+    Bezier(BezierCurve<P>),
+    /// A NURBS curve (one segment per knot span).
+    Nurbs(Nurbs<P>),
 }
 
 impl<P: Vector> AnyCurve<P> {
@@ -26,7 +30,8 @@ impl<P: Vector> AnyCurve<P> {
         match self {
             Self::Piecewise(c) => c.is_closed(),
             Self::Circle(_) | Self::Trefoil(_) => true,
-            Self::Helix(_) => false,
+            Self::Helix(_) | Self::Bezier(_) => false,
+            Self::Nurbs(c) => c.is_closed(),
         }
     }
 }
@@ -38,6 +43,8 @@ macro_rules! dispatch {
             AnyCurve::Circle($c) => $e,
             AnyCurve::Helix($c) => $e,
             AnyCurve::Trefoil($c) => $e,
+            AnyCurve::Bezier($c) => $e,
+            AnyCurve::Nurbs($c) => $e,
         }
     };
 }

@@ -312,6 +312,14 @@ impl<P: Vector> Nurbs<P> {
         curve
     }
 
+    /// The projected control polygon of the part over `u ∈ [u0, u1]` inside one segment (the
+    /// segment of `u0`): its convex hull holds that part, the weights being positive.
+    pub(crate) fn part_polygon(&self, u0: f64, u1: f64) -> Vec<P> {
+        let k = self.locate(u0).0;
+        let (t0, t1) = ((u0 - k as f64).clamp(0.0, 1.0), (u1 - k as f64).clamp(0.0, 1.0));
+        sub_piece(&self.pieces[k], t0, t1.max(t0)).iter().map(|q| P::from_dvec3(q.truncate() / q.w)).collect()
+    }
+
     /// The rational Bézier pieces, one per segment: homogeneous control points `(w·p, w)`,
     /// `degree + 1` per piece, over `t ∈ [0, 1]` for the segment's knot span.
     #[must_use]

@@ -107,13 +107,14 @@
 //! A cubic with a control point that is not finite gives a single chord.
 
 mod cells;
+mod general;
 mod plan;
 #[cfg(test)]
 mod tests;
 
 use core::f64::consts::PI;
 
-use crate::curve::{AnyCurve, Circle, CubicBezier, PiecewiseCubic};
+use crate::curve::{AnyCurve, Circle, CubicBezier, ParamCurve, PiecewiseCubic};
 use crate::vector::Vector;
 use plan::ChordPlan;
 
@@ -158,7 +159,7 @@ pub enum Tessellation {
 
 /// `tolerance` if it is finite and positive, else `default`.
 #[inline]
-fn valid_or(tolerance: f64, default: f64) -> f64 {
+pub(super) fn valid_or(tolerance: f64, default: f64) -> f64 {
     if tolerance > 0.0 && tolerance.is_finite() { tolerance } else { default }
 }
 
@@ -285,6 +286,8 @@ pub fn flatten_any<P: Vector>(curve: &AnyCurve<P>, mode: Tessellation) -> Vec<f6
         }
         AnyCurve::Helix(h) => h.flatten_params::<P>(mode),
         AnyCurve::Trefoil(k) => k.flatten_params::<P>(mode),
+        AnyCurve::Bezier(c) => general::flatten_general(c, mode),
+        AnyCurve::Nurbs(c) => general::flatten_general(c, mode),
     }
 }
 
@@ -314,6 +317,8 @@ pub fn flatten_count<P: Vector>(curve: &AnyCurve<P>, mode: Tessellation) -> u64 
         AnyCurve::Circle(c) => plus_one(circle_chords(c, mode) as u64),
         AnyCurve::Helix(h) => plus_one(h.chord_count::<P>(mode)),
         AnyCurve::Trefoil(k) => k.point_bound::<P>(mode),
+        AnyCurve::Bezier(c) => general::general_count(c, mode),
+        AnyCurve::Nurbs(c) => general::general_count(c, mode),
     }
 }
 
@@ -330,8 +335,8 @@ pub fn flatten_at_most<P: Vector>(curve: &AnyCurve<P>, mode: Tessellation, max_p
     }
     let steps = max_points.saturating_sub(1).max(1);
     match curve {
-        AnyCurve::Piecewise(c) => {
-            let segments = c.segments().len().max(1);
+        AnyCurve::Piecewise(_) | AnyCurve::Nurbs(_) => {
+            let segments = curve.num_segments().max(1);
             flatten_any(curve, Tessellation::Uniform { steps: (steps / segments).clamp(1, MAX_STEPS) })
         }
         // one segment each, and equal steps of u are equal steps of angle (or of t): all of
@@ -421,7 +426,7 @@ pub(crate) fn polygon_turns_more_than<P: Vector>(c: &CubicBezier<P>, limit: f64)
 
 /// Angle between two non-zero vectors in `[0, π]`.
 #[inline]
-fn angle_between<P: Vector>(a: P, b: P) -> f64 {
+pub(super) fn angle_between<P: Vector>(a: P, b: P) -> f64 {
     a.cross3(b).length().atan2(a.dot(b))
 }
 
