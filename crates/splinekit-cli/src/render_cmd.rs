@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::bail;
 use clap::ValueEnum;
+use splinekit::subdiv::Scheme;
 use splinekit_io::mesh::MeshFormat;
 use splinekit_render::colour::{CHECKER_SQUARES, SCALE_PERCENTILE};
 use splinekit_render::legend::format_value;
@@ -13,7 +14,7 @@ use splinekit_render::{
     SurfaceColour, View, render_file, render_tri_mesh,
 };
 
-use crate::subdivide_cmd::{Scheme, subdivide_for_render};
+use crate::subdivide_cmd::{scheme_parser, subdivide_for_render};
 
 /// Draw an SWP file or a mesh into a PNG (or, for curves, SVG) picture, on the CPU: no
 /// display and no GPU are needed, and the same input gives the same bytes on every run.
@@ -114,7 +115,7 @@ pub struct RenderArgs {
     pub levels: Option<u32>,
 
     /// Subdivision scheme of --levels [default: loop]
-    #[arg(long, value_enum, requires = "levels")]
+    #[arg(long, value_parser = scheme_parser(), requires = "levels")]
     pub scheme: Option<Scheme>,
 }
 
@@ -171,7 +172,7 @@ pub fn run(args: &RenderArgs, out: &mut impl Write) -> anyhow::Result<()> {
                 "mesh of {} triangles after {levels} level{} of {} subdivision, {} view",
                 rendered.num_triangles,
                 if levels == 1 { "" } else { "s" },
-                args.scheme.unwrap_or(Scheme::Loop).title(),
+                args.scheme.unwrap_or_default(),
                 rendered.view
             ),
             None => format!("mesh of {} triangles, {} view", rendered.num_triangles, rendered.view),
@@ -227,7 +228,7 @@ fn render_mesh(args: &RenderArgs, format: PictureFormat, options: &FileOptions) 
         let mesh = if checker { loaded.mesh.to_tri_mesh_with_seams() } else { loaded.mesh.to_tri_mesh() };
         return render_tri_mesh(&mesh, &path, options).map_err(explain);
     };
-    let scheme = args.scheme.unwrap_or(Scheme::Loop);
+    let scheme = args.scheme.unwrap_or_default();
     let fine = subdivide_for_render(
         &loaded.mesh,
         (&loaded.creases, &loaded.subdiv_tags),
@@ -238,7 +239,7 @@ fn render_mesh(args: &RenderArgs, format: PictureFormat, options: &FileOptions) 
     )?;
     let mesh = if checker { fine.to_tri_mesh_with_seams() } else { fine.to_tri_mesh() };
     if checker && mesh.uvs.is_empty() {
-        bail!("--color uv-checker: {} subdivision of {path} did not keep its texture coordinates", scheme.title());
+        bail!("--color uv-checker: {scheme} subdivision of {path} did not keep its texture coordinates");
     }
     Ok(render_tri_mesh(&mesh, &path, options)?)
 }

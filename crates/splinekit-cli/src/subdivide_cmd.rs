@@ -7,21 +7,12 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, anyhow, bail};
 use clap::ValueEnum;
-use glam::DVec3;
 use splinekit::PolyMesh;
-use splinekit::mesh::FaceVarying;
 use splinekit::subdiv::{
-    BilinearOptions, BoundaryRule, ButterflyOptions, CatmullClarkOptions, Creases, CreasingMethod, DooSabinOptions,
-    HoleSplit, LimitMesh, LoopLevel, LoopOptions, LoopPyramid, LoopWeights, Sqrt3Options, SubdivError, TopologyError,
-    TriangleSubdivision, bilinear_subdivide, boundary_holes, butterfly_subdivide, catmull_clark_limit_creased,
-    catmull_clark_limit_normals, catmull_clark_limit_positions, catmull_clark_subdivide,
-    catmull_clark_subdivide_creased, catmull_clark_subdivide_limit, doo_sabin_subdivide, is_nonmanifold,
-    loop_limit_creased, loop_limit_normals, loop_limit_positions, loop_subdivide, loop_subdivide_creased,
-    loop_subdivide_limit, remove_holes, sqrt3_subdivide,
+    BoundaryRule, Creases, CreasingMethod, LoopWeights, Scheme, SubdivError, Subdivided, SubdivisionOptions,
+    TopologyError, TriangleSubdivision, subdivide_with_progress,
 };
-use splinekit_io::mesh::{
-    BoundaryInterpolation, MeshFormat, SavedPoly, SubdivTags, read_creases, save_poly, save_poly_creased,
-};
+use splinekit_io::mesh::{BoundaryInterpolation, MeshFormat, SavedPoly, SubdivTags, read_creases, save_poly_creased};
 
 use crate::output::JsonNum;
 
@@ -137,7 +128,7 @@ pub struct SubdivideArgs {
     pub max_memory: Option<f64>,
 
     /// Subdivision scheme
-    #[arg(long, value_enum, default_value_t = Scheme::Loop)]
+    #[arg(long, default_value = "loop", value_parser = scheme_parser())]
     pub scheme: Scheme,
 
     /// Even-vertex weights (Loop only): Loop's β(n) or Warren's 3/(8n) [default: loop]
@@ -204,37 +195,13 @@ pub struct SubdivideArgs {
     pub force: bool,
 }
 
-/// Subdivision schemes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Scheme {
-    /// Loop (triangle meshes)
-    Loop,
-    /// Catmull-Clark (any polygon mesh; the result is all quads)
-    CatmullClark,
-    /// √3 (triangle meshes; CGAL's rules)
-    #[value(name = "sqrt3")]
-    Sqrt3,
-    /// Doo-Sabin (any polygon mesh; CGAL's rules)
-    DooSabin,
-    /// Modified butterfly (triangle meshes; interpolating; OpenMesh's rules)
-    Butterfly,
-    /// Bilinear (any polygon mesh: every n-gon into n quads at its centroid and edge
-    /// midpoints, nothing moved; OpenSubdiv's rules)
-    Bilinear,
-}
-
-impl Scheme {
-    /// The scheme's name in messages.
-    pub fn title(self) -> &'static str {
-        match self {
-            Self::Loop => "Loop",
-            Self::CatmullClark => "Catmull-Clark",
-            Self::Sqrt3 => "√3",
-            Self::DooSabin => "Doo-Sabin",
-            Self::Butterfly => "butterfly",
-            Self::Bilinear => "bilinear",
-        }
-    }
+/// The parser of `--scheme`: the names of [`Scheme::ALL`], each with its description in
+/// `--help`.
+pub fn scheme_parser() -> impl clap::builder::TypedValueParser<Value = Scheme> {
+    use clap::builder::TypedValueParser as _;
+    let values = Scheme::ALL.map(|s| clap::builder::PossibleValue::new(s.name()).help(s.description()));
+    clap::builder::PossibleValuesParser::new(values)
+        .try_map(|name: String| Scheme::from_name(&name).ok_or_else(|| format!("unknown scheme {name}")))
 }
 
 /// Even-vertex weights.
@@ -276,67 +243,62 @@ pub enum CcTriangles {
 
 /// Refuses the options that mean nothing for the chosen scheme.
 fn check_options(args: &SubdivideArgs) -> anyhow::Result<()> {
-    let (scheme, name) = (args.scheme, args.scheme.title());
-    if scheme != Scheme::Loop && args.weights.is_some() {
-        bail!("--weights chooses Loop's even-vertex weights; {name} subdivision has none to choose (drop --weights)");
+    let scheme = args.scheme;
+    if !scheme.has_weights() && args.weights.is_some() {
+        bail!("--weights chooses Loop's even-vertex weights; {scheme} subdivision has none to choose (drop --weights)");
     }
-    if scheme == Scheme::Bilinear && args.boundary.is_some() {
-        bail!("--boundary is for Loop and Catmull-Clark; bilinear subdivision moves no vertex (drop --boundary)");
-    }
-    if matches!(scheme, Scheme::Sqrt3 | Scheme::DooSabin | Scheme::Butterfly) && args.boundary.is_some() {
-        let peer = if scheme == Scheme::Butterfly { "OpenMesh's" } else { "CGAL's" };
+    if !scheme.has_boundary_rule() && args.boundary.is_some() {
+        let with = schemes_with(Scheme::has_boundary_rule);
+        if scheme.is_linear() {
+            bail!("--boundary is for {with}; {scheme} subdivision moves no vertex (drop --boundary)");
+        }
         bail!(
-            "--boundary is for Loop and Catmull-Clark; {name} subdivision has {peer} boundary rule only (drop --boundary)"
+            "--boundary is for {with}; {scheme} subdivision has {}'s boundary rule only (drop --boundary)",
+            scheme.reference()
         );
     }
-    if scheme == Scheme::Bilinear && args.limit {
+    if scheme.is_linear() && args.limit {
         bail!(
-            "--limit: the bilinear surface is its polygons, so its vertices are at their limit already (drop --limit)"
+            "--limit: the {scheme} surface is its polygons, so its vertices are at their limit already (drop --limit)"
         );
     }
-    if matches!(scheme, Scheme::Sqrt3 | Scheme::DooSabin) && args.limit {
-        bail!("--limit: limit positions are computed for Loop and Catmull-Clark only, not {name} subdivision");
+    if !scheme.has_limit_positions() && !scheme.is_interpolating() && args.limit {
+        let with = schemes_with(Scheme::has_limit_positions);
+        bail!("--limit: limit positions are computed for {with} only, not {scheme} subdivision");
     }
-    if scheme != Scheme::CatmullClark && args.cc_triangles.is_some() {
+    if !scheme.has_triangle_rule() && args.cc_triangles.is_some() {
         bail!(
-            "--cc-triangles chooses Catmull-Clark's edge points next to triangles; {name} subdivision has none to choose"
+            "--cc-triangles chooses Catmull-Clark's edge points next to triangles; {scheme} subdivision has none to \
+             choose"
         );
     }
-    if !matches!(scheme, Scheme::Loop | Scheme::CatmullClark) && (args.creases.is_some() || args.creasing.is_some()) {
-        bail!("--creases and --creasing are for Loop and Catmull-Clark; {name} subdivision has no creases");
+    if !scheme.supports_creases() && (args.creases.is_some() || args.creasing.is_some()) {
+        let with = schemes_with(Scheme::supports_creases);
+        bail!("--creases and --creasing are for {with}; {scheme} subdivision has no creases");
     }
-    if scheme == Scheme::DooSabin && args.color_by_level {
-        bail!("--color-by-level: {DOO_SABIN_HAS_NO_LEVELS}");
+    if !scheme.colors_by_level() && args.color_by_level {
+        bail!("--color-by-level: {}", no_levels(scheme));
     }
     Ok(())
 }
 
-/// Why Doo-Sabin subdivision cannot colour by level.
-pub const DOO_SABIN_HAS_NO_LEVELS: &str =
-    "Doo-Sabin subdivision makes every vertex anew at every level, so there are no levels to colour by";
+/// The schemes that have `capability`, in words: `Loop and Catmull-Clark`.
+fn schemes_with(capability: fn(Scheme) -> bool) -> String {
+    let names: Vec<String> = Scheme::ALL.into_iter().filter(|&s| capability(s)).map(|s| s.to_string()).collect();
+    match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+        _ => names.concat(),
+    }
+}
+
+/// Why `scheme` (one without [`Scheme::colors_by_level`]) cannot colour by level.
+pub fn no_levels(scheme: Scheme) -> String {
+    format!("{scheme} subdivision makes every vertex anew at every level, so there are no levels to colour by")
+}
 
 /// The most triangles `splinekit render --levels` makes (the editor's limit too): about
 /// 2 GB of mesh and picture buffers.
 pub const RENDER_MAX_TRIANGLES: u64 = 20_000_000;
-
-/// A bound on the triangles (polygons fanned) of `levels` levels of `scheme` on `mesh`:
-/// `F·4ᴺ` for Loop and butterfly, `F·3ᴺ` for √3, `C·4ᴺ/2` for Catmull-Clark (`C·4ᴺ⁻¹` quads,
-/// `N ≥ 1`) and `C·4ᴺ` for Doo-Sabin (its corners at most quadruple per level, and a mesh of
-/// `C` corners has at most `C` triangles), `F` faces and `C` corners of `mesh`; without
-/// levels, the mesh's own. (`f64`, so that it cannot overflow.)
-fn triangle_bound(mesh: &PolyMesh, scheme: Scheme, levels: u32) -> f64 {
-    let (faces, corners) = (mesh.num_faces() as f64, mesh.face_vertices.len() as f64);
-    let n = i32::try_from(levels).unwrap_or(i32::MAX);
-    if levels == 0 {
-        return corners - 2.0 * faces;
-    }
-    match scheme {
-        Scheme::Loop | Scheme::Butterfly => faces * 4f64.powi(n),
-        Scheme::Sqrt3 => faces * 3f64.powi(n),
-        Scheme::CatmullClark | Scheme::Bilinear => corners * 4f64.powi(n) / 2.0,
-        Scheme::DooSabin => corners * 4f64.powi(n),
-    }
-}
 
 /// `mesh` subdivided `levels` times by `scheme` with the options its tags ask for, else the
 /// defaults (the mesh's `creases` for Loop and Catmull-Clark, `tags` for the boundary rule, the
@@ -352,48 +314,21 @@ pub fn subdivide_for_render(
     color_by_level: bool,
     input: &Path,
 ) -> anyhow::Result<PolyMesh> {
-    let name = scheme.title();
-    if scheme == Scheme::DooSabin && color_by_level {
-        bail!("--color level: {DOO_SABIN_HAS_NO_LEVELS}");
+    if !scheme.colors_by_level() && color_by_level {
+        bail!("--color level: {}", no_levels(scheme));
     }
-    let bound = triangle_bound(mesh, scheme, levels);
+    let bound = scheme.max_triangles(mesh, levels);
     if bound > RENDER_MAX_TRIANGLES as f64 {
         bail!(
-            "{}: {levels} levels of {name} subdivision would make up to {bound:.0} triangles, more than the \
+            "{}: {levels} levels of {scheme} subdivision would make up to {bound:.0} triangles, more than the \
              {RENDER_MAX_TRIANGLES} that render draws; use fewer --levels",
             input.display()
         );
     }
-    let n = levels as usize;
-    let creased = !creases.is_empty() && matches!(scheme, Scheme::Loop | Scheme::CatmullClark);
-    let choices = Choices::new((None, None, None), tags, scheme);
-    let Choices { boundary, creasing, triangles, .. } = choices;
-    let fail = |e: SubdivError| anyhow!("{}: {e}", input.display());
-    let fine = match scheme {
-        Scheme::Loop => {
-            let options = LoopOptions { color_by_level, boundary, ..LoopOptions::default() };
-            if creased {
-                loop_subdivide_creased(mesh, levels, &options, creases, creasing).map(|(m, _)| m)
-            } else {
-                loop_subdivide(mesh, levels, &options)
-            }
-        }
-        Scheme::CatmullClark => {
-            let options = CatmullClarkOptions { color_by_level, boundary, triangles };
-            if creased {
-                catmull_clark_subdivide_creased(mesh, n, &options, creases, creasing).map(|(m, _)| m)
-            } else {
-                catmull_clark_subdivide(mesh, n, &options)
-            }
-        }
-        Scheme::Bilinear => bilinear_subdivide(mesh, n, &BilinearOptions { color_by_level }),
-        Scheme::Sqrt3 => sqrt3_subdivide(mesh, n, &Sqrt3Options { color_by_level }),
-        Scheme::DooSabin => doo_sabin_subdivide(mesh, n, &DooSabinOptions::default()),
-        Scheme::Butterfly => butterfly_subdivide(mesh, n, &ButterflyOptions { color_by_level }),
-    };
-    let mut fine = fine.map_err(fail)?;
-    choices.without_holes(&mut fine, mesh, creases, scheme, n);
-    Ok(fine)
+    let options = Choices::new((None, None, None), tags, scheme).options(None, color_by_level);
+    let fine = splinekit::subdiv::subdivide(mesh, levels as usize, scheme, &options, creases)
+        .map_err(|e| anyhow!("{}: {e}", input.display()))?;
+    Ok(fine.mesh)
 }
 
 /// Parses `--max-memory`: a positive number of gigabytes.
@@ -425,7 +360,7 @@ fn memory_limit(args: &SubdivideArgs) -> Option<f64> {
 /// Refuses, before anything is made, a subdivision whose finest level would need more memory
 /// than [`memory_limit`] (an estimate from [`triangle_bound`] and [`BYTES_PER_TRIANGLE`]).
 fn check_memory(args: &SubdivideArgs, mesh: &PolyMesh) -> anyhow::Result<()> {
-    let faces = triangle_bound(mesh, args.scheme, args.levels);
+    let faces = args.scheme.max_triangles(mesh, args.levels);
     if faces > f64::from(u32::MAX) {
         // the library refuses these at once, with the exact count that does not fit u32
         return Ok(());
@@ -437,7 +372,7 @@ fn check_memory(args: &SubdivideArgs, mesh: &PolyMesh) -> anyhow::Result<()> {
              {}; ask for fewer levels{}",
             args.input.display(),
             args.levels,
-            args.scheme.title(),
+            args.scheme,
             need / 1e9,
             limit / 1e9,
             if args.max_memory.is_some() { "--max-memory allows" } else { "of memory available" },
@@ -472,11 +407,11 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
     }
     check_memory(args, &mesh)?;
     let creased = !creases.is_empty();
-    if creased && !matches!(args.scheme, Scheme::Loop | Scheme::CatmullClark) {
+    if creased && !args.scheme.supports_creases() {
         eprintln!(
             "warning: {}: its crease tags are ignored: {} subdivision has no creases",
             args.input.display(),
-            args.scheme.title()
+            args.scheme
         );
     }
     if args.split_nonmanifold && creased {
@@ -494,126 +429,47 @@ pub fn run(args: &SubdivideArgs, out: &mut impl Write) -> anyhow::Result<()> {
         }
         mesh = split;
     }
-    // Loop and Catmull-Clark take non-manifold and degenerate meshes with OpenSubdiv's rules,
-    // through their creased path (level by level); the limit is then that of the subdivision's
-    // own vertex rules, made from the input mesh.
-    let general = matches!(args.scheme, Scheme::Loop | Scheme::CatmullClark) && is_nonmanifold(&mesh);
-    match args.scheme {
-        Scheme::Loop => {}
-        Scheme::CatmullClark if creased || general || choices.holes => {
-            let options = CatmullClarkOptions {
-                boundary: choices.boundary,
-                color_by_level: args.color_by_level,
-                triangles: choices.triangles,
-            };
-            let levels = args.levels as usize;
-            let subdivide = |m: &PolyMesh| {
-                let (mut fine, child) =
-                    catmull_clark_subdivide_creased(m, levels, &options, &creases, choices.creasing)?;
-                choices.without_holes(&mut fine, m, &creases, args.scheme, levels);
-                Ok((fine, child))
-            };
-            let limit = |m: &PolyMesh, c: &Creases| {
-                if general || is_nonmanifold(m) {
-                    catmull_clark_subdivide_limit(&mesh, levels, &options, &creases, choices.creasing)
-                } else {
-                    catmull_clark_limit_creased(m, &options, c).map(|(p, n)| (m.clone(), p, n))
-                }
-            };
-            return run_creased(args, &mesh, format, out, subdivide, Some(&limit), "quads");
-        }
-        Scheme::CatmullClark => return run_catmull_clark(args, &choices, &mesh, format, out),
-        Scheme::Sqrt3 => {
-            let options = Sqrt3Options { color_by_level: args.color_by_level };
-            let subdivide = |m: &PolyMesh| sqrt3_subdivide(m, args.levels as usize, &options);
-            return run_polygons(args, &mesh, format, out, subdivide, "triangles");
-        }
-        Scheme::DooSabin => {
-            let subdivide = |m: &PolyMesh| doo_sabin_subdivide(m, args.levels as usize, &DooSabinOptions::default());
-            return run_polygons(args, &mesh, format, out, subdivide, "faces");
-        }
-        Scheme::Butterfly => {
-            let options = ButterflyOptions { color_by_level: args.color_by_level };
-            let subdivide = |m: &PolyMesh| butterfly_subdivide(m, args.levels as usize, &options);
-            return run_polygons(args, &mesh, format, out, subdivide, "triangles");
-        }
-        Scheme::Bilinear => {
-            let options = BilinearOptions { color_by_level: args.color_by_level };
-            let subdivide = |m: &PolyMesh| bilinear_subdivide(m, args.levels as usize, &options);
-            return run_polygons(args, &mesh, format, out, subdivide, "quads");
-        }
-    }
-    let options = LoopOptions {
-        weights: match args.weights.unwrap_or(Weights::Loop) {
-            Weights::Loop => LoopWeights::Loop,
-            Weights::Warren => LoopWeights::Warren,
-        },
-        boundary: choices.boundary,
-        color_by_level: args.color_by_level,
-    };
-    if creased || general || choices.holes {
-        let subdivide = |m: &PolyMesh| {
-            let (mut fine, child) = loop_subdivide_creased(m, args.levels, &options, &creases, choices.creasing)?;
-            choices.without_holes(&mut fine, m, &creases, args.scheme, args.levels as usize);
-            Ok((fine, child))
-        };
-        let limit = |m: &PolyMesh, c: &Creases| {
-            if general || is_nonmanifold(m) {
-                loop_subdivide_limit(&mesh, args.levels, &options, &creases, choices.creasing)
-            } else {
-                loop_limit_creased(m, &options, c).map(|(p, n)| (m.clone(), p, n))
-            }
-        };
-        return run_creased(args, &mesh, format, out, subdivide, Some(&limit), "triangles");
-    }
+    let options = choices.options(args.weights, args.color_by_level);
     let pool = thread_pool(args)?;
-    let threads = pool.current_num_threads();
-
     let show_progress = !args.json && std::io::stderr().is_terminal();
-    let mut times = Vec::with_capacity(args.repeat);
-    let mut result = None;
-    for run in 0..args.repeat {
-        drop(result.take()); // the previous run's output is not kept alive during this one
+    let levels = args.levels as usize;
+    let (fine, seconds) = timed(args, &pool, &mesh, |m, run| {
         let progress = show_progress.then(|| progress_bar(args.levels, run, args.repeat));
-        let (finest, elapsed) =
-            pool.install(|| subdivide(&mesh, args.levels, options, progress.as_ref())).map_err(|e| explain(args, e))?;
+        let fine = subdivide_with_progress(m, levels, args.scheme, &options, &creases, |_| {
+            if let Some(p) = &progress {
+                p.inc(1);
+            }
+        });
         if let Some(p) = progress {
             p.finish_and_clear();
         }
-        times.push(elapsed);
-        result = Some(finest);
-    }
-    let finest = result.expect("at least one run");
-    times.sort_unstable();
-    let seconds = times[times.len() / 2].as_secs_f64();
-    let (vertices, faces) = (finest.num_vertices(), finest.num_triangles());
-
+        fine
+    })?;
+    let (vertices, faces) = (fine.mesh.num_vertices(), fine.mesh.num_faces());
     let mut written = None;
     if let (Some(path), Some(format)) = (&args.output, format) {
-        // face-varying normals and UVs kept: OBJ keeps the topology, glb and PLY split seams
-        let mut fine = finest.to_mesh();
-        drop(finest);
-        if args.limit {
-            // limit positions and normals of the subdivided surface's vertices (one normal per
-            // vertex: the limit surface is smooth there); UVs stay as they are
-            let limit = |e: SubdivError| anyhow!("{}: {e}", args.input.display());
-            let bare = PolyMesh { normals: None, uvs: None, colors: Vec::new(), ..fine.clone() };
-            if is_nonmanifold(&bare) {
-                // two edges of a level between the same two vertices (back-to-back triangles):
-                // the limit needs the subdivision's own edges, which its triangles alone join
-                let no = Creases::default();
-                let (limit_mesh, positions, normals) =
-                    loop_subdivide_limit(&mesh, args.levels, &options, &no, CreasingMethod::Chaikin).map_err(limit)?;
-                fine = with_limit(limit_mesh, positions, normals);
-            } else {
-                let normals = loop_limit_normals(&bare, &options).map_err(limit)?;
-                fine.positions = loop_limit_positions(&bare, &options).map_err(limit)?;
-                fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
-            }
+        let child = fine.creases.clone();
+        let fine = if args.limit { limit(args, &pool, &mesh, &creases, fine)? } else { fine.mesh };
+        if format != MeshFormat::Obj && !child.is_empty() {
+            eprintln!("note: {} cannot hold crease tags; write .obj to keep the child creases", path.display());
         }
-        written = Some(saved(args, &mesh, &fine, path, save_poly(&fine, path, format, args.split_seams)?));
+        let file = save_poly_creased(&fine, &child, path, format, args.split_seams)?;
+        written = Some(saved(args, &mesh, &fine, path, file));
     }
-    report(args, out, (vertices, faces, "triangles"), seconds, threads, written)
+    let noun = args.scheme.faces_made();
+    report(args, out, (vertices, faces, noun), seconds, pool.current_num_threads(), written)
+}
+
+/// `fine`, subdivided from `mesh` with `creases`, at its limit positions with its limit normals
+/// (`--limit`; not timed).
+fn limit(
+    args: &SubdivideArgs,
+    pool: &rayon::ThreadPool,
+    mesh: &PolyMesh,
+    creases: &Creases,
+    fine: Subdivided,
+) -> anyhow::Result<PolyMesh> {
+    pool.install(|| fine.into_limit(mesh, creases)).map_err(|e| anyhow!("{}: {e}", args.input.display()))
 }
 
 /// The options of Loop and Catmull-Clark subdivision that a flag or the input's tags set: the
@@ -647,9 +503,7 @@ impl Choices {
             (Some(Boundary::Corners), _) | (None, Some(BoundaryInterpolation::EdgeAndCorner)) => {
                 (BoundaryRule::Corners, false)
             }
-            (None, Some(BoundaryInterpolation::None)) => {
-                (BoundaryRule::Smooth, matches!(scheme, Scheme::Loop | Scheme::CatmullClark))
-            }
+            (None, Some(BoundaryInterpolation::None)) => (BoundaryRule::Smooth, scheme.has_boundary_rule()),
         };
         let creasing = match creasing {
             Some(Creasing::Chaikin) => CreasingMethod::Chaikin,
@@ -664,13 +518,21 @@ impl Choices {
         Self { boundary, holes, creasing, triangles }
     }
 
-    /// `fine`, `levels` levels of `scheme` below `base` (with `creases`), without the faces
-    /// that descend from holes of `base` when [`Self::holes`].
-    fn without_holes(&self, fine: &mut PolyMesh, base: &PolyMesh, creases: &Creases, scheme: Scheme, levels: usize) {
-        if self.holes {
-            let split = if scheme == Scheme::Loop { HoleSplit::Triangles } else { HoleSplit::Quads };
-            remove_holes(fine, base, levels, split, &boundary_holes(base, creases));
-        }
+    /// The options of the subdivision: these choices, Loop's `weights` (the default without)
+    /// and `color_by_level`.
+    #[must_use]
+    pub fn options(&self, weights: Option<Weights>, color_by_level: bool) -> SubdivisionOptions {
+        let weights = match weights.unwrap_or(Weights::Loop) {
+            Weights::Loop => LoopWeights::Loop,
+            Weights::Warren => LoopWeights::Warren,
+        };
+        SubdivisionOptions::DEFAULT
+            .with_weights(weights)
+            .with_boundary(self.boundary)
+            .with_holes(self.holes)
+            .with_creasing(self.creasing)
+            .with_triangles(self.triangles)
+            .with_color_by_level(color_by_level)
     }
 
     /// The choices of `args` over the input's `tags`, with a warning on standard error naming
@@ -683,7 +545,7 @@ impl Choices {
                 args.input.display(),
                 ignored.join(", "),
                 if ignored.len() == 1 { " is" } else { "s are" },
-                args.scheme.title()
+                args.scheme
             );
         }
         let choices = Self::new((args.boundary, args.creasing, args.cc_triangles), tags, args.scheme);
@@ -700,15 +562,14 @@ impl Choices {
 
 /// The option tags among `tags` that mean nothing for `scheme`.
 pub fn ignored_tags(tags: &SubdivTags, scheme: Scheme) -> Vec<&'static str> {
-    let (loop_or_cc, cc) = (matches!(scheme, Scheme::Loop | Scheme::CatmullClark), scheme == Scheme::CatmullClark);
     let mut ignored = Vec::new();
-    if tags.boundary.is_some() && !loop_or_cc {
+    if tags.boundary.is_some() && !scheme.has_boundary_rule() {
         ignored.push("interpolateboundary");
     }
-    if tags.creasing.is_some() && !loop_or_cc {
+    if tags.creasing.is_some() && !scheme.supports_creases() {
         ignored.push("creasemethod");
     }
-    if tags.triangles.is_some() && !cc {
+    if tags.triangles.is_some() && !scheme.has_triangle_rule() {
         ignored.push("smoothtriangles");
     }
     ignored
@@ -720,7 +581,7 @@ pub fn ignored_tags(tags: &SubdivTags, scheme: Scheme) -> Vec<&'static str> {
 /// repeats a vertex.
 fn explain(args: &SubdivideArgs, err: SubdivError) -> anyhow::Error {
     let input = args.input.display();
-    let (scheme, info) = (args.scheme.title(), "`splinekit info` lists every problem");
+    let (scheme, info) = (args.scheme, "`splinekit info` lists every problem");
     match &err {
         SubdivError::Topology(TopologyError::RepeatedVertex { .. }) => anyhow!(
             "{input}: {err}; {scheme} subdivision cannot take such a face (--split-nonmanifold does not mend it): \
@@ -750,7 +611,7 @@ fn thread_pool(args: &SubdivideArgs) -> anyhow::Result<rayon::ThreadPool> {
 /// of `input` that `fine` does not carry (the scheme, or the non-manifold path, drops it) and
 /// if normals had to be left out of a PLY.
 fn saved(args: &SubdivideArgs, input: &PolyMesh, fine: &PolyMesh, path: &Path, saved: SavedPoly) -> usize {
-    let scheme = args.scheme.title();
+    let scheme = args.scheme;
     let mut dropped = Vec::new();
     if input.uvs.is_some() && fine.uvs.is_none() {
         dropped.push("texture coordinates");
@@ -796,7 +657,7 @@ fn report(
         writeln!(out, "{{\"vertices\": {vertices}, \"faces\": {faces}, \"seconds\": {}{file}}}", JsonNum(seconds))?;
     } else {
         let target = args.output.as_ref().map_or_else(|| String::from("(not written)"), |p| p.display().to_string());
-        let scheme = args.scheme.title();
+        let scheme = args.scheme;
         // no level made: the input's faces, whatever they are
         let noun = if args.levels == 0 { "faces" } else { noun };
         let noun = if faces == 1 { noun.strip_suffix('s').unwrap_or(noun) } else { noun };
@@ -819,136 +680,26 @@ fn report(
     Ok(())
 }
 
-/// `--scheme catmull-clark`: time `--repeat` runs, write the last.
-fn run_catmull_clark(
-    args: &SubdivideArgs,
-    choices: &Choices,
-    mesh: &PolyMesh,
-    format: Option<MeshFormat>,
-    out: &mut impl Write,
-) -> anyhow::Result<()> {
-    let options = CatmullClarkOptions {
-        boundary: choices.boundary,
-        color_by_level: args.color_by_level,
-        triangles: choices.triangles,
-    };
-    let pool = thread_pool(args)?;
-    let (mut fine, seconds) = timed(args, &pool, |m| catmull_clark_subdivide(m, args.levels as usize, &options), mesh)?;
-    let mut written = None;
-    if let (Some(path), Some(format)) = (&args.output, format) {
-        if args.limit && is_nonmanifold(&fine) {
-            // a level with two edges between the same two vertices: see `run`
-            let (limit_mesh, positions, normals) = catmull_clark_subdivide_limit(
-                mesh,
-                args.levels as usize,
-                &options,
-                &Creases::default(),
-                choices.creasing,
-            )
-            .map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
-            fine = with_limit(limit_mesh, positions, normals);
-        } else if args.limit {
-            let limit = |e: SubdivError| anyhow!("{}: {e}", args.input.display());
-            let normals = catmull_clark_limit_normals(&fine, &options).map_err(limit)?;
-            fine.positions = catmull_clark_limit_positions(&fine, &options).map_err(limit)?;
-            fine.normals = Some(FaceVarying { values: normals, indices: fine.face_vertices.clone() });
-        }
-        written = Some(saved(args, mesh, &fine, path, save_poly(&fine, path, format, args.split_seams)?));
-    }
-    let threads = pool.current_num_threads();
-    report(args, out, (fine.num_vertices(), fine.num_faces(), "quads"), seconds, threads, written)
-}
-
-/// √3, Doo-Sabin and butterfly: time `--repeat` runs of `subdivide`, write the last.
-fn run_polygons(
-    args: &SubdivideArgs,
-    mesh: &PolyMesh,
-    format: Option<MeshFormat>,
-    out: &mut impl Write,
-    subdivide: impl Fn(&PolyMesh) -> Result<PolyMesh, SubdivError> + Sync,
-    noun: &str,
-) -> anyhow::Result<()> {
-    run_creased(args, mesh, format, out, |m| subdivide(m).map(|fine| (fine, Creases::default())), None, noun)
-}
-
-/// The mesh to write with `--limit`, its limit positions and normals, from a subdivided mesh
-/// with its creases.
-type LimitFn<'a> = dyn Fn(&PolyMesh, &Creases) -> Result<LimitMesh, SubdivError> + Sync + 'a;
-
-/// `mesh` at its limit `positions`, with its limit `normals` (one per vertex).
-fn with_limit(mesh: PolyMesh, positions: Vec<DVec3>, normals: Vec<DVec3>) -> PolyMesh {
-    let indices = mesh.face_vertices.clone();
-    PolyMesh { positions, normals: Some(FaceVarying { values: normals, indices }), ..mesh }
-}
-
-/// Time `--repeat` runs of `subdivide` (a polygon mesh and its creases: Loop or
-/// Catmull-Clark with creases, or none), write the last with its creases; with `--limit`, moved
-/// to the positions `limit` gives, with its normals.
-fn run_creased(
-    args: &SubdivideArgs,
-    mesh: &PolyMesh,
-    format: Option<MeshFormat>,
-    out: &mut impl Write,
-    subdivide: impl Fn(&PolyMesh) -> Result<(PolyMesh, Creases), SubdivError> + Sync,
-    limit: Option<&LimitFn<'_>>,
-    noun: &str,
-) -> anyhow::Result<()> {
-    let pool = thread_pool(args)?;
-    let ((mut fine, creases), seconds) = timed(args, &pool, subdivide, mesh)?;
-    let mut written = None;
-    if let (Some(path), Some(format)) = (&args.output, format) {
-        if let (true, Some(limit)) = (args.limit, limit) {
-            let (limit_mesh, positions, normals) =
-                pool.install(|| limit(&fine, &creases)).map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
-            fine = with_limit(limit_mesh, positions, normals);
-        }
-        if format != MeshFormat::Obj && !creases.is_empty() {
-            eprintln!("note: {} cannot hold crease tags; write .obj to keep the child creases", path.display());
-        }
-        written =
-            Some(saved(args, mesh, &fine, path, save_poly_creased(&fine, &creases, path, format, args.split_seams)?));
-    }
-    report(args, out, (fine.num_vertices(), fine.num_faces(), noun), seconds, pool.current_num_threads(), written)
-}
-
-/// `--repeat` runs of `subdivide` on `mesh` in `pool`: the last result and the median time.
+/// `--repeat` runs of `subdivide` (given `mesh` and the run's number) in `pool`: the last
+/// result and the median time.
 fn timed<T: Send>(
     args: &SubdivideArgs,
     pool: &rayon::ThreadPool,
-    subdivide: impl Fn(&PolyMesh) -> Result<T, SubdivError> + Sync,
     mesh: &PolyMesh,
+    subdivide: impl Fn(&PolyMesh, usize) -> Result<T, SubdivError> + Sync,
 ) -> anyhow::Result<(T, f64)> {
     let mut times = Vec::with_capacity(args.repeat);
     let mut result = None;
-    for _ in 0..args.repeat {
+    for run in 0..args.repeat {
         drop(result.take()); // the previous run's output is not kept alive during this one
         let start = Instant::now();
         // Buffers freed during the run serve its later allocations (see `alloc`).
-        let fine = crate::alloc::recycling(|| pool.install(|| subdivide(mesh))).map_err(|e| explain(args, e))?;
+        let fine = crate::alloc::recycling(|| pool.install(|| subdivide(mesh, run))).map_err(|e| explain(args, e))?;
         times.push(start.elapsed());
         result = Some(fine);
     }
     times.sort_unstable();
     Ok((result.expect("at least one run"), times[times.len() / 2].as_secs_f64()))
-}
-
-/// One timed subdivision: the base level's adjacency and every level, no file I/O.
-fn subdivide(
-    mesh: &PolyMesh,
-    levels: u32,
-    options: LoopOptions,
-    progress: Option<&indicatif::ProgressBar>,
-) -> Result<(LoopLevel, Duration), SubdivError> {
-    let start = Instant::now();
-    // Buffers freed during the run serve its later allocations (see `alloc`).
-    let finest = crate::alloc::recycling(|| {
-        LoopPyramid::new(mesh, options)?.into_refined(levels as usize, |_| {
-            if let Some(p) = progress {
-                p.inc(1);
-            }
-        })
-    })?;
-    Ok((finest, start.elapsed()))
 }
 
 fn progress_bar(levels: u32, run: usize, runs: usize) -> indicatif::ProgressBar {

@@ -13,6 +13,8 @@
 //! many of ours as it has, and our faces, written in classes, must be the reference's faces as
 //! a multiset (orientation kept, corners rotated).
 
+mod common;
+
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
@@ -46,24 +48,7 @@ const CATMARK: [&str; 11] = [
 
 /// The `v` and `f` lines of `tests/data/nonmanifold/<file>`.
 fn read(file: &str) -> PolyMesh {
-    let path = format!("{}/tests/data/nonmanifold/{file}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("reading {path}: {e}"));
-    let mut mesh = PolyMesh::default();
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("v") => {
-                let c: Vec<f64> = words.map(|w| w.parse().unwrap()).collect();
-                mesh.positions.push(DVec3::new(c[0], c[1], c[2]));
-            }
-            Some("f") => {
-                mesh.face_vertices.extend(words.map(|w| w.parse::<u32>().unwrap() - 1));
-                mesh.face_offsets.push(mesh.face_vertices.len() as u32);
-            }
-            _ => {}
-        }
-    }
-    mesh
+    common::read_obj(&format!("nonmanifold/{file}"))
 }
 
 fn levels(name: &str) -> u32 {

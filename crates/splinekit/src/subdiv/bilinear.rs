@@ -20,9 +20,10 @@ use std::collections::HashMap;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
+use super::attribute::Attribute;
 use super::counts::{self, Counts};
-use super::general::{indices_in_range, repeated_vertex};
-use super::loop_scheme::{Attribute, SubdivError, child_colors, parent_colors};
+use super::error::{SubdivError, indices_in_range, polygons_only, repeated_vertex};
+use super::level_colors::{child_colors, parent_colors};
 use super::topology::{MIN_LEN, TopologyError};
 use crate::mesh::{FaceVarying, NONE, PolyMesh};
 
@@ -42,7 +43,7 @@ pub struct BilinearOptions {
 /// [`SubdivError::TooLarge`] if the result would not fit `u32` indices (checked before any
 /// level is made).
 pub fn bilinear_subdivide(mesh: &PolyMesh, levels: usize, options: &BilinearOptions) -> Result<PolyMesh, SubdivError> {
-    super::loop_scheme::polygons_only(mesh)?;
+    polygons_only(mesh)?;
     indices_in_range(mesh)?;
     if let Some((face, vertex)) = repeated_vertex(mesh) {
         return Err(TopologyError::RepeatedVertex { face: face as u32, vertex }.into());

@@ -37,11 +37,12 @@
 
 use rayon::prelude::*;
 
-use super::catmull_clark::Rings;
+use super::attribute::Attribute;
 use super::counts::{self, Counts};
-use super::loop_scheme::{Attribute, SubdivError, triangles_only};
-use super::sqrt3::{TriangleLevel, triangle_level, triangle_levels};
+use super::error::{SubdivError, triangles_only};
+use super::rings::Rings;
 use super::topology::{MIN_LEN, MIN_RINGS};
+use super::triangles::{TriangleLevel, triangle_level, triangle_levels};
 use crate::mesh::{NONE, PolyMesh};
 
 /// Options of modified butterfly subdivision.

@@ -14,10 +14,13 @@
 //! Every count that enters a level is at most `u32::MAX` and every formula is a small sum, so
 //! no `u64` arithmetic here can overflow (it saturates all the same).
 
-use super::catmull_clark::Rings;
-use super::loop_scheme::SubdivError;
+use rayon::prelude::*;
+
+use super::error::SubdivError;
+use super::rings::Rings;
+use super::scheme::Scheme;
 use super::topology::Topology;
-use crate::mesh::NONE;
+use crate::mesh::{NONE, PolyMesh};
 
 /// The largest count `u32` indices can number.
 const MAX: u64 = u32::MAX as u64;
@@ -44,6 +47,28 @@ impl Counts {
         Self {
             vertices: mesh.num_vertices() as u64,
             edges: rings.adj.num_edges() as u64,
+            faces: mesh.num_faces() as u64,
+            corners: mesh.face_vertices.len() as u64,
+        }
+    }
+
+    /// The counts of `mesh`, its edges the distinct pairs of vertices that the sides of its
+    /// faces join.
+    pub(super) fn of_mesh(mesh: &PolyMesh) -> Self {
+        let mut sides: Vec<u64> = mesh
+            .faces()
+            .flat_map(|f| {
+                (0..f.len()).map(move |k| {
+                    let (a, b) = (f[k], f[(k + 1) % f.len()]);
+                    (u64::from(a.min(b)) << 32) | u64::from(a.max(b))
+                })
+            })
+            .collect();
+        sides.par_sort_unstable();
+        sides.dedup();
+        Self {
+            vertices: mesh.num_vertices() as u64,
+            edges: sides.len() as u64,
             faces: mesh.num_faces() as u64,
             corners: mesh.face_vertices.len() as u64,
         }
@@ -133,19 +158,39 @@ pub(super) fn bilinear_levels(base: Counts, from: usize, to: usize) -> Result<Co
 pub(super) fn sqrt3_levels(base: Counts, levels: usize) -> Result<Counts, SubdivError> {
     // a manifold triangle mesh: 2E = 3F + B
     let boundary = sum([(2, base.edges)]).saturating_sub(sum([(3, base.faces)]));
-    let step = |(c, b): (Counts, u64), depth: usize| {
-        let border = depth.is_multiple_of(2);
-        let child_b = if border { sum([(3, b)]) } else { b };
-        let child = Counts {
-            vertices: sum([(1, c.vertices), (1, c.faces), (u64::from(border), b)]),
-            edges: sum([(9, c.faces), (1, child_b)]) / 2,
-            faces: sum([(3, c.faces)]),
-            corners: sum([(9, c.faces)]),
-        };
-        (child, child_b)
-    };
+    let step = |(c, b): (Counts, u64), depth: usize| sqrt3_child(c, b, depth.is_multiple_of(2));
     let fit = |(c, b): (Counts, u64), depth| Ok((c.fit("√3", depth, "vertices")?, b));
     Ok(walk((base, boundary), 0, levels, step, fit)?.0)
+}
+
+/// One level of √3 from `c` with `b` boundary edges, refining the boundary on a `border`
+/// level: the child's counts and boundary edges.
+fn sqrt3_child(c: Counts, b: u64, border: bool) -> (Counts, u64) {
+    let child_b = if border { sum([(3, b)]) } else { b };
+    let child = Counts {
+        vertices: sum([(1, c.vertices), (1, c.faces), (u64::from(border), b)]),
+        edges: sum([(9, c.faces), (1, child_b)]) / 2,
+        faces: sum([(3, c.faces)]),
+        corners: sum([(9, c.faces)]),
+    };
+    (child, child_b)
+}
+
+/// The vertex counts of levels `0 .. levels` of `scheme` (not Doo-Sabin, whose vertices are
+/// all new at every level) from level 0, `base`, given to `visit` in order: where the vertices
+/// of levels `1 ..= levels` start. Saturating and unchecked (the subdivision checks its own).
+pub(super) fn level_vertices(scheme: Scheme, base: Counts, levels: usize, mut visit: impl FnMut(u64)) {
+    // √3's boundary edges (a manifold triangle mesh: 2E = 3F + B)
+    let boundary = sum([(2, base.edges)]).saturating_sub(sum([(3, base.faces)]));
+    let mut level = (base, boundary);
+    for depth in 1..=levels {
+        visit(level.0.vertices);
+        level = match scheme {
+            Scheme::Loop | Scheme::Butterfly => (level.0.loop_child(), level.1),
+            Scheme::Sqrt3 => sqrt3_child(level.0, level.1, depth.is_multiple_of(2)),
+            _ => (level.0.catmull_clark_child(), level.1),
+        };
+    }
 }
 
 /// What the counts of a Doo-Sabin level follow from: its [`Counts`], and

@@ -32,9 +32,10 @@
 
 use rayon::prelude::*;
 
-use super::catmull_clark::Rings;
+use super::attribute::Attribute;
 use super::counts::{self, DooSabin};
-use super::loop_scheme::{Attribute, SubdivError};
+use super::error::{SubdivError, polygons_only};
+use super::rings::Rings;
 use super::topology::{MIN_LEN, MIN_RINGS};
 use crate::mesh::{FaceVarying, NONE, PolyMesh};
 
@@ -54,7 +55,7 @@ pub struct DooSabinOptions {}
 pub fn doo_sabin_subdivide(mesh: &PolyMesh, levels: usize, options: &DooSabinOptions) -> Result<PolyMesh, SubdivError> {
     let _ = options;
     if levels == 0 {
-        super::loop_scheme::polygons_only(mesh)?;
+        polygons_only(mesh)?;
         return Ok(PolyMesh { normals: None, ..mesh.clone() });
     }
     let rings = Rings::new(mesh)?;

@@ -55,10 +55,12 @@ use core::f64::consts::{PI, TAU};
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::catmull_clark::{CatmullClarkOptions, Rings};
-use super::crease::{Creases, CreasingMethod, Sharpness, sharpness};
-use super::general::{General, is_nonmanifold};
-use super::loop_scheme::{BoundaryRule, LoopOptions, Rules, SubdivError, triangles_only};
+use super::crease::{Creases, Sharpness, sharpness};
+use super::creased::{catmull_clark_subdivide_creased, loop_subdivide_creased};
+use super::error::{SubdivError, triangles_only};
+use super::nonmanifold::{General, is_nonmanifold};
+use super::options::{BoundaryRule, CatmullClarkOptions, CreasingMethod, LoopOptions, Rules};
+use super::rings::Rings;
 use super::topology::MIN_LEN;
 use crate::mesh::{NONE, PolyMesh};
 
@@ -172,7 +174,7 @@ pub fn loop_limit_normals(mesh: &PolyMesh, options: &LoopOptions) -> Result<Vec<
 
 /// The Loop limit positions and unit limit normals of the vertices of the triangle mesh
 /// `mesh` with `creases` (on its vertices, as returned by
-/// [`loop_subdivide_creased`](super::loop_subdivide_creased) for its finest level); see the
+/// [`loop_subdivide_creased`] for its finest level); see the
 /// [module docs](self).
 ///
 /// # Errors
@@ -276,7 +278,7 @@ pub fn catmull_clark_limit_normals(mesh: &PolyMesh, options: &CatmullClarkOption
 
 /// The Catmull-Clark limit positions and unit limit normals of the vertices of `mesh` with
 /// `creases` (on its vertices, as returned by
-/// [`catmull_clark_subdivide_creased`](super::catmull_clark_subdivide_creased) for its finest
+/// [`catmull_clark_subdivide_creased`] for its finest
 /// level); see the [module docs](self).
 ///
 /// # Errors
@@ -332,12 +334,12 @@ fn catmark_general(
 pub type LimitMesh = (PolyMesh, Vec<DVec3>, Vec<DVec3>);
 
 /// `levels` levels of Loop subdivision of `mesh` with `creases` carried by `method`, as
-/// [`loop_subdivide_creased`](super::loop_subdivide_creased), and the limit positions and unit
+/// [`loop_subdivide_creased`], and the limit positions and unit
 /// limit normals of the subdivided mesh's vertices, as [`loop_limit_creased`] gives them for
 /// its creases — with the vertex rules and the edges the vertices have at that level of the
 /// subdivision, as OpenSubdiv's limit after refining has them. They differ from the rules of
 /// the subdivided mesh taken alone where a level's faces, written as a list, join what the
-/// subdivision keeps apart: on a non-manifold mesh (see [`is_nonmanifold`](super::is_nonmanifold);
+/// subdivision keeps apart: on a non-manifold mesh (see [`is_nonmanifold`];
 /// a vertex born on a non-manifold edge keeps that edge's crease), and on meshes whose levels
 /// have two edges between the same two vertices (back-to-back triangles: two triangles on the
 /// same three vertices). The subdivided mesh is then made by OpenSubdiv's rules for such meshes
@@ -347,7 +349,7 @@ pub type LimitMesh = (PolyMesh, Vec<DVec3>, Vec<DVec3>);
 ///
 /// # Errors
 ///
-/// As [`loop_subdivide_creased`](super::loop_subdivide_creased).
+/// As [`loop_subdivide_creased`].
 pub fn loop_subdivide_limit(
     mesh: &PolyMesh,
     levels: u32,
@@ -358,7 +360,7 @@ pub fn loop_subdivide_limit(
     triangles_only(mesh, "Loop")?;
     let general = General::loop_scheme(options, creases, method);
     if !is_nonmanifold(mesh) {
-        let (fine, child) = super::loop_subdivide_creased(mesh, levels, options, creases, method)?;
+        let (fine, child) = loop_subdivide_creased(mesh, levels, options, creases, method)?;
         let rules = Rules::new(options);
         let limits = each_vertex(&fine, options.boundary, &child, |rings, v, f| {
             Ok((loop_position(rings, &rules, v, f), loop_normal(rings, v, f)))
@@ -380,7 +382,7 @@ pub fn loop_subdivide_limit(
 ///
 /// # Errors
 ///
-/// As [`catmull_clark_subdivide_creased`](super::catmull_clark_subdivide_creased), and
+/// As [`catmull_clark_subdivide_creased`], and
 /// [`SubdivError::NotQuads`] without levels for a mesh that is not all quads.
 pub fn catmull_clark_subdivide_limit(
     mesh: &PolyMesh,
@@ -391,7 +393,7 @@ pub fn catmull_clark_subdivide_limit(
 ) -> Result<LimitMesh, SubdivError> {
     let general = General::catmark(options, creases, method);
     if !is_nonmanifold(mesh) {
-        let (fine, child) = super::catmull_clark_subdivide_creased(mesh, levels, options, creases, method)?;
+        let (fine, child) = catmull_clark_subdivide_creased(mesh, levels, options, creases, method)?;
         let limits = each_vertex(&fine, options.boundary, &child, |rings, v, f| {
             Ok((catmull_clark_position(rings, v, f)?, catmull_clark_normal(rings, v, f)?))
         });

@@ -33,11 +33,9 @@
 
 use rayon::prelude::*;
 
-use super::catmull_clark::CatmullClarkOptions;
-use super::crease::{Creases, CreasingMethod, catmull_clark_levels, loop_levels};
-use super::loop_scheme::{Attribute, LoopOptions, SubdivError};
+use super::attribute::Attribute;
+use super::error::SubdivError;
 use super::topology::MIN_LEN;
-use crate::mesh::PolyMesh;
 
 /// A sparse matrix in compressed rows: row `i` gives fine vertex `i` as a weighted sum of
 /// base vertices. See the [module docs](self).
@@ -51,66 +49,6 @@ pub struct SubdivisionMatrix {
 }
 
 impl SubdivisionMatrix {
-    /// The weights of `levels` levels of Loop subdivision of the triangle mesh `mesh` with
-    /// `options` (its weights and boundary rule; colour by level does not matter): row `i`
-    /// gives vertex `i` of [`loop_subdivide`](super::loop_subdivide)`(mesh, levels, options)`.
-    ///
-    /// # Errors
-    /// As [`loop_subdivide`](super::loop_subdivide): a face that is not a triangle, or
-    /// non-manifold or inconsistently oriented topology, naming it.
-    pub fn loop_scheme(mesh: &PolyMesh, levels: u32, options: &LoopOptions) -> Result<Self, SubdivError> {
-        Self::loop_creased(mesh, levels, options, &Creases::default(), CreasingMethod::default())
-    }
-
-    /// [`Self::loop_scheme`] with sharp and semi-sharp `creases` carried by `method`: row `i`
-    /// gives vertex `i` of [`loop_subdivide_creased`](super::loop_subdivide_creased).
-    ///
-    /// # Errors
-    /// As [`Self::loop_scheme`], and a crease on an edge or vertex the mesh does not have or
-    /// with a negative sharpness.
-    pub fn loop_creased(
-        mesh: &PolyMesh,
-        levels: u32,
-        options: &LoopOptions,
-        creases: &Creases,
-        method: CreasingMethod,
-    ) -> Result<Self, SubdivError> {
-        let mut matrix = Self::identity(mesh.num_vertices());
-        loop_levels(mesh, levels, options, creases, method, |level| matrix = level.times(&matrix))?;
-        Ok(matrix)
-    }
-
-    /// The weights of `levels` levels of Catmull-Clark subdivision of the polygon mesh
-    /// `mesh` with `options` (the boundary rule; colour by level does not matter): row `i`
-    /// gives vertex `i` of [`catmull_clark_subdivide`](super::catmull_clark_subdivide)`(mesh,
-    /// levels, options)`.
-    ///
-    /// # Errors
-    /// As [`catmull_clark_subdivide`](super::catmull_clark_subdivide): non-manifold or
-    /// inconsistently oriented topology, naming it.
-    pub fn catmull_clark(mesh: &PolyMesh, levels: usize, options: &CatmullClarkOptions) -> Result<Self, SubdivError> {
-        Self::catmull_clark_creased(mesh, levels, options, &Creases::default(), CreasingMethod::default())
-    }
-
-    /// [`Self::catmull_clark`] with sharp and semi-sharp `creases` carried by `method`: row `i`
-    /// gives vertex `i` of
-    /// [`catmull_clark_subdivide_creased`](super::catmull_clark_subdivide_creased).
-    ///
-    /// # Errors
-    /// As [`Self::catmull_clark`], and a crease on an edge or vertex the mesh does not have or
-    /// with a negative sharpness.
-    pub fn catmull_clark_creased(
-        mesh: &PolyMesh,
-        levels: usize,
-        options: &CatmullClarkOptions,
-        creases: &Creases,
-        method: CreasingMethod,
-    ) -> Result<Self, SubdivError> {
-        let mut matrix = Self::identity(mesh.num_vertices());
-        catmull_clark_levels(mesh, levels, options, creases, method, |level| matrix = level.times(&matrix))?;
-        Ok(matrix)
-    }
-
     /// The `n × n` identity (zero levels).
     #[must_use]
     pub fn identity(n: usize) -> Self {

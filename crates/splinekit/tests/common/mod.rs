@@ -178,3 +178,26 @@ pub fn prism() -> PolyMesh {
         ],
     )
 }
+
+/// The positions and faces of `tests/data/{file}` (an OBJ file: `v x y z` and `f a b c …`
+/// lines, 1-based; everything else skipped).
+pub fn read_obj(file: &str) -> PolyMesh {
+    let path = format!("{}/tests/data/{file}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("reading {path}: {e}"));
+    let mut mesh = PolyMesh::default();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let c: Vec<f64> = words.map(|w| w.parse().unwrap()).collect();
+                mesh.positions.push(DVec3::new(c[0], c[1], c[2]));
+            }
+            Some("f") => {
+                mesh.face_vertices.extend(words.map(|w| w.parse::<u32>().unwrap() - 1));
+                mesh.face_offsets.push(mesh.face_vertices.len() as u32);
+            }
+            _ => {}
+        }
+    }
+    mesh
+}

@@ -21,9 +21,10 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::quads::{FACES, QuadLevel, counts_before, next, prev, quad_mesh, quad_twins};
-use super::topology::MIN_RINGS;
+use super::quad_levels::{FACES, QuadLevel, counts_before, next, prev, quad_mesh, quad_twins};
 use crate::mesh::{NONE, PolyMesh};
+use crate::subdiv::level_colors::LEVEL_COLORS;
+use crate::subdiv::topology::MIN_RINGS;
 
 /// Grid points a side of one base face after three levels.
 const SIDE: usize = 9;
@@ -539,7 +540,7 @@ pub(super) fn subdivide3(base: QuadLevel, positions: &[DVec3], colors: &[DVec3],
         let ends = [layout.starts[0], layout.starts[2], layout.starts[4], layout.starts[6]];
         let mut c = Vec::with_capacity(ends[3] as usize);
         for (level, &end) in ends.iter().enumerate() {
-            c.resize(end as usize, super::LEVEL_COLORS[level % super::LEVEL_COLORS.len()]);
+            c.resize(end as usize, LEVEL_COLORS[level % LEVEL_COLORS.len()]);
         }
         c
     } else if colors.is_empty() {
@@ -664,7 +665,7 @@ fn face_block(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::subdiv::quads::Corners;
+    use crate::subdiv::catmull_clark::quad_levels::Corners;
 
     /// A `rows` x `cols` quad torus, bumped so that no two coordinates are alike, each face's
     /// corners rotated by a pseudo-random amount (so that neighbours meet along any pair of
@@ -708,7 +709,7 @@ mod tests {
     /// being a corner before its twin, edges numbered in the order of their owners.
     #[test]
     fn tables_agree_with_the_child_twins_of_whole_levels() {
-        use crate::subdiv::catmull_clark::Rings;
+        use crate::subdiv::rings::Rings;
         for (rows, cols, rotate) in [(3, 3, false), (3, 4, true), (12, 7, false), (12, 7, true), (5, 9, true)] {
             let mesh = torus(rows, cols, rotate);
             let base = QuadLevel::from_quad_rings(Rings::new(&mesh).expect("a closed quad torus"));

@@ -7,7 +7,7 @@
 //!   boundary: `3/4·P + 1/8·(a + b)` with `a`, `b` its neighbours along the boundary (a
 //!   crease), or `P` itself for a corner with [`BoundaryRule::Corners`] (a boundary vertex
 //!   of one face: OpenSubdiv's `VTX_BOUNDARY_EDGE_AND_CORNER`); a vertex without faces stays;
-//! - one **edge point** per parent edge (numbered as [`Adjacency::edge_of`]):
+//! - one **edge point** per parent edge (numbered as [`Adjacency::edge_of`](crate::mesh::Adjacency::edge_of)):
 //!   `(v₀ + v₁ + f₀ + f₁)/4` with the two face points `f`, the midpoint on a boundary;
 //! - one **face point** per parent face: the average of its corners.
 //!
@@ -30,64 +30,28 @@
 //! **Non-manifold and degenerate meshes** (an edge of more than two faces or of two faces
 //! running the same way, a vertex whose faces form several fans, a face that repeats a vertex)
 //! are subdivided with OpenSubdiv's rules: their non-manifold edges are infinitely sharp
-//! creases and their non-manifold vertices corners (see [`general`](super::general)), level by
+//! creases and their non-manifold vertices corners (see [`nonmanifold`](super::nonmanifold)), level by
 //! level through the subdivision matrices, so more slowly; [`crate::mesh::split_nonmanifold`]
 //! splits such a mesh apart instead, which gives another surface. Face-varying normals and UVs
 //! are not carried (a subdivided surface's normals are computed from it).
 
 use rayon::prelude::*;
 
+mod quad_levels;
+mod regular_three_levels;
+
+use quad_levels::QuadLevel;
+
+use super::attribute::Attribute;
 use super::counts::{self, Counts};
-use super::crease::{Creases, CreasingMethod};
-use super::general::{General, repeated_vertex};
-use super::loop_scheme::{Attribute, BoundaryRule, SubdivError, child_colors, parent_colors, polygons_only};
-use super::quads::{self, QuadLevel};
-use super::regular;
-use super::topology::{MIN_LEN, MIN_RINGS, TopologyError};
-use crate::mesh::{Adjacency, EdgeProblem, NONE, PolyMesh};
-
-/// Options of Catmull-Clark subdivision.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct CatmullClarkOptions {
-    /// Boundary vertices: crease rule everywhere, or with one-face corners kept fixed.
-    pub boundary: BoundaryRule,
-    /// Colour the vertices by the level they were born at ([`LEVEL_COLORS`](super::LEVEL_COLORS)).
-    pub color_by_level: bool,
-    /// The edge points next to triangles (OpenSubdiv's `TriangleSubdivision`).
-    pub triangles: TriangleSubdivision,
-}
-
-/// The edge-point rule of Catmull-Clark next to triangles (OpenSubdiv's
-/// `Sdc::Options::TriangleSubdivision`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum TriangleSubdivision {
-    /// Catmull-Clark's edge points everywhere, `(v₀ + v₁ + f₀ + f₁)/4` (`TRI_SUB_CATMARK`, the
-    /// default).
-    #[default]
-    Catmark,
-    /// `TRI_SUB_SMOOTH`: on an interior edge with a triangle on either side, each face point
-    /// weighs `w = (w₀ + w₁)/2`, with `wᵢ = 0.47` for a triangle and `1/4` for another face,
-    /// and each end `(1 − 2w)/2` (`0.47` and `0.03` between two triangles), which makes the
-    /// surface over triangles rounder. Only the first level has triangles, so only its edge
-    /// points change.
-    Smooth,
-}
-
-impl TriangleSubdivision {
-    /// The weights `(end, face point)` of the smooth edge point of an interior edge between
-    /// faces of `n0` and `n1` corners, where they are not Catmull-Clark's `1/4` and `1/4`.
-    #[must_use]
-    pub(super) fn edge_weights(self, n0: usize, n1: usize) -> Option<(f64, f64)> {
-        /// OpenSubdiv's `CATMARK_SMOOTH_TRI_EDGE_WEIGHT`.
-        const TRIANGLE: f64 = 0.470;
-        if self == Self::Catmark || (n0 != 3 && n1 != 3) {
-            return None;
-        }
-        let w = |n: usize| if n == 3 { TRIANGLE } else { 0.25 };
-        let face = 0.5 * (w(n0) + w(n1));
-        Some((0.5 * (1.0 - 2.0 * face), face))
-    }
-}
+use super::crease::Creases;
+use super::error::{SubdivError, polygons_only};
+use super::level_colors::{child_colors, parent_colors};
+use super::nonmanifold::General;
+use super::options::{BoundaryRule, CatmullClarkOptions, CreasingMethod};
+use super::rings::Rings;
+use super::topology::MIN_LEN;
+use crate::mesh::{NONE, PolyMesh};
 
 /// Subdivides `mesh` `levels` times with Catmull-Clark's rules (see the [module
 /// docs](self)). Positions and per-vertex colours are carried; face-varying normals and UVs
@@ -117,13 +81,13 @@ pub fn catmull_clark_subdivide(
     if all_quads && levels > 1 {
         // Quads from the start: the base level's tables are the adjacency's.
         let level = QuadLevel::from_quad_rings(rings);
-        if levels == 3 && regular::is_regular(&level) {
+        if levels == 3 && regular_three_levels::is_regular(&level) {
             // every face a regular quad: three levels a base face at a time
             let carried: &[_] = if mesh.colors.len() == mesh.positions.len() { &mesh.colors } else { &[] };
-            return Ok(regular::subdivide3(level, &mesh.positions, carried, options.color_by_level));
+            return Ok(regular_three_levels::subdivide3(level, &mesh.positions, carried, options.color_by_level));
         }
         let colors = parent_colors(mesh, options.color_by_level, 1).into_owned();
-        return Ok(quads::subdivide(level, mesh.positions.clone(), colors, 0, levels, options));
+        return Ok(quad_levels::subdivide(level, mesh.positions.clone(), colors, 0, levels, options));
     }
     let positions = rings.refine(&mesh.positions, options.boundary);
     let parent = parent_colors(mesh, options.color_by_level, 1);
@@ -135,7 +99,7 @@ pub fn catmull_clark_subdivide(
     }
     // Every level below the first is all quads: closed-form tables from here on.
     let level = QuadLevel::from_rings(&rings);
-    Ok(quads::subdivide(level, positions, colors, 1, levels, options))
+    Ok(quad_levels::subdivide(level, positions, colors, 1, levels, options))
 }
 
 /// One level of [`catmull_clark_subdivide`]: the child of `mesh`, which is level `depth − 1`
@@ -180,74 +144,15 @@ pub fn catmull_clark_step(
 }
 
 /// [`catmull_clark_subdivide`] of a non-manifold or degenerate mesh, with OpenSubdiv's rules
-/// (see [`general`](super::general)).
+/// (see [`nonmanifold`](super::nonmanifold)).
 fn general(mesh: &PolyMesh, levels: usize, options: &CatmullClarkOptions) -> Result<PolyMesh, SubdivError> {
     let no = Creases::default();
     let general = General::catmark(options, &no, CreasingMethod::default());
     general.subdivide(mesh, levels, options.color_by_level).map(|(m, ..)| m)
 }
 
-/// What one level needs: the mesh's faces and their adjacency, checked to be manifold.
-pub(super) struct Rings<'a> {
-    pub(super) mesh: &'a PolyMesh,
-    pub(super) adj: Adjacency,
-    /// The edge points next to triangles ([`TriangleSubdivision::Catmark`] unless set).
-    pub(super) triangles: TriangleSubdivision,
-}
-
-impl<'a> Rings<'a> {
-    /// The adjacency of `mesh`; an error for the first face of fewer than three corners, else
-    /// the first face that repeats a vertex, else the first non-manifold or inconsistently
-    /// oriented edge or vertex.
-    pub(super) fn new(mesh: &'a PolyMesh) -> Result<Self, SubdivError> {
-        polygons_only(mesh)?;
-        if let Some((face, vertex)) = repeated_vertex(mesh) {
-            return Err(TopologyError::RepeatedVertex { face: face as u32, vertex }.into());
-        }
-        let adj = Adjacency::build(mesh);
-        if let Some(p) = adj.problems.first() {
-            let (a, b, corners) = match p {
-                EdgeProblem::NonManifold { a, b, corners } => (*a, *b, corners.clone()),
-                EdgeProblem::Inconsistent { a, b, corners } => (*a, *b, corners.to_vec()),
-            };
-            let faces = corners.iter().map(|&c| adj.face_of[c as usize]).collect();
-            return Err(TopologyError::Edge { a, b, faces }.into());
-        }
-        // a manifold vertex's corners form one fan: rotating from its boundary half-edge (or
-        // any corner) reaches them all
-        let rings = Self { mesh, adj, triangles: TriangleSubdivision::Catmark };
-        let bad = (0..mesh.num_vertices() as u32).into_par_iter().with_min_len(MIN_RINGS).find_first(|&v| {
-            let corners = rings.adj.corners_of(v);
-            let Some(&first) = corners.first() else { return false };
-            let start = corners.iter().copied().find(|&c| rings.adj.twin[c as usize] == NONE).unwrap_or(first);
-            rings.fan(start).take(corners.len() + 1).count() != corners.len()
-        });
-        if let Some(v) = bad {
-            return Err(TopologyError::Vertex { vertex: v, fans: rings.adj.fans(mesh, v).len() }.into());
-        }
-        Ok(rings)
-    }
-
-    /// The corners leaving the vertex of corner `start`, rotating counter-clockwise
-    /// (`c → twin(prev(c))`) until a boundary or back at `start`.
-    pub(super) fn fan(&self, start: u32) -> impl Iterator<Item = u32> + '_ {
-        let mut next = Some(start);
-        core::iter::from_fn(move || {
-            let c = next?;
-            let t = self.adj.twin[self.prev(c) as usize];
-            next = (t != NONE && t != start).then_some(t);
-            Some(c)
-        })
-    }
-
-    /// The corner before `c` in its face.
-    #[inline]
-    pub(super) fn prev(&self, c: u32) -> u32 {
-        let f = self.adj.face_of[c as usize] as usize;
-        let start = self.mesh.face_offsets[f];
-        if c == start { self.mesh.face_offsets[f + 1] - 1 } else { c - 1 }
-    }
-
+/// Catmull-Clark's values and faces of the child level.
+impl Rings<'_> {
     /// The child values: vertex points, edge points, face points.
     fn refine<T: Attribute>(&self, p: &[T], boundary: BoundaryRule) -> Vec<T> {
         let (nv, ne, nf) = (self.mesh.num_vertices(), self.adj.num_edges(), self.mesh.num_faces());
@@ -275,24 +180,6 @@ impl<'a> Rings<'a> {
         });
         vertices.chain(edges).chain(faces.par_iter().copied()).collect_into_vec(&mut out);
         out
-    }
-
-    /// The neighbours of vertex `v` along the boundary (leaving, arriving), if it is on one.
-    pub(super) fn boundary_neighbours(&self, v: u32) -> Option<(u32, u32)> {
-        let mut ends = [None, None];
-        for &c in self.adj.corners_of(v) {
-            if self.adj.twin[c as usize] == NONE {
-                ends[0] = Some(self.adj.to[c as usize]);
-            }
-            let pc = self.prev(c);
-            if self.adj.twin[pc as usize] == NONE {
-                ends[1] = Some(self.mesh.face_vertices[pc as usize]);
-            }
-        }
-        match ends {
-            [Some(a), Some(b)] => Some((a, b)),
-            _ => None,
-        }
     }
 
     /// The vertex point of vertex `v`.

@@ -31,12 +31,12 @@
 
 use glam::DVec3;
 
-use super::catmull_clark::{CatmullClarkOptions, Rings, TriangleSubdivision};
 use super::counts::{self, Counts};
-use super::crease::{CreasedLevel, Creases, CreasingMethod, Level, Rule, creased_level, rule, sharpness};
-use super::loop_scheme::{BoundaryRule, LoopOptions, Rules, SubdivError, triangles_only};
+use super::crease::{CreasedLevel, Creases, INFINITELY_SHARP, Level, Rule, Values, creased_level, rule, sharpness};
+use super::error::{SubdivError, indices_in_range, triangles_only};
 use super::matrix::{Builder, SubdivisionMatrix};
-use super::topology::TopologyError;
+use super::options::{BoundaryRule, CatmullClarkOptions, CreasingMethod, LoopOptions, Rules, TriangleSubdivision};
+use super::rings::Rings;
 use crate::mesh::{NONE, PolyMesh};
 
 /// How faces are split.
@@ -59,24 +59,6 @@ pub fn is_nonmanifold(mesh: &PolyMesh) -> bool {
         return false;
     }
     matches!(Rings::new(mesh), Err(SubdivError::Topology(e)) if e.is_nonmanifold())
-}
-
-/// [`TopologyError::Index`] for the first corner of `mesh` that names no vertex.
-pub(super) fn indices_in_range(mesh: &PolyMesh) -> Result<(), TopologyError> {
-    let count = mesh.num_vertices();
-    for (face, f) in mesh.faces().enumerate() {
-        if let Some(&vertex) = f.iter().find(|&&v| v as usize >= count) {
-            return Err(TopologyError::Index { face: face as u32, vertex, count });
-        }
-    }
-    Ok(())
-}
-
-/// The first face that names a vertex twice, and that vertex.
-pub(super) fn repeated_vertex(mesh: &PolyMesh) -> Option<(usize, u32)> {
-    mesh.faces()
-        .enumerate()
-        .find_map(|(f, face)| face.iter().enumerate().find_map(|(i, &v)| face[i + 1..].contains(&v).then_some((f, v))))
 }
 
 /// One level of a mesh with OpenSubdiv's topology (see the [module docs](self)).
@@ -526,6 +508,28 @@ impl Level for Scheme<'_> {
     }
 }
 
+/// The vertex counts of levels `0 .. levels` of `split` on the non-manifold `mesh`, given to
+/// `visit` in order: where the vertices of levels `1 ..= levels` start (the levels' tables
+/// only, no values).
+///
+/// # Errors
+/// As [`GeneralLevel::base`].
+pub(super) fn level_vertices(
+    mesh: &PolyMesh,
+    split: Split,
+    levels: usize,
+    mut visit: impl FnMut(usize),
+) -> Result<(), SubdivError> {
+    let mut level = GeneralLevel::base(mesh)?;
+    for depth in 1..=levels {
+        visit(level.num_vertices());
+        if depth < levels {
+            level = level.refine(split);
+        }
+    }
+    Ok(())
+}
+
 /// The settings of one subdivision of a non-manifold mesh: the split, the weights (Loop's β,
 /// unused by Catmull-Clark), the boundary rule, the creases of the base mesh and how their
 /// sharpness is carried.
@@ -589,7 +593,7 @@ impl<'a> General<'a> {
         levels: usize,
         color_by_level: bool,
     ) -> Result<(PolyMesh, Creases, GeneralLevel), SubdivError> {
-        let mut values = super::crease::Values::new(mesh, color_by_level);
+        let mut values = Values::new(mesh, color_by_level);
         let (child, level) = self.levels(mesh, levels, |m| values.step(&m))?;
         let (positions, colors) = values.finish();
         Ok((level.to_mesh(positions, colors), child, level))
@@ -631,7 +635,7 @@ impl<'a> General<'a> {
                 continue;
             }
             let corner = scheme.is_corner(v) || (boundary == BoundaryRule::Corners && faces == 1);
-            let vertex = if corner { super::crease::INFINITELY_SHARP } else { sharp.vertex[v as usize] };
+            let vertex = if corner { INFINITELY_SHARP } else { sharp.vertex[v as usize] };
             let ends = around.iter().map(|&(x, far)| (far, sharp.edge[x as usize]));
             limit.push(match rule(vertex, ends) {
                 Rule::Corner => p,

@@ -21,10 +21,12 @@
 use bytemuck::Zeroable;
 use rayon::prelude::*;
 
-use super::grandchild::{in_groups, sixteen};
-use super::loop_scheme::{Attribute, Rules, even_ring};
-use super::topology::{MIN_LEN, MIN_RINGS, Table, next, prev, three};
+use super::stencils::even_ring;
+use super::two_steps::{in_groups, sixteen};
 use crate::mesh::NONE;
+use crate::subdiv::attribute::Attribute;
+use crate::subdiv::options::Rules;
+use crate::subdiv::topology::{MIN_LEN, MIN_RINGS, Table, next, prev, three};
 
 /// Whether half-edge `h`, whose twin is `tw`, owns its edge (0 or 1).
 #[inline]

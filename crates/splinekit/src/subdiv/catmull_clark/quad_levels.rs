@@ -27,10 +27,12 @@ use rayon::prelude::*;
 
 use glam::DVec3;
 
-use super::catmull_clark::{CatmullClarkOptions, Rings};
-use super::loop_scheme::{Attribute, BoundaryRule, child_colors};
-use super::topology::{MIN_LEN, MIN_RINGS};
 use crate::mesh::{NONE, PolyMesh};
+use crate::subdiv::attribute::Attribute;
+use crate::subdiv::level_colors::child_colors;
+use crate::subdiv::options::{BoundaryRule, CatmullClarkOptions};
+use crate::subdiv::rings::Rings;
+use crate::subdiv::topology::{MIN_LEN, MIN_RINGS};
 
 /// Faces per parallel task in the per-face passes.
 pub(super) const FACES: usize = MIN_LEN / 4;

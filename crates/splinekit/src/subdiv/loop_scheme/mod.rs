@@ -6,12 +6,12 @@
 //! - odd, interior edge `(v0, v1)` with opposite vertices `a`, `b`: `3/8·(v0 + v1) + 1/8·(a + b)`;
 //! - odd, boundary edge: the midpoint;
 //! - even, interior, valence `n`, neighbours `qᵢ`: `(1 − nβ)·p + β·Σqᵢ` with β from
-//!   [`LoopWeights`] — Loop's original `β(n) = (1/n)(5/8 − (3/8 + 1/4·cos(2π/n))²)` by default
+//!   [`LoopWeights`](super::LoopWeights) — Loop's original `β(n) = (1/n)(5/8 − (3/8 + 1/4·cos(2π/n))²)` by default
 //!   (what OpenSubdiv, CGAL, PMP and trimesh compute), or Warren's `3/(8n)`, `3/16` for `n = 3`
 //!   (the course's formula; libigl and Open3D);
 //! - even, boundary, boundary neighbours `a`, `b`: `3/4·p + 1/8·(a + b)` (the crease rule: the
-//!   boundary curve is a cubic B-spline of its own); with [`BoundaryRule::Corners`] a vertex
-//!   with a single face stays where it is. [`BoundaryRule::Smooth`] is OpenSubdiv's
+//!   boundary curve is a cubic B-spline of its own); with [`BoundaryRule::Corners`](super::BoundaryRule::Corners) a vertex
+//!   with a single face stays where it is. [`BoundaryRule::Smooth`](super::BoundaryRule::Smooth) is OpenSubdiv's
 //!   `VTX_BOUNDARY_EDGE_ONLY`, `Corners` its `VTX_BOUNDARY_EDGE_AND_CORNER`.
 //!
 //! Triangle `(i0, i1, i2)` with odd vertices `m01, m12, m20` becomes `(i0, m01, m20)`,
@@ -32,7 +32,7 @@
 //! the same way, a vertex whose triangles form several fans, a triangle that repeats a vertex)
 //! are subdivided by [`loop_subdivide`] with OpenSubdiv's rules: their non-manifold edges are
 //! infinitely sharp creases and their non-manifold vertices corners (see
-//! [`general`](super::general)), level by level through the subdivision matrices, so more
+//! [`nonmanifold`](super::nonmanifold)), level by level through the subdivision matrices, so more
 //! slowly, carrying positions and colours (not normals and UVs). [`LoopPyramid`] refuses them.
 //!
 //! **Speed.** The base level's adjacency is built once ([`Topology::build`]); every further
@@ -47,206 +47,28 @@
 //! with the last steps' values (`rayon::join`), so that on several threads neither waits at
 //! the ends of the other's passes.
 
-use core::ops::{Add, Mul};
-use std::borrow::Cow;
+mod stencils;
+mod three_steps;
+mod two_steps;
+
+use std::collections::HashMap;
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
+use stencils::even_ring;
+use three_steps::{great_grandchild_triangles, great_grandchild_values};
+use two_steps::{grandchild_triangles, grandchild_values};
+
+use super::attribute::Attribute;
 use super::counts::{self, Counts};
-use super::crease::{Creases, CreasingMethod};
-use super::general::General;
-use super::grandchild::{grandchild_triangles, grandchild_values};
-use super::great::{great_grandchild_triangles, great_grandchild_values};
-use super::topology::{MIN_LEN, MIN_RINGS, Table, Topology, TopologyError, child_level, next, prev};
-use std::collections::HashMap;
-
+use super::crease::Creases;
+use super::error::SubdivError;
+use super::level_colors::{LEVEL_COLORS, child_colors};
+use super::nonmanifold::General;
+use super::options::{CreasingMethod, LoopOptions, Rules};
+use super::topology::{MIN_LEN, MIN_RINGS, Table, Topology, child_level, next, prev};
 use crate::mesh::{FaceVarying, NONE, PolyMesh, TriMesh};
-
-/// The even-vertex weights β(n).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum LoopWeights {
-    /// Loop's original `β(n) = (1/n)(5/8 − (3/8 + 1/4·cos(2π/n))²)` (OpenSubdiv, CGAL, PMP,
-    /// trimesh). The default.
-    #[default]
-    Loop,
-    /// Warren's `3/(8n)` for `n > 3`, `3/16` for `n = 3` (the course material, libigl, Open3D).
-    Warren,
-}
-
-/// What boundary vertices do.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum BoundaryRule {
-    /// Every boundary vertex follows the crease rule `3/4·p + 1/8·(a + b)` (the default).
-    #[default]
-    Smooth,
-    /// As `Smooth`, but a boundary vertex with a single face (a corner) stays fixed.
-    Corners,
-}
-
-/// Options of Loop subdivision.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct LoopOptions {
-    /// Even-vertex weights.
-    pub weights: LoopWeights,
-    /// Boundary rule.
-    pub boundary: BoundaryRule,
-    /// Colour vertices by the level that created them ([`LEVEL_COLORS`]), replacing any
-    /// input colours.
-    pub color_by_level: bool,
-}
-
-/// The colours of [`LoopOptions::color_by_level`]: level `k` uses entry `k % 8` (base mesh
-/// grey, then blue, green, yellow, magenta, cyan, pink, violet). None is near the renderers'
-/// orange-red of back faces, so a level never reads as a surface seen from behind.
-pub const LEVEL_COLORS: [DVec3; 8] = [
-    DVec3::new(0.6, 0.6, 0.6),
-    DVec3::new(0.25, 0.45, 0.95),
-    DVec3::new(0.25, 0.8, 0.35),
-    DVec3::new(0.95, 0.85, 0.15),
-    DVec3::new(0.85, 0.3, 0.85),
-    DVec3::new(0.15, 0.8, 0.85),
-    DVec3::new(0.95, 0.6, 0.75),
-    DVec3::new(0.6, 0.4, 0.95),
-];
-
-/// Why a mesh cannot be subdivided.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-pub enum SubdivError {
-    /// Loop, √3 and butterfly subdivision need triangles.
-    #[error("face {face} has {corners} corners; {scheme} subdivision needs triangles (triangulate the mesh first)")]
-    NotTriangles {
-        /// The face.
-        face: usize,
-        /// Its number of corners.
-        corners: usize,
-        /// The scheme: `Loop`, `√3` or `butterfly`.
-        scheme: &'static str,
-    },
-    /// A face of fewer than three corners (a PLY face list of length 0, 1 or 2, an OBJ
-    /// `f 1 2`): no scheme takes it.
-    #[error("face {face} has {corners} corner{}; every face needs at least 3 (remove it from the file)", plural(.corners))]
-    TooFewCorners {
-        /// The face.
-        face: usize,
-        /// Its number of corners.
-        corners: usize,
-    },
-    /// Catmull-Clark's limit mask needs quads around an interior vertex.
-    #[error(
-        "vertex {vertex} lies on face {face} with {corners} corners; Catmull-Clark limit positions need quads \
-         around each vertex (subdivide once first)"
-    )]
-    NotQuads {
-        /// The vertex.
-        vertex: usize,
-        /// A face around it that is not a quad.
-        face: usize,
-        /// Its number of corners.
-        corners: usize,
-    },
-    /// The triangles are not a manifold, consistently oriented surface.
-    #[error("{0}")]
-    Topology(#[from] TopologyError),
-    /// A crease names an edge or vertex the mesh does not have, or has a negative sharpness.
-    #[error("{what}: {problem}")]
-    Crease {
-        /// The crease, e.g. `crease on edge 3–7`.
-        what: String,
-        /// What is wrong.
-        problem: String,
-    },
-    /// A face-varying attribute is malformed.
-    #[error("{attribute}: {problem}")]
-    Attribute {
-        /// `normals`, `uvs` or `colors`.
-        attribute: &'static str,
-        /// What is wrong.
-        problem: String,
-    },
-    /// The subdivided mesh would have more vertices, edges, faces or face corners than `u32`
-    /// indices can number. Checked before anything is made.
-    #[error(
-        "{levels} level{} of {scheme} subdivision would make {count} {what}; at most {} fit in u32 indices",
-        plural(.levels),
-        u32::MAX
-    )]
-    TooLarge {
-        /// The scheme: `Loop`, `Catmull-Clark`, `√3`, `Doo-Sabin` or `butterfly`.
-        scheme: &'static str,
-        /// The first number of levels (from the base mesh) that would not fit: at most the
-        /// number asked for.
-        levels: usize,
-        /// What there would be too many of: `vertices`, `edges`, `faces`, `face corners`,
-        /// `normal values` or `UV values`.
-        what: &'static str,
-        /// How many there would be.
-        count: u64,
-    },
-}
-
-/// `s` unless `n` is 1.
-fn plural(n: &usize) -> &'static str {
-    if *n == 1 { "" } else { "s" }
-}
-
-/// [`SubdivError::TooFewCorners`] for the first face of `mesh` with fewer than three corners.
-pub(super) fn polygons_only(mesh: &PolyMesh) -> Result<(), SubdivError> {
-    match mesh.faces().enumerate().find(|(_, f)| f.len() < 3) {
-        Some((face, f)) => Err(SubdivError::TooFewCorners { face, corners: f.len() }),
-        None => Ok(()),
-    }
-}
-
-/// [`SubdivError::NotTriangles`] for the first face of `mesh` that is not a triangle, naming
-/// `scheme`.
-pub(super) fn triangles_only(mesh: &PolyMesh, scheme: &'static str) -> Result<(), SubdivError> {
-    match mesh.faces().enumerate().find(|(_, f)| f.len() != 3) {
-        Some((face, f)) => Err(SubdivError::NotTriangles { face, corners: f.len(), scheme }),
-        None => Ok(()),
-    }
-}
-
-/// A value that can be subdivided: an affine combination of values is a value.
-pub trait Attribute: Copy + Default + Send + Sync + Add<Output = Self> + Mul<f64, Output = Self> {}
-impl<T: Copy + Default + Send + Sync + Add<Output = T> + Mul<f64, Output = T>> Attribute for T {}
-
-/// The subdivision weights, with β tabulated for small valences.
-#[derive(Clone, Debug)]
-pub(super) struct Rules {
-    beta: [f64; 16],
-    warren: bool,
-    pub(super) corners: bool,
-}
-
-impl Rules {
-    pub(super) fn new(options: &LoopOptions) -> Self {
-        let warren = options.weights == LoopWeights::Warren;
-        let mut beta = [0.0; 16];
-        for (n, b) in beta.iter_mut().enumerate().skip(1) {
-            *b = Self::compute_beta(warren, n as u32);
-        }
-        Self { beta, warren, corners: options.boundary == BoundaryRule::Corners }
-    }
-
-    fn compute_beta(warren: bool, n: u32) -> f64 {
-        let nf = f64::from(n);
-        if warren {
-            if n == 3 { 3.0 / 16.0 } else { 3.0 / (8.0 * nf) }
-        } else {
-            let c = 0.375 + 0.25 * (core::f64::consts::TAU / nf).cos();
-            (0.625 - c * c) / nf
-        }
-    }
-
-    #[inline]
-    pub(super) fn beta(&self, n: u32) -> f64 {
-        match self.beta.get(n as usize) {
-            Some(&b) => b,
-            None => Self::compute_beta(self.warren, n),
-        }
-    }
-}
 
 /// The new value of even vertex `v`.
 #[inline]
@@ -254,46 +76,6 @@ fn even<T: Attribute>(topo: &Table<'_>, p: &[T], v: u32, rules: &Rules) -> T {
     let out = |h: u32| p[topo.tri(h / 3)[next(h % 3) as usize] as usize];
     let inc = |h: u32| p[topo.tri(h / 3)[(h % 3) as usize] as usize];
     even_ring(topo, p[v as usize], v, rules, out, inc)
-}
-
-/// The new value of even vertex `v`, whose value is `pv`, walking its ring in `topo`: `out(h)`
-/// is the ring value across the half-edge `h` leaving `v`, `inc(h)` the one across the
-/// half-edge `h` coming into `v` (they differ only where the ring is not made of `topo`'s own
-/// vertices, as in the grandchild pass, which reads the midpoints of `topo`'s edges).
-#[inline]
-pub(super) fn even_ring<T: Attribute>(
-    topo: &Table<'_>,
-    pv: T,
-    v: u32,
-    rules: &Rules,
-    out: impl Fn(u32) -> T,
-    inc: impl Fn(u32) -> T,
-) -> T {
-    let start = topo.vertex_start(v);
-    if start == NONE {
-        return pv;
-    }
-    let mut h = start;
-    let mut n = 0u32;
-    let mut sum = T::default();
-    loop {
-        sum = sum + out(h);
-        n += 1;
-        let pr = h - h % 3 + prev(h % 3);
-        let tw = topo.twin(pr);
-        if tw == NONE {
-            if rules.corners && n == 1 {
-                return pv;
-            }
-            return pv * 0.75 + (out(start) + inc(pr)) * 0.125;
-        }
-        if tw == start {
-            break;
-        }
-        h = tw;
-    }
-    let beta = rules.beta(n);
-    pv * (1.0 - f64::from(n) * beta) + sum * beta
 }
 
 /// The value of the odd vertex on edge `e`.
@@ -850,43 +632,6 @@ impl LoopPyramid {
             refine_values(topo, c, &self.rules)
         });
         (positions, colors)
-    }
-}
-
-/// The colours of `mesh` as the parent of level `depth` (≥ 1) of a subdivision, for
-/// [`child_colors`]: with `color_by_level`, [`LEVEL_COLORS`]`[0]` at depth 1 (the base level's
-/// own colour) and the mesh's colours below; else the mesh's colours when every vertex has
-/// one, none otherwise.
-pub(super) fn parent_colors(mesh: &PolyMesh, color_by_level: bool, depth: usize) -> Cow<'_, [DVec3]> {
-    if color_by_level && depth <= 1 {
-        Cow::Owned(vec![LEVEL_COLORS[0]; mesh.positions.len()])
-    } else if color_by_level || mesh.colors.len() == mesh.positions.len() {
-        Cow::Borrowed(&mesh.colors)
-    } else {
-        Cow::Borrowed(&[])
-    }
-}
-
-/// The colours of a level of `n` vertices made at `depth` from its parent's `colors`: with
-/// `color_by_level`, the parent's followed by the level's colour ([`LEVEL_COLORS`]); none
-/// when the parent has none; else `subdivide(colors)`, the parent's carried with the
-/// positions' weights.
-pub(super) fn child_colors(
-    color_by_level: bool,
-    colors: &[DVec3],
-    n: usize,
-    depth: usize,
-    subdivide: impl FnOnce(&[DVec3]) -> Vec<DVec3>,
-) -> Vec<DVec3> {
-    if color_by_level {
-        let mut c = Vec::with_capacity(n);
-        c.extend_from_slice(colors);
-        c.resize(n, LEVEL_COLORS[depth % LEVEL_COLORS.len()]);
-        c
-    } else if colors.is_empty() {
-        Vec::new()
-    } else {
-        subdivide(colors)
     }
 }
 

@@ -15,9 +15,11 @@
 use bytemuck::{Pod, Zeroable};
 use rayon::prelude::*;
 
-use super::loop_scheme::{Attribute, Rules, even_ring};
-use super::topology::{MIN_LEN, MIN_RINGS, Table, next, prev, three};
+use super::stencils::even_ring;
 use crate::mesh::NONE;
+use crate::subdiv::attribute::Attribute;
+use crate::subdiv::options::Rules;
+use crate::subdiv::topology::{MIN_LEN, MIN_RINGS, Table, next, prev, three};
 
 /// The values of the grandchild `F` of `s`, from the values `pm` of its child `M`: the `M`
 /// vertices moved (`|V_M|` values), then one odd value per `M` edge.
