@@ -21,32 +21,6 @@ use super::{NonManifold, PolyMesh};
 /// "No such corner": a boundary half-edge's twin, an isolated vertex's first corner.
 pub const NONE: u32 = u32::MAX;
 
-/// [`Adjacency::nonmanifold`] by half-edge instead of by face, kept only for code that has
-/// not moved to [`NonManifold`] yet (it goes once nothing reads [`Adjacency::problems`]).
-#[doc(hidden)]
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum EdgeProblem {
-    /// The undirected edge `{a, b}` is used by more than two face sides; `corners` lists the
-    /// half-edges along it (ascending).
-    NonManifold {
-        /// Smaller vertex index.
-        a: u32,
-        /// Larger vertex index.
-        b: u32,
-        /// Every half-edge along the edge.
-        corners: Vec<u32>,
-    },
-    /// Two faces use the edge in the same direction `a → b`: their orientations disagree.
-    Inconsistent {
-        /// Start vertex.
-        a: u32,
-        /// End vertex.
-        b: u32,
-        /// The two half-edges.
-        corners: [u32; 2],
-    },
-}
-
 /// Half-edge adjacency of a [`PolyMesh`] (see the module docs).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Adjacency {
@@ -70,9 +44,6 @@ pub struct Adjacency {
     /// [`NonManifold::Edge`] and [`NonManifold::Inconsistent`], their faces numbered as here
     /// (ascending; [`Self::sides`] gives the half-edges).
     pub nonmanifold: Vec<NonManifold>,
-    /// [`Self::nonmanifold`] as [`EdgeProblem`]s (see there).
-    #[doc(hidden)]
-    pub problems: Vec<EdgeProblem>,
 }
 
 impl Adjacency {
@@ -115,7 +86,6 @@ impl Adjacency {
         let mut twin = vec![NONE; nc];
         let mut edge_of = vec![NONE; nc];
         let mut edge_corner = Vec::with_capacity(nc / 2 + 1);
-        let mut problems = Vec::new();
         let mut nonmanifold = Vec::new();
         for c in 0..nc {
             if edge_of[c] != NONE {
@@ -152,10 +122,8 @@ impl Adjacency {
             let faces: Vec<u32> = corners.iter().map(|&d| face_of[d as usize]).collect();
             if n_same == 2 && n_rev == 0 {
                 nonmanifold.push(NonManifold::Inconsistent { a, b, faces: [faces[0], faces[1]] });
-                problems.push(EdgeProblem::Inconsistent { a, b, corners: [corners[0], corners[1]] });
             } else {
                 nonmanifold.push(NonManifold::Edge { a: a.min(b), b: a.max(b), faces });
-                problems.push(EdgeProblem::NonManifold { a: a.min(b), b: a.max(b), corners: corners.clone() });
             }
             edge_of[c] = e;
             for &d in &corners[1..] {
@@ -165,7 +133,7 @@ impl Adjacency {
         }
         // Renumber edges in corner order of their first corner (they already are: an edge is
         // created at its smallest corner, except the extra edges of problem edges).
-        Self { face_of, twin, to, edge_of, edge_corner, vertex_offsets, vertex_corners, nonmanifold, problems }
+        Self { face_of, twin, to, edge_of, edge_corner, vertex_offsets, vertex_corners, nonmanifold }
     }
 
     /// Number of edges.

@@ -12,7 +12,6 @@ mod poly;
 mod validate;
 
 #[doc(hidden)]
-pub use adjacency::EdgeProblem;
 pub use adjacency::{Adjacency, NONE};
 pub use curvature::{VertexCurvature, WELD_TOLERANCE, vertex_curvature};
 pub use nonmanifold::NonManifold;

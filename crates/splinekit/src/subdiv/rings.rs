@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use super::error::{SubdivError, polygons_only, repeated_vertex};
 use super::options::TriangleSubdivision;
 use super::topology::{MIN_RINGS, TopologyError};
-use crate::mesh::{Adjacency, EdgeProblem, NONE, PolyMesh};
+use crate::mesh::{Adjacency, NONE, NonManifold, PolyMesh};
 
 /// What one level needs: the mesh's faces and their adjacency, checked to be manifold.
 pub(super) struct Rings<'a> {
@@ -26,13 +26,8 @@ impl<'a> Rings<'a> {
             return Err(TopologyError::RepeatedVertex { face: face as u32, vertex }.into());
         }
         let adj = Adjacency::build(mesh);
-        if let Some(p) = adj.problems.first() {
-            let (a, b, corners) = match p {
-                EdgeProblem::NonManifold { a, b, corners } => (*a, *b, corners.clone()),
-                EdgeProblem::Inconsistent { a, b, corners } => (*a, *b, corners.to_vec()),
-            };
-            let faces = corners.iter().map(|&c| adj.face_of[c as usize]).collect();
-            return Err(TopologyError::Edge { a, b, faces }.into());
+        if let Some(problem) = adj.nonmanifold.first() {
+            return Err(TopologyError::NonManifold(problem.clone()).into());
         }
         // a manifold vertex's corners form one fan: rotating from its boundary half-edge (or
         // any corner) reaches them all
@@ -44,7 +39,8 @@ impl<'a> Rings<'a> {
             rings.fan(start).take(corners.len() + 1).count() != corners.len()
         });
         if let Some(v) = bad {
-            return Err(TopologyError::Vertex { vertex: v, fans: rings.adj.fans(mesh, v).len() }.into());
+            let fans = rings.adj.fans(mesh, v).len() as u32;
+            return Err(TopologyError::NonManifold(NonManifold::Vertex { vertex: v, fans }).into());
         }
         Ok(rings)
     }

@@ -20,7 +20,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use rayon::prelude::*;
 
-use crate::mesh::{Adjacency, NONE};
+use crate::mesh::{Adjacency, NONE, NonManifold};
 
 /// Work items per rayon task, at least. A pass ends when its last task does, so the thread
 /// that finishes first waits for at most one task: small tasks keep two threads together
@@ -49,24 +49,11 @@ pub struct Topology {
 /// Why a triangle list cannot be given a manifold topology.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum TopologyError {
-    /// An edge is used by more than two triangles, or twice in the same direction.
-    #[error("edge {a}–{b} is used by {faces:?}: not a manifold, consistently oriented edge")]
-    Edge {
-        /// One end.
-        a: u32,
-        /// The other end.
-        b: u32,
-        /// The faces along it.
-        faces: Vec<u32>,
-    },
-    /// A vertex's triangles form several fans (e.g. two cones touching at their tips).
-    #[error("vertex {vertex} is non-manifold: its faces form {fans} separate fans")]
-    Vertex {
-        /// The vertex.
-        vertex: u32,
-        /// Number of fans.
-        fans: usize,
-    },
+    /// An edge used by more than two faces or twice in the same direction, or a vertex whose
+    /// faces form several fans (two cones touching at their tips): the mesh's own
+    /// [`NonManifold`] report of it.
+    #[error("{}", nonmanifold_message(.0))]
+    NonManifold(NonManifold),
     /// A face names a vertex at more than one corner (a degenerate face such as `a a b`, or a
     /// quad pole `a b a c`).
     #[error("face {face} repeats vertex {vertex}")]
@@ -94,7 +81,23 @@ impl TopologyError {
     /// or inconsistently oriented edge, a non-manifold vertex, a face that repeats a vertex.
     #[must_use]
     pub fn is_nonmanifold(&self) -> bool {
-        matches!(self, Self::Edge { .. } | Self::Vertex { .. } | Self::RepeatedVertex { .. })
+        matches!(self, Self::NonManifold(_) | Self::RepeatedVertex { .. })
+    }
+}
+
+/// The message of [`TopologyError::NonManifold`]: what subdivision cannot take, in the words
+/// `splinekit subdivide` has always used.
+fn nonmanifold_message(problem: &NonManifold) -> String {
+    match problem {
+        NonManifold::Edge { a, b, faces } => {
+            format!("edge {a}–{b} is used by {faces:?}: not a manifold, consistently oriented edge")
+        }
+        NonManifold::Inconsistent { a, b, faces } => {
+            format!("edge {a}–{b} is used by {faces:?}: not a manifold, consistently oriented edge")
+        }
+        NonManifold::Vertex { vertex, fans } => {
+            format!("vertex {vertex} is non-manifold: its faces form {fans} separate fans")
+        }
     }
 }
 
@@ -242,12 +245,8 @@ impl Topology {
         }
         let offsets: Vec<u32> = (0..=triangles.len() as u32).map(|f| 3 * f).collect();
         let mut adj = Adjacency::from_faces(&offsets, &flat, num_vertices);
-        if let Some(p) = adj.problems.first() {
-            let (a, b, corners) = match p {
-                crate::mesh::EdgeProblem::NonManifold { a, b, corners } => (*a, *b, corners.clone()),
-                crate::mesh::EdgeProblem::Inconsistent { a, b, corners } => (*a, *b, corners.to_vec()),
-            };
-            return Err(TopologyError::Edge { a, b, faces: corners.iter().map(|c| c / 3).collect() });
+        if let Some(problem) = adj.nonmanifold.first() {
+            return Err(TopologyError::NonManifold(problem.clone()));
         }
         // Adjacency numbers edges as `from_twins` does (in half-edge order, owned by their
         // first half-edge): take its tables instead of numbering again.
@@ -263,7 +262,8 @@ impl Topology {
                     positions: vec![glam::DVec3::ZERO; num_vertices],
                     ..crate::mesh::PolyMesh::default()
                 };
-                return Err(TopologyError::Vertex { vertex: v as u32, fans: adj.fans(&mesh, v as u32).len() });
+                let fans = adj.fans(&mesh, v as u32).len() as u32;
+                return Err(TopologyError::NonManifold(NonManifold::Vertex { vertex: v as u32, fans }));
             }
         }
         Ok(topo)
@@ -726,9 +726,13 @@ mod tests {
     #[test]
     fn problems_are_errors() {
         let err = Topology::build(&[[0, 1, 2], [0, 3, 4]], 5).unwrap_err();
-        assert_eq!(err, TopologyError::Vertex { vertex: 0, fans: 2 });
+        assert_eq!(err, TopologyError::NonManifold(NonManifold::Vertex { vertex: 0, fans: 2 }));
         let err = Topology::build(&[[0, 1, 2], [0, 1, 3]], 4).unwrap_err();
-        assert!(matches!(err, TopologyError::Edge { a: 0, b: 1, .. }));
+        // both triangles run 0 → 1
+        assert!(matches!(err, TopologyError::NonManifold(NonManifold::Inconsistent { a: 0, b: 1, faces: [0, 1] })));
+        assert_eq!(err.to_string(), "edge 0–1 is used by [0, 1]: not a manifold, consistently oriented edge");
+        let err = Topology::build(&[[0, 1, 2], [1, 0, 3], [0, 1, 4]], 5).unwrap_err();
+        assert!(matches!(err, TopologyError::NonManifold(NonManifold::Edge { a: 0, b: 1, .. })));
         let err = Topology::build(&[[0, 1, 7]], 3).unwrap_err();
         assert_eq!(err, TopologyError::Index { face: 0, vertex: 7, count: 3 });
     }
