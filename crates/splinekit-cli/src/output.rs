@@ -134,7 +134,11 @@ mod tests {
         let surface = curve();
         let lathe = splinekit::sweep::surface::SurfaceError::Keys { curve: "radius", error: spline.clone() };
         let render = splinekit_render::RenderError::Surface { path: "a.swp".into(), error: curve() };
-        let errors: [&dyn std::error::Error; 5] = [&swp, &spline, &surface, &lathe, &render];
+        let topology = splinekit::subdiv::SubdivError::from(splinekit::subdiv::TopologyError::RepeatedVertex {
+            face: 1,
+            vertex: 2,
+        });
+        let errors: [&dyn std::error::Error; 6] = [&swp, &spline, &surface, &lathe, &render, &topology];
         for e in errors {
             assert!(e.source().is_none(), "{e}");
         }

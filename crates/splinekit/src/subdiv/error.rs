@@ -41,7 +41,7 @@ pub enum SubdivError {
         corners: usize,
     },
     /// The triangles are not a manifold, consistently oriented surface.
-    #[error("{0}")]
+    #[error(transparent)]
     Topology(#[from] TopologyError),
     /// A crease names an edge or vertex the mesh does not have, or has a negative sharpness.
     #[error("{what}: {problem}")]
