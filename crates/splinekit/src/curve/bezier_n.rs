@@ -1,7 +1,7 @@
 //! Bézier curves of any degree: one polynomial piece from `n + 1` control points.
 
 use crate::arclen::{self, ArclenEstimate};
-use crate::curve::{Aabb, ParamCurve, SplineError};
+use crate::curve::{Aabb, ParamCurve, SplineError, casteljau};
 use crate::vector::Vector;
 
 /// The most control points a [`BezierCurve`] takes (degree 64): de Casteljau's algorithm costs
@@ -73,7 +73,7 @@ impl<P: Vector> BezierCurve<P> {
     /// The point at `t` by de Casteljau's algorithm.
     #[must_use]
     pub fn eval(&self, t: f64) -> P {
-        de_casteljau(&self.points, t)
+        casteljau::eval(&self.points, t, lerp)
     }
 
     /// The derivative curve (hodograph) `n·Σ Bᵢⁿ⁻¹(t)·(pᵢ₊₁ − pᵢ)`, of degree `n − 1` (a
@@ -93,26 +93,14 @@ impl<P: Vector> BezierCurve<P> {
             }
             points = hodograph(&points);
         }
-        de_casteljau(&points, t)
+        casteljau::eval(&points, t, lerp)
     }
 
     /// The two halves at `t`: the curves over `[0, t]` and `[t, 1]`, each reparametrized to
     /// `[0, 1]` (de Casteljau's subdivision; exact up to rounding).
     #[must_use]
     pub fn split(&self, t: f64) -> (Self, Self) {
-        let n = self.points.len();
-        let mut work = self.points.clone();
-        let mut left = Vec::with_capacity(n);
-        let mut right = vec![work[n - 1]; n];
-        left.push(work[0]);
-        right[n - 1] = work[n - 1];
-        for level in 1..n {
-            for i in 0..n - level {
-                work[i] = work[i].lerp(work[i + 1], t);
-            }
-            left.push(work[0]);
-            right[n - 1 - level] = work[n - 1 - level];
-        }
+        let (left, right) = casteljau::split(&self.points, t, lerp);
         (Self { points: left }, Self { points: right })
     }
 
@@ -120,20 +108,7 @@ impl<P: Vector> BezierCurve<P> {
     /// outside `[0, 1]` extrapolate).
     #[must_use]
     pub fn segment(&self, t0: f64, t1: f64) -> Self {
-        if t1 < t0 {
-            // the forward part, reversed (splitting forward keeps the parameters in range)
-            let mut part = self.segment(t1, t0);
-            part.points.reverse();
-            return part;
-        }
-        if t0 != 1.0 {
-            // [t0, 1] first, then its start up to t1
-            self.split(t0).1.split((t1 - t0) / (1.0 - t0)).0
-        } else {
-            // t0 = 1: [0, t1] is empty only if t1 = 0 too; its part from t0/t1
-            let (left, _) = self.split(t1);
-            if t1 == 0.0 { left } else { left.split(t0 / t1).1 }
-        }
+        Self { points: casteljau::segment(&self.points, t0, t1, lerp) }
     }
 
     /// `pieces` curves over `[i/pieces, (i+1)/pieces]`, in order (at least one).
@@ -164,16 +139,9 @@ impl<P: Vector> BezierCurve<P> {
     }
 }
 
-/// de Casteljau's algorithm on a copy of `points` (at least one).
-fn de_casteljau<P: Vector>(points: &[P], t: f64) -> P {
-    let mut work: Vec<P> = points.to_vec();
-    let n = work.len();
-    for level in 1..n {
-        for i in 0..n - level {
-            work[i] = work[i].lerp(work[i + 1], t);
-        }
-    }
-    work[0]
+/// The interpolation of control points for [`casteljau`].
+fn lerp<P: Vector>(a: P, b: P, t: f64) -> P {
+    a.lerp(b, t)
 }
 
 /// The hodograph's control points: `n·(pᵢ₊₁ − pᵢ)`; one zero point for a constant.
@@ -189,33 +157,6 @@ fn hodograph<P: Vector>(points: &[P]) -> Vec<P> {
 fn control_box<P: Vector>(points: &[P]) -> Aabb<P> {
     let first = Aabb { min: points[0], max: points[0] };
     points[1..].iter().fold(first, |b, &p| Aabb { min: b.min.min_components(p), max: b.max.max_components(p) })
-}
-
-/// The largest (`sign = 1`) or smallest (`sign = −1`) value of coordinate `axis` over
-/// `t ∈ [0, 1]`, to the rounding of the coordinates: branch and bound on the control points
-/// (a piece's coordinates lie between its control points' smallest and largest).
-fn extreme<P: Vector>(curve: &BezierCurve<P>, axis: usize, sign: f64) -> f64 {
-    let value = |p: &P| sign * p.component(axis);
-    let scale = curve.points.iter().map(|p| p.component(axis).abs()).fold(0.0, f64::max);
-    let slack = 8.0 * f64::EPSILON * scale;
-    let ends = |c: &BezierCurve<P>| value(&c.points[0]).max(value(&c.points[c.points.len() - 1]));
-    let top = |c: &BezierCurve<P>| c.points.iter().map(value).fold(f64::NEG_INFINITY, f64::max);
-    let mut best = ends(curve);
-    let mut pending = vec![curve.clone()];
-    // each split halves a piece; 60 levels reach the rounding of t, so at most 2·60 pieces
-    // are ever alive (two per level near each extreme, and few extremes for a polynomial)
-    let mut budget = 4096;
-    while let Some(piece) = pending.pop() {
-        if top(&piece) <= best + slack || budget == 0 {
-            continue;
-        }
-        budget -= 1;
-        let (a, b) = piece.split(0.5);
-        best = best.max(value(&a.points[a.points.len() - 1]));
-        pending.push(a);
-        pending.push(b);
-    }
-    sign * best
 }
 
 impl<P: Vector> ParamCurve<P> for BezierCurve<P> {
@@ -244,8 +185,8 @@ impl<P: Vector> ParamCurve<P> for BezierCurve<P> {
     fn bounding_box(&self) -> Aabb<P> {
         let (mut lo, mut hi) = (glam::DVec3::ZERO, glam::DVec3::ZERO);
         for axis in 0..P::DIM {
-            lo[axis] = extreme(self, axis, -1.0);
-            hi[axis] = extreme(self, axis, 1.0);
+            lo[axis] = -casteljau::extreme(&self.points, |p| -p.component(axis), lerp);
+            hi[axis] = casteljau::extreme(&self.points, |p| p.component(axis), lerp);
         }
         Aabb { min: P::from_dvec3(lo), max: P::from_dvec3(hi) }
     }

@@ -35,6 +35,7 @@ mod bezier;
 mod bezier_n;
 mod bspline;
 mod by_segment;
+mod casteljau;
 mod catmull_rom;
 mod circle;
 mod helix;

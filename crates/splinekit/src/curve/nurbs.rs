@@ -6,7 +6,7 @@ use glam::{DVec3, DVec4};
 
 use crate::arclen::{self, ArclenEstimate};
 use crate::curve::by_segment::arclen_by_segment;
-use crate::curve::{Aabb, ParamCurve, SplineError};
+use crate::curve::{Aabb, ParamCurve, SplineError, casteljau};
 use crate::vector::Vector;
 
 /// The most control points a [`Nurbs`] takes.
@@ -330,25 +330,7 @@ impl<P: Vector> Nurbs<P> {
 
 /// The part of a homogeneous Bézier piece over `[t0, t1] ⊂ [0, 1]`.
 fn sub_piece(points: &[DVec4], t0: f64, t1: f64) -> Vec<DVec4> {
-    let right = split(points, t0).1;
-    let t = if t0 < 1.0 { (t1 - t0) / (1.0 - t0) } else { 0.0 };
-    split(&right, t).0
-}
-
-/// de Casteljau's split of homogeneous control points at `t`.
-fn split(points: &[DVec4], t: f64) -> (Vec<DVec4>, Vec<DVec4>) {
-    let n = points.len();
-    let mut work = points.to_vec();
-    let mut left = vec![work[0]];
-    let mut right = vec![work[n - 1]; n];
-    for level in 1..n {
-        for i in 0..n - level {
-            work[i] = work[i].lerp(work[i + 1], t);
-        }
-        left.push(work[0]);
-        right[n - 1 - level] = work[n - 1 - level];
-    }
-    (left, right)
+    casteljau::segment(points, t0, t1, DVec4::lerp)
 }
 
 /// Checks the degree, the point and weight counts and values.
@@ -418,8 +400,8 @@ impl<P: Vector> ParamCurve<P> for Nurbs<P> {
         let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
         for piece in pieces {
             for axis in 0..P::DIM {
-                lo[axis] = lo[axis].min(-extreme(piece, axis, -1.0));
-                hi[axis] = hi[axis].max(extreme(piece, axis, 1.0));
+                lo[axis] = lo[axis].min(-casteljau::extreme(piece, |q| -q[axis] / q.w, DVec4::lerp));
+                hi[axis] = hi[axis].max(casteljau::extreme(piece, |q| q[axis] / q.w, DVec4::lerp));
             }
         }
         Aabb { min: P::from_dvec3(lo), max: P::from_dvec3(hi) }
@@ -458,28 +440,4 @@ impl<P: Vector> ParamCurve<P> for Nurbs<P> {
         }
         bound
     }
-}
-
-/// The largest (`sign = 1`) or, negated, smallest (`sign = −1`) value of coordinate `axis`
-/// of a rational Bézier piece, by branch and bound on its projected control points.
-fn extreme(piece: &[DVec4], axis: usize, sign: f64) -> f64 {
-    let value = |q: &DVec4| sign * q[axis] / q.w;
-    let ends = |p: &[DVec4]| value(&p[0]).max(value(&p[p.len() - 1]));
-    let top = |p: &[DVec4]| p.iter().map(value).fold(f64::NEG_INFINITY, f64::max);
-    let scale = piece.iter().map(|q| (q[axis] / q.w).abs()).fold(0.0, f64::max);
-    let slack = 8.0 * f64::EPSILON * scale;
-    let mut best = ends(piece);
-    let mut pending = vec![piece.to_vec()];
-    let mut budget = 4096;
-    while let Some(p) = pending.pop() {
-        if top(&p) <= best + slack || budget == 0 {
-            continue;
-        }
-        budget -= 1;
-        let (a, b) = split(&p, 0.5);
-        best = best.max(value(&a[a.len() - 1]));
-        pending.push(a);
-        pending.push(b);
-    }
-    best
 }
