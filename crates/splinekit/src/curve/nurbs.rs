@@ -79,7 +79,7 @@ impl<P: Vector> Nurbs<P> {
     }
 
     /// A closed (periodic) NURBS of `degree` over `points` with `weights` (at least
-    /// `degree + 1`... and at least 3 points): uniform knots, the first `degree` points
+    /// `degree + 1` points, and at least 3): uniform knots, the first `degree` points
     /// repeated at the end, so that the curve is `C^(degree−1)` everywhere, also where it
     /// closes. It passes through no control point (for `degree ≥ 2`).
     pub fn periodic(degree: usize, points: Vec<P>, weights: Vec<f64>) -> Result<Self, SplineError> {
@@ -289,7 +289,7 @@ impl<P: Vector> Nurbs<P> {
         let Some(k) = (p..self.points.len()).find(|&k| self.knots[k] <= x && x < self.knots[k + 1]) else {
             return self.clone();
         };
-        let mut homogeneous: Vec<DVec4> = (0..self.points.len()).map(|i| self.homogeneous(i)).collect();
+        let homogeneous: Vec<DVec4> = (0..self.points.len()).map(|i| self.homogeneous(i)).collect();
         let mut inserted = Vec::with_capacity(homogeneous.len() + 1);
         for i in 0..=homogeneous.len() {
             let q = if i + p <= k {
@@ -302,14 +302,12 @@ impl<P: Vector> Nurbs<P> {
             };
             inserted.push(q);
         }
-        homogeneous.clear();
         let mut knots = self.knots.clone();
         knots.insert(k + 1, x);
         let weights: Vec<f64> = inserted.iter().map(|h| h.w).collect();
         let points: Vec<P> = inserted.iter().map(|h| P::from_dvec3(h.truncate() / h.w)).collect();
-        let mut curve = Self::build(p, knots, points, weights, self.closed).unwrap_or_else(|_| self.clone());
-        curve.closed = self.closed;
-        curve
+        // the spans only gain a knot: the definition stays valid
+        Self::build(p, knots, points, weights, self.closed).unwrap_or_else(|_| self.clone())
     }
 
     /// The projected control polygon of the part over `u ∈ [u0, u1]` inside one segment (the
