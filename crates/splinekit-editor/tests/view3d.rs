@@ -260,6 +260,32 @@ fn without_wgpu_a_note_is_shown() {
     harness.get_by_label("3D view: needs the wgpu renderer");
 }
 
+/// A press, moves and release that arrive in one frame (a fast flick, or a slow frame)
+/// orbit by the whole movement, as a drag over several frames does.
+#[test]
+fn a_drag_within_one_frame_orbits() {
+    let mut harness = harness(&icosahedron(), false);
+    let before = *harness.state().view.camera();
+    let centre = pos2(W / 2.0, H / 2.0);
+    harness.hover_at(centre);
+    harness.run();
+    let button = |pos, pressed| egui::Event::PointerButton {
+        pos,
+        button: PointerButton::Primary,
+        pressed,
+        modifiers: Modifiers::NONE,
+    };
+    harness.event(button(centre, true));
+    harness.event(egui::Event::PointerMoved(centre + vec2(20.0, 10.0)));
+    harness.event(egui::Event::PointerMoved(centre + vec2(40.0, 20.0)));
+    harness.event(button(centre + vec2(40.0, 20.0), false));
+    harness.run();
+    let after = *harness.state().view.camera();
+    let expect_yaw = (before.yaw - 40.0 * ORBIT_RADIANS_PER_POINT).rem_euclid(std::f64::consts::TAU);
+    assert!((after.yaw - expect_yaw).abs() < 1e-9, "yaw {} -> {}, expected {expect_yaw}", before.yaw, after.yaw);
+    assert!((after.pitch - (before.pitch + 20.0 * ORBIT_RADIANS_PER_POINT)).abs() < 1e-9);
+}
+
 #[test]
 fn drag_orbits_and_pans_scroll_zooms() {
     let mut harness = harness(&icosahedron(), false);

@@ -138,18 +138,42 @@ impl View3d {
     pub(super) fn handle_input(&mut self, ui: &egui::Ui, response: &egui::Response, rect: Rect) {
         let (_, radius) = self.data.centre_radius();
         let (min, max) = (1e-4 * radius, 1e4 * radius);
-        // a drag that picked a handle moves the handle, not the camera
+        // A drag that picked a handle moves the handle, not the camera. The camera follows
+        // the frame's pointer events, as the handles do, so that a press, moves and release
+        // arriving in one frame (a fast flick, a slow frame) still orbit or pan.
         let handle_drag = self.drag.is_some() || std::mem::take(&mut self.dragged_this_frame);
-        if response.dragged() && !handle_drag {
-            let delta = response.drag_delta();
-            let shift = ui.input(|i| i.modifiers.shift);
-            if response.dragged_by(PointerButton::Primary) && !shift {
-                self.camera.orbit(delta);
-            } else if response.dragged_by(PointerButton::Primary)
-                || response.dragged_by(PointerButton::Secondary)
-                || response.dragged_by(PointerButton::Middle)
-            {
-                self.camera.pan(delta, rect.height());
+        let layer = ui.layer_id();
+        let shift = ui.input(|i| i.modifiers.shift);
+        for event in ui.input(|i| i.events.clone()) {
+            match event {
+                egui::Event::PointerButton { pos, button, pressed: true, .. }
+                    if self.camera_drag.is_none()
+                        && !(button == PointerButton::Primary && handle_drag)
+                        && rect.contains(pos)
+                        && ui.ctx().layer_id_at(pos).is_none_or(|l| l == layer) =>
+                {
+                    self.camera_drag = Some((button, pos));
+                }
+                egui::Event::PointerMoved(pos) => {
+                    if let Some((button, last)) = self.camera_drag {
+                        let delta = pos - last;
+                        match button {
+                            PointerButton::Primary if !shift => self.camera.orbit(delta),
+                            PointerButton::Primary | PointerButton::Secondary | PointerButton::Middle => {
+                                self.camera.pan(delta, rect.height())
+                            }
+                            _ => {}
+                        }
+                        self.camera_drag = Some((button, pos));
+                    }
+                }
+                egui::Event::PointerButton { button, pressed: false, .. }
+                    if self.camera_drag.is_some_and(|(b, _)| b == button) =>
+                {
+                    self.camera_drag = None;
+                }
+                egui::Event::PointerGone => self.camera_drag = None,
+                _ => {}
             }
         }
         if response.double_clicked() {

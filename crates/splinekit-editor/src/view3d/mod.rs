@@ -177,6 +177,8 @@ pub struct View3d {
     overlay_lines: usize,
     /// A handle clicked (pressed and released without moving) and not yet taken.
     clicked_handle: Option<usize>,
+    /// A camera drag under way: the button pressed on the view and the pointer's last place.
+    camera_drag: Option<(egui::PointerButton, egui::Pos2)>,
 }
 
 impl Default for View3d {
@@ -217,6 +219,7 @@ impl View3d {
             overlay_bounds: None,
             overlay_lines: 0,
             clicked_handle: None,
+            camera_drag: None,
         }
     }
 
