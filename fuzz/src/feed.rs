@@ -169,6 +169,10 @@ fn doc_magnitude(doc: &SwpDocument) -> f64 {
             SwpGeometry::Hermite { points, tangents } => {
                 values.extend(points.iter().chain(tangents).flat_map(|p| p.to_array()));
             }
+            SwpGeometry::Nurbs { points, weights, knots } => {
+                values.extend(points.iter().flat_map(|p| p.to_array()));
+                values.extend(weights.iter().chain(knots.iter().flatten()));
+            }
             SwpGeometry::Circle { radius } => values.push(*radius),
             SwpGeometry::Helix { radius, pitch, turns } => values.extend([*radius, *pitch, *turns]),
             SwpGeometry::Trefoil { size } => values.push(*size),

@@ -21,8 +21,9 @@ pub const DEFAULT_MAX_POINTS: u64 = 50_000_000;
 /// Uniform steps by default: each segment gives steps+1 points at t = i/steps; joined
 /// segments share their join point, so a curve of m segments gives m·steps + 1 points, u = k +
 /// i/steps running over [0, m]. A circle is one segment: steps+1 points counter-clockwise
-/// from angle 0; so are a helix (from (r, 0, 0), rising along +z) and a trefoil knot. On a
-/// closed curve the last point repeats the first exactly. With
+/// from angle 0; so are a helix (from (r, 0, 0), rising along +z), a trefoil knot and a Bézier
+/// curve of any degree (bezn2, bezn3); a NURBS has a segment per knot span. On a closed curve
+/// the last point repeats the first exactly. With
 /// --tolerance the polyline stays within that distance of the curve (both ways); with
 /// --angle-tolerance segments are split until their control polygons turn less than that.
 #[derive(Debug, clap::Args)]

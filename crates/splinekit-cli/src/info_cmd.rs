@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use splinekit::ParamCurve;
-use splinekit_io::{SwpDocument, SwpGeometry, SwpSurfaceKind};
+use splinekit_io::{SwpCurveKind, SwpDocument, SwpGeometry, SwpSurfaceKind};
 
 use crate::output::{json_array, json_str};
 use crate::select;
@@ -38,6 +38,8 @@ struct CurveRow {
     keyword: &'static str,
     /// How an exact curve (circle, helix, trefoil) is shown instead of its control points.
     shape: Option<String>,
+    /// The degree of a Bézier curve of any degree or a NURBS (the other splines are cubic).
+    degree: Option<usize>,
     points: usize,
     segments: usize,
     steps: u32,
@@ -74,9 +76,10 @@ fn curve_rows(doc: &SwpDocument) -> Vec<CurveRow> {
         .enumerate()
         .map(|(i, c)| {
             let (points, shape) = match &c.geometry {
-                SwpGeometry::Points(_) | SwpGeometry::Hermite { .. } | SwpGeometry::Tcb { .. } => {
-                    (c.geometry.points().len(), None)
-                }
+                SwpGeometry::Points(_)
+                | SwpGeometry::Hermite { .. }
+                | SwpGeometry::Tcb { .. }
+                | SwpGeometry::Nurbs { .. } => (c.geometry.points().len(), None),
                 SwpGeometry::Circle { .. } => (0, Some(String::from("circle"))),
                 SwpGeometry::Helix { radius, pitch, turns } => {
                     (0, Some(format!("helix of radius {radius}, pitch {pitch}, {turns} turns")))
@@ -84,10 +87,16 @@ fn curve_rows(doc: &SwpDocument) -> Vec<CurveRow> {
                 SwpGeometry::Trefoil { size } => (0, Some(format!("trefoil knot of size {size}"))),
             };
             let segments = c.to_curve().map(|k| k.num_segments()).unwrap_or(0);
+            let degree = match c.kind {
+                SwpCurveKind::BezierN => Some(c.geometry.points().len().saturating_sub(1)),
+                SwpCurveKind::Nurbs { degree } => Some(degree as usize),
+                _ => None,
+            };
             CurveRow {
                 name: c.display_name(i),
                 keyword: c.keyword(),
                 shape,
+                degree,
                 points,
                 segments,
                 steps: c.steps,
@@ -126,7 +135,10 @@ fn write_text(out: &mut impl Write, file: &str, curves: &[CurveRow], surfaces: &
         for (i, c) in curves.iter().enumerate() {
             let shape = match &c.shape {
                 Some(shape) => shape.clone(),
-                None => format!("{} points, {}", c.points, plural(c.segments, "segment")),
+                None => {
+                    let degree = c.degree.map(|d| format!(", degree {d}")).unwrap_or_default();
+                    format!("{} points{degree}, {}", c.points, plural(c.segments, "segment"))
+                }
             };
             writeln!(
                 out,

@@ -17,8 +17,8 @@
 
 use glam::DVec3;
 use splinekit::{
-    AnyCurve, BSpline, BesselOverhauser, BezierSpline, CatmullRom, Circle, Helix, Hermite, KochanekBartels,
-    SplineError, Trefoil,
+    AnyCurve, BSpline, BesselOverhauser, BezierCurve, BezierSpline, CatmullRom, Circle, Helix, Hermite,
+    KochanekBartels, Nurbs, SplineError, Trefoil,
 };
 
 use crate::swp::{SwpCurve, SwpCurveKind, SwpGeometry};
@@ -34,6 +34,8 @@ impl SwpCurve {
     /// | `her2`, `her3` | [`Hermite`] |
     /// | `tcb2`, `tcb3` | [`KochanekBartels`] |
     /// | `bo2`, `bo3` | [`BesselOverhauser`] |
+    /// | `bezn2`, `bezn3` | [`BezierCurve`] ([`AnyCurve::Bezier`]) |
+    /// | `nurbs2`, `nurbs3` | [`Nurbs`] ([`AnyCurve::Nurbs`]; closed: [`Nurbs::periodic`]) |
     /// | `circ` | [`Circle`] ([`AnyCurve::Circle`]) |
     /// | `helix` | [`Helix`] ([`AnyCurve::Helix`]) |
     /// | `trefoil` | [`Trefoil`] ([`AnyCurve::Trefoil`]) |
@@ -76,8 +78,31 @@ impl SwpCurve {
                 KochanekBartels::new(points, shape, closed)?.to_piecewise()
             }
             (SwpCurveKind::BesselOverhauser, _) => BesselOverhauser::new(points, closed)?.to_piecewise(),
-            (SwpCurveKind::Hermite, SwpGeometry::Points(_) | SwpGeometry::Tcb { .. })
-            | (SwpCurveKind::KochanekBartels, SwpGeometry::Points(_) | SwpGeometry::Hermite { .. }) => {
+            (SwpCurveKind::BezierN, _) => {
+                if closed {
+                    return Err(SplineError::NotClosable { what: "a single Bézier curve cannot be closed" });
+                }
+                return Ok(AnyCurve::Bezier(BezierCurve::new(points.to_vec())?));
+            }
+            (SwpCurveKind::Nurbs { degree }, SwpGeometry::Nurbs { points, weights, knots }) => {
+                let degree = degree as usize;
+                let nurbs = match (closed, knots) {
+                    (false, knots) => Nurbs::new(degree, points.clone(), weights.clone(), knots.clone())?,
+                    (true, None) => Nurbs::periodic(degree, points.clone(), weights.clone())?,
+                    (true, Some(_)) => {
+                        return Err(SplineError::NotClosable {
+                            what: "a closed NURBS is periodic with knots of its own; it takes no knot vector",
+                        });
+                    }
+                };
+                return Ok(AnyCurve::Nurbs(nurbs));
+            }
+            (SwpCurveKind::Hermite, SwpGeometry::Points(_) | SwpGeometry::Tcb { .. } | SwpGeometry::Nurbs { .. })
+            | (
+                SwpCurveKind::KochanekBartels,
+                SwpGeometry::Points(_) | SwpGeometry::Hermite { .. } | SwpGeometry::Nurbs { .. },
+            )
+            | (SwpCurveKind::Nurbs { .. }, _) => {
                 return Err(SplineError::Empty);
             }
         };

@@ -201,9 +201,9 @@ pub enum SurfaceError {
         /// What went wrong.
         error: sweep::surface::SurfaceError,
     },
-    /// The profile of a `zrev` or a key curve of a `lathe` is a circle, helix or knot, not a
-    /// spline.
-    #[error("surface {surface}: curve {curve} must be a spline (bez2, bsp2, cr2, her2, tcb2 or bo2)")]
+    /// The profile of a `zrev` or a key curve of a `lathe` is a circle, helix or knot, a
+    /// Bézier curve of any degree or a NURBS, not a chain of cubics.
+    #[error("surface {surface}: curve {curve} must be a cubic spline (bez2, bsp2, cr2, her2, tcb2 or bo2)")]
     NotSpline {
         /// Display name of the surface.
         surface: String,

@@ -214,13 +214,13 @@ fn clause_errors_point_at_the_token() {
             "gcyl g p w scale d",
             5,
             18,
-            r#"found 3D curve "d" (bez3), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2 or circ) as the scale curve of gcyl surface "g""#,
+            r#"found 3D curve "d" (bez3), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2, bezn2, nurbs2 or circ) as the scale curve of gcyl surface "g""#,
         ),
         (
             "gcyl g p w twist w",
             5,
             18,
-            r#"found 3D curve "w" (helix), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2 or circ) as the twist curve"#,
+            r#"found 3D curve "w" (helix), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2, bezn2, nurbs2 or circ) as the twist curve"#,
         ),
         (
             "gcyl g p w scale s scale s",

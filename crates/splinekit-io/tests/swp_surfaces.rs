@@ -199,7 +199,7 @@ fn what_cannot_be_revolved_says_why() {
     assert!(err.contains("surface a") && err.contains("crosses the axis"), "{err}");
     let circle = parse("circ c 10 1\nzrev a c\n");
     let err = circle.surface_mesh(0, &SurfaceOptions::default()).map(|_| ()).unwrap_err().to_string();
-    assert!(err.contains("must be a spline"), "{err}");
+    assert!(err.contains("must be a cubic spline"), "{err}");
     let negative = parse("bez2 r 8 4 [0 1] [0 -1] [0 1] [0 1]\nbez2 z 8 4 [0 0] [0 1] [0 2] [0 3]\nlathe a 4 8 r z\n");
     let err = negative.surface_mesh(0, &SurfaceOptions::default()).map(|_| ()).unwrap_err().to_string();
     assert!(err.contains("surface a"), "{err}");

@@ -12,7 +12,7 @@ use splinekit_io::{SwpCurveKind, SwpDocument, SwpGeometry, SwpSurfaceKind};
 #[path = "swp/common.rs"]
 mod common;
 
-use common::{assert_error, parse, parse_err, without_positions};
+use common::{assert_error, parse, parse_err, sweeps_every_surface, without_positions};
 
 /// Positions of the file path and of the library agree to this (the same arithmetic).
 const SAME: f64 = 1e-15;
@@ -252,13 +252,8 @@ fn they_serve_as_profiles_and_sweeps() {
          zrev turned keys\n"
     );
     let doc = parse(&text);
+    sweeps_every_surface(&doc);
     let options = SurfaceOptions::default();
-    for k in 0..doc.surfaces.len() {
-        let mesh = doc.surface_mesh(k, &options).unwrap_or_else(|e| panic!("surface {k}: {e}"));
-        assert!(mesh.num_triangles() > 0);
-        assert!(mesh.positions.iter().all(|p| p.is_finite()), "surface {k}");
-        assert_eq!(doc.surface_counts(k, &options).unwrap().triangles, mesh.num_triangles() as u64, "surface {k}");
-    }
     // srev: STEPS per profile segment (2 segments of 12 steps) by 24 slices
     assert_eq!(doc.surface_mesh(0, &options).unwrap().num_triangles(), 2 * (2 * 12) * 24);
     assert!(matches!(doc.surfaces[1].kind, SwpSurfaceKind::GeneralizedCylinder { profile: 2, sweep: 3, .. }));
@@ -266,7 +261,7 @@ fn they_serve_as_profiles_and_sweeps() {
     let err = parse_err(&format!("{SAMPLE}srev bad 10 path"));
     assert!(
         err.to_string()
-            .contains("found 3D curve \"path\" (bo3), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2 or circ)"),
+            .contains("found 3D curve \"path\" (bo3), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2, bezn2, nurbs2 or circ)"),
         "{err}"
     );
 }

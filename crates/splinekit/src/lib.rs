@@ -48,8 +48,8 @@ pub use arclen::{
 };
 pub use curve::{
     Aabb, AnyCurve, BEZIER_BASIS, BSPLINE_BASIS, BSpline, BesselOverhauser, BezierCurve, BezierSpline,
-    CATMULL_ROM_BASIS, CatmullRom, Circle, CubicBezier, Helix, Hermite, KochanekBartels, Nearest, Nurbs, ParamCurve,
-    PiecewiseCubic, SplineError, Tcb, Trefoil,
+    CATMULL_ROM_BASIS, CatmullRom, Circle, CubicBezier, Helix, Hermite, KochanekBartels, MAX_BEZIER_POINTS,
+    MAX_NURBS_DEGREE, MAX_NURBS_POINTS, Nearest, Nurbs, ParamCurve, PiecewiseCubic, SplineError, Tcb, Trefoil,
 };
 pub use mesh::{Adjacency, FaceVarying, MeshError, PolyMesh, TriMesh, VertexCurvature, vertex_curvature};
 pub use vector::Vector;

@@ -6,8 +6,7 @@ use super::{SourcePos, SwpClause};
 use crate::location::{Location, Position, Prefix};
 
 /// The keywords listed in "unknown keyword" messages, in the order they are documented.
-pub(crate) const KEYWORD_LIST: &str =
-    "bez2, bsp2, bez3, bsp3, cr2, cr3, her2, her3, tcb2, tcb3, bo2, bo3, circ, helix, trefoil, srev or gcyl";
+pub(crate) const KEYWORD_LIST: &str = "bez2, bsp2, bez3, bsp3, cr2, cr3, her2, her3, tcb2, tcb3, bo2, bo3, bezn2, bezn3, nurbs2, nurbs3, circ, helix, trefoil, srev or gcyl";
 
 /// Longest token text (in characters) quoted in a message before it is shortened with `…`.
 const MAX_QUOTED_CHARS: usize = 40;
@@ -169,6 +168,18 @@ pub enum SwpErrorKind {
         /// NPOINTS as written.
         found: u64,
     },
+    /// NPOINTS breaks a point-count rule that depends on more than the keyword: a Bézier curve
+    /// of any degree's 2 to 65 points, or a NURBS's degree + 1 and more. Points at the NPOINTS
+    /// token.
+    #[error("found {found} {}, expected {rule} for {curve}", unit(false, *.found))]
+    PointRange {
+        /// The curve, like `nurbs2 curve "arc"`.
+        curve: String,
+        /// The rule, like `at least 4 points (degree + 1) and at most 1048576 of degree 3`.
+        rule: String,
+        /// NPOINTS as written.
+        found: u64,
+    },
     /// A surface refers to a name that is not a curve defined earlier in the file (or to `.`).
     #[error("found {}, expected {expected}", quote(name))]
     UndefinedName {
@@ -192,7 +203,7 @@ pub enum SwpErrorKind {
     },
     /// A surface's profile is a 3D curve.
     #[error(
-        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2 or circ) as the profile of {surface}",
+        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2, bezn2, nurbs2 or circ) as the profile of {surface}",
         quote(name)
     )]
     ProfileNot2D {
@@ -205,7 +216,7 @@ pub enum SwpErrorKind {
     },
     /// A gcyl's scale or twist curve is a 3D curve.
     #[error(
-        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2 or circ) as the {role} curve of {surface}",
+        "found 3D curve {} ({keyword}), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2, bezn2, nurbs2 or circ) as the {role} curve of {surface}",
         quote(name)
     )]
     CurveNot2D {

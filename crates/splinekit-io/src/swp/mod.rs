@@ -10,10 +10,14 @@
 //!
 //! ```text
 //! document := object*
-//! object   := curve | hermite | tcb | circle | helix | trefoil | srev | gcyl
+//! object   := curve | hermite | tcb | bezn | nurbs | circle | helix | trefoil | srev | gcyl
 //! curve    := ("bez2"|"bsp2"|"cr2"|"bo2"|"bez3"|"bsp3"|"cr3"|"bo3") NAME STEPS NPOINTS option* point{NPOINTS}
 //! hermite  := ("her2"|"her3") NAME STEPS NPAIRS option* (point point){NPAIRS}   point, then tangent
 //! tcb      := ("tcb2"|"tcb3") NAME STEPS NKEYS option* key{NKEYS}
+//! bezn     := ("bezn2"|"bezn3") NAME STEPS NPOINTS ["open"] point{NPOINTS}   one Bézier curve of degree NPOINTS − 1
+//! nurbs    := ("nurbs2"|"nurbs3") NAME STEPS NPOINTS nopt* wpoint{NPOINTS}
+//! nopt     := "closed" | "open" | "degree" D | "knots" k{NPOINTS+D+1} | "knots" "[" k{NPOINTS+D+1} "]" | "[" "knots" k{NPOINTS+D+1} "]"
+//! wpoint   := "[" x y w "]" | "[" x y z w "]"   nurbs2 | nurbs3: a control point and its weight w > 0
 //! point    := "[" x y "]"        2D kinds (bez2 bsp2 cr2 bo2 her2); z is 0 in the model
 //!           | "[" x y z "]"      3D kinds (bez3 bsp3 cr3 bo3 her3)
 //! key      := "[" x y t c b "]" | "[" x y z t c b "]"   tcb2 | tcb3: tension, continuity, bias in [−1, 1]
@@ -33,7 +37,8 @@
 //!   other text: `[3 0]`, `[ 3 0 ]` and `[-2 2] [-4 0]` on one line all work. A UTF-8 byte
 //!   order mark at the very start is skipped (it does not count as a column).
 //! - **Keywords** are lowercase. `bez2 bsp2 bez3 bsp3 circ srev gcyl` are the original SWP
-//!   keywords; `cr2 cr3 her2 her3 tcb2 tcb3 bo2 bo3 helix trefoil` and the gcyl clause words `scale` and `twist`
+//!   keywords; `cr2 cr3 her2 her3 tcb2 tcb3 bo2 bo3 bezn2 bezn3 nurbs2 nurbs3 helix trefoil` and
+//!   the gcyl clause words `scale` and `twist`
 //!   are ours (see *Extensions*).
 //! - **Names**: `.` is anonymous and may repeat; every other token is a name that must be unique
 //!   across all curves *and* surfaces. `[` and `]` cannot be names, and neither can anything
@@ -51,12 +56,14 @@
 //!   | Kochanek–Bartels (`tcb2`, `tcb3`) | ≥ 4 | ≥ 3 |
 //!   | Bessel–Overhauser (`bo2`, `bo3`) | ≥ 4 | ≥ 3 |
 //!   | Hermite (`her2`, `her3`) | ≥ 2 pairs | ≥ 2 pairs |
+//!   | Bézier of any degree (`bezn2`, `bezn3`) | 2 to 65 | — |
+//!   | NURBS of degree D (`nurbs2`, `nurbs3`) | ≥ D + 1 | ≥ D + 1 and ≥ 3 |
 //!
 //! - **Numbers** are decimal floating-point numbers such as `-0.765483`, `2`, `1e-3` or `.5`.
 //!   `nan`, `inf` and numbers too large for an `f64` are errors. RADIUS must be ≥ 0 (a radius of
 //!   0 is valid: real files use it as a degenerate sweep).
 //! - **Profiles** of `srev` and `gcyl` must be 2D curves (`bez2`, `bsp2`, `cr2`, `her2`, `tcb2`,
-//!   `bo2`, `circ`);
+//!   `bo2`, `bezn2`, `nurbs2`, `circ`);
 //!   a `gcyl` sweep may be 2D or 3D. Scale and twist curves must be 2D as well.
 //! - **Quirks of real files** that are accepted: CRLF line endings, brackets with or without
 //!   inner spaces, several points on one line, repeated end points, trailing spaces, no final
@@ -81,6 +88,25 @@
 //!   Like Catmull-Rom curves, both interpolate their inner keys: open, N ≥ 4 and N − 3 segments
 //!   from the second key to the second-to-last; closed, N ≥ 3 and N segments. STEPS counts
 //!   the steps of each segment.
+//! - **Bézier curves of any degree** `bezn2` / `bezn3` ([`splinekit::BezierCurve`]): one curve
+//!   through its first and last point, of degree NPOINTS − 1 (2 to 65 points: a line, a
+//!   quadratic, a cubic, … up to degree 64), `bezn2 NAME STEPS N [x y] …`. One segment: STEPS
+//!   counts the steps of the whole curve. Always open.
+//! - **NURBS** `nurbs2` / `nurbs3` ([`splinekit::Nurbs`]): control points with a weight each
+//!   (w > 0) inside the brackets, `nurbs2 NAME STEPS N degree D [x y w] …`. `degree D`
+//!   (1 to 32; default 3) and `knots k1 … kM` (M = N + D + 1 non-decreasing numbers; default
+//!   the clamped uniform vector, so the curve starts at its first point and ends at its last)
+//!   are options; `degree` comes before `knots`, and the knots may stand in brackets
+//!   (`knots [0 0 0 1 1 1]` or `[knots 0 0 0 1 1 1]`). `closed` makes a periodic curve with
+//!   uniform knots (no `knots` then). Each knot span of positive length is one segment:
+//!   STEPS counts the steps of each span.
+//!
+//! ```text
+//! # a quarter circle: the exact arc as a rational quadratic
+//! nurbs2 arc 16 3 degree 2
+//! [1 0 1] [1 1 0.7071067811865476] [0 1 1]
+//! ```
+//!
 //! - **Curve options** stand between NPOINTS and the first `[`:
 //!   - `closed` makes the curve closed (see the point-count table), `open` is the default;
 //!   - Catmull-Rom only: `alpha A` with 0 ≤ A ≤ 1 picks the knot parametrization (0 uniform,
@@ -166,8 +192,8 @@ mod writer;
 use std::path::Path;
 
 use glam::DVec3;
-use splinekit::Tcb;
 use splinekit::sweep::MeshLayout;
+use splinekit::{MAX_BEZIER_POINTS, MAX_NURBS_DEGREE, MAX_NURBS_POINTS, Tcb};
 
 pub use crate::location::SourcePos;
 pub use error::{SwpError, SwpErrorKind};
@@ -178,6 +204,9 @@ pub use validate::{SwpCurveRole, SwpInvalid, SwpInvalidKind, SwpNumber, SwpObjec
 /// STEPS says how finely a curve or surface is tessellated; one million is far more than any
 /// display needs and keeps a typo from asking for gigabytes of vertices.
 pub const MAX_STEPS: u32 = 1_000_000;
+
+/// The degree of a NURBS curve whose header gives no `degree D` (cubic, as the other kinds).
+pub const DEFAULT_NURBS_DEGREE: u32 = 3;
 
 /// The largest TURNS value accepted for a helix.
 ///
@@ -247,6 +276,10 @@ impl SwpCurve {
             (SwpCurveKind::KochanekBartels, true) => "tcb3",
             (SwpCurveKind::BesselOverhauser, false) => "bo2",
             (SwpCurveKind::BesselOverhauser, true) => "bo3",
+            (SwpCurveKind::BezierN, false) => "bezn2",
+            (SwpCurveKind::BezierN, true) => "bezn3",
+            (SwpCurveKind::Nurbs { .. }, false) => "nurbs2",
+            (SwpCurveKind::Nurbs { .. }, true) => "nurbs3",
             (SwpCurveKind::Hermite, false) => "her2",
             (SwpCurveKind::Hermite, true) => "her3",
             (SwpCurveKind::Circle, _) => "circ",
@@ -275,6 +308,15 @@ pub enum SwpCurveKind {
     KochanekBartels,
     /// Bessel–Overhauser spline (`bo2`, `bo3`, an extension).
     BesselOverhauser,
+    /// One Bézier curve of any degree: `n` control points make degree `n − 1` (`bezn2`,
+    /// `bezn3`, an extension; [`splinekit::BezierCurve`]). Always open.
+    BezierN,
+    /// NURBS curve of `degree` (`nurbs2`, `nurbs3`, an extension; geometry
+    /// [`SwpGeometry::Nurbs`], core [`splinekit::Nurbs`]). Closed means periodic.
+    Nurbs {
+        /// The degree, 1 to [`splinekit::MAX_NURBS_DEGREE`].
+        degree: u32,
+    },
     /// Circle in the xy-plane, centred at the origin (`circ`).
     Circle,
     /// Circular helix about +z (`helix`, an extension).
@@ -288,7 +330,11 @@ impl SwpCurveKind {
     /// [`Hermite`](Self::Hermite)), closed or open: the point-count rule of the
     /// [module docs](self), which the reader and [`SwpDocument::validate`] both apply.
     ///
-    /// Circles, helices and trefoils have no control points: they accept only 0.
+    /// Circles, helices and trefoils have no control points: they accept only 0. A Bézier
+    /// curve of any degree ([`BezierN`](Self::BezierN)) takes 2 to
+    /// [`MAX_BEZIER_POINTS`] points and is never closed; a NURBS
+    /// at least `degree + 1` points (closed: also at least 3), at most
+    /// [`MAX_NURBS_POINTS`].
     ///
     /// ```
     /// use splinekit_io::SwpCurveKind;
@@ -310,6 +356,14 @@ impl SwpCurveKind {
                 count >= 3
             }
             (Self::Hermite, _) => count >= 2,
+            (Self::BezierN, false) => count >= 2 && count <= MAX_BEZIER_POINTS as u64,
+            (Self::BezierN, true) => false,
+            (Self::Nurbs { degree }, closed) => {
+                (1..=MAX_NURBS_DEGREE as u32).contains(&degree)
+                    && count > u64::from(degree)
+                    && count <= MAX_NURBS_POINTS as u64
+                    && (!closed || count >= 3)
+            }
             (Self::Circle | Self::Helix | Self::Trefoil, _) => count == 0,
         }
     }
@@ -335,6 +389,16 @@ pub enum SwpGeometry {
         points: Vec<DVec3>,
         /// Each key's tension, continuity and bias, each in `[−1, 1]`.
         shape: Vec<Tcb>,
+    },
+    /// Control points and weights of a NURBS curve (same length; z = 0 for `nurbs2`), and its
+    /// knot vector if the file gives one (`None`: clamped uniform, or periodic when closed).
+    Nurbs {
+        /// The control points.
+        points: Vec<DVec3>,
+        /// Each point's weight (> 0).
+        weights: Vec<f64>,
+        /// `points.len() + degree + 1` non-decreasing knots, or `None` for the default.
+        knots: Option<Vec<f64>>,
     },
     /// A circle of the given radius (≥ 0).
     Circle {
@@ -363,17 +427,24 @@ impl SwpGeometry {
     #[must_use]
     pub fn points(&self) -> &[DVec3] {
         match self {
-            Self::Points(points) | Self::Hermite { points, .. } | Self::Tcb { points, .. } => points,
+            Self::Points(points)
+            | Self::Hermite { points, .. }
+            | Self::Tcb { points, .. }
+            | Self::Nurbs { points, .. } => points,
             Self::Circle { .. } | Self::Helix { .. } | Self::Trefoil { .. } => &[],
         }
     }
 
     /// The points of a spline, to edit (see [`points`](Self::points)); `None` for circles,
-    /// helices and trefoils. Tangents and shapes are not touched: keep their lists as long.
+    /// helices and trefoils. Tangents, shapes and weights are not touched: keep their lists as
+    /// long.
     #[must_use]
     pub fn points_mut(&mut self) -> Option<&mut Vec<DVec3>> {
         match self {
-            Self::Points(points) | Self::Hermite { points, .. } | Self::Tcb { points, .. } => Some(points),
+            Self::Points(points)
+            | Self::Hermite { points, .. }
+            | Self::Tcb { points, .. }
+            | Self::Nurbs { points, .. } => Some(points),
             Self::Circle { .. } | Self::Helix { .. } | Self::Trefoil { .. } => None,
         }
     }
@@ -635,8 +706,9 @@ impl SwpDocument {
     /// Writes the document as SWP text.
     ///
     /// The output uses plain SWP keywords and no options wherever the options are the
-    /// defaults, LF line endings, one point (or Hermite point-tangent pair, or Kochanek–Bartels
-    /// key `[x y t c b]`) per line, a blank
+    /// defaults (a NURBS header always says its `degree`, and its `knots` when it has them),
+    /// LF line endings, one point (or Hermite point-tangent pair, Kochanek–Bartels key
+    /// `[x y t c b]` or NURBS point `[x y w]`) per line, a blank
     /// line between objects, all curves before all surfaces, and Rust's shortest round-trip
     /// formatting of `f64` (so every coordinate reads back exactly).
     ///
@@ -656,7 +728,8 @@ impl SwpDocument {
     /// non-finite number, `steps` or helix turns out of range, …) is written anyway, and the
     /// output then fails to parse. The z coordinates of 2D curves are not written; a Hermite
     /// curve writes as many pairs as its shorter list has entries (a Kochanek–Bartels curve as
-    /// many keys as its shorter list of points and shapes). Scale and twist clauses are
+    /// many keys as its shorter list of points and shapes, a NURBS curve as many points as its
+    /// shorter list of points and weights). Scale and twist clauses are
     /// written after the sweep, `scale` first.
     ///
     /// Call [`validate`](Self::validate) first to refuse such a document before writing: when

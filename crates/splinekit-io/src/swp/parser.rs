@@ -3,7 +3,7 @@
 use std::collections::HashMap;
 
 use glam::DVec3;
-use splinekit::Tcb;
+use splinekit::{MAX_BEZIER_POINTS, MAX_NURBS_DEGREE, MAX_NURBS_POINTS, Tcb};
 
 use super::error::{SwpError, SwpErrorKind};
 use super::lexer::{Token, TokenKind, tokenize};
@@ -11,15 +11,15 @@ use super::validate::SwpCurveRole;
 use splinekit::sweep::MeshLayout;
 
 use super::{
-    DEFAULT_XSWEEP_EPSILON, DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, MAX_HELIX_TURNS, MAX_STEPS,
-    SETTING_WORDS, SourcePos, SwpClause, SwpCurve, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry, SwpSurface,
-    SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation,
+    DEFAULT_NURBS_DEGREE, DEFAULT_XSWEEP_EPSILON, DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, MAX_HELIX_TURNS,
+    MAX_STEPS, SETTING_WORDS, SourcePos, SwpClause, SwpCurve, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry,
+    SwpSurface, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation,
 };
 
 /// Every keyword that starts an object.
-const KEYWORDS: [&str; 20] = [
-    "bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "tcb2", "tcb3", "bo2", "bo3", "circ", "helix",
-    "trefoil", "srev", "gcyl", "zrev", "xsweep", "lathe",
+const KEYWORDS: [&str; 24] = [
+    "bez2", "bsp2", "bez3", "bsp3", "cr2", "cr3", "her2", "her3", "tcb2", "tcb3", "bo2", "bo3", "bezn2", "bezn3",
+    "nurbs2", "nurbs3", "circ", "helix", "trefoil", "srev", "gcyl", "zrev", "xsweep", "lathe",
 ];
 
 /// Whether `word` is an SWP keyword.
@@ -36,6 +36,8 @@ enum Family {
     Hermite,
     KochanekBartels,
     BesselOverhauser,
+    BezierN,
+    Nurbs,
 }
 
 /// What a keyword starts.
@@ -67,6 +69,10 @@ fn keyword(word: &str) -> Option<Keyword> {
         "tcb3" => curve("tcb3", Family::KochanekBartels, 3),
         "bo2" => curve("bo2", Family::BesselOverhauser, 2),
         "bo3" => curve("bo3", Family::BesselOverhauser, 3),
+        "bezn2" => curve("bezn2", Family::BezierN, 2),
+        "bezn3" => curve("bezn3", Family::BezierN, 3),
+        "nurbs2" => curve("nurbs2", Family::Nurbs, 2),
+        "nurbs3" => curve("nurbs3", Family::Nurbs, 3),
         "circ" => Some(Keyword::Circle),
         "helix" => Some(Keyword::Helix),
         "trefoil" => Some(Keyword::Trefoil),
@@ -80,8 +86,9 @@ fn keyword(word: &str) -> Option<Keyword> {
 }
 
 impl Family {
-    /// The curve kind of this family; `alpha` is the Catmull-Rom parametrization.
-    fn kind(self, alpha: f64) -> SwpCurveKind {
+    /// The curve kind of this family; `alpha` is the Catmull-Rom parametrization, `degree` the
+    /// NURBS degree.
+    fn kind(self, alpha: f64, degree: u32) -> SwpCurveKind {
         match self {
             Self::Bezier => SwpCurveKind::Bezier,
             Self::BSpline => SwpCurveKind::BSpline,
@@ -89,6 +96,8 @@ impl Family {
             Self::Hermite => SwpCurveKind::Hermite,
             Self::KochanekBartels => SwpCurveKind::KochanekBartels,
             Self::BesselOverhauser => SwpCurveKind::BesselOverhauser,
+            Self::BezierN => SwpCurveKind::BezierN,
+            Self::Nurbs => SwpCurveKind::Nurbs { degree },
         }
     }
 }
@@ -265,7 +274,8 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// `bez2 … bsp3 cr2 cr3 her2 her3 tcb2 tcb3 bo2 bo3`, after the keyword.
+    /// `bez2 … bsp3 cr2 cr3 her2 her3 tcb2 tcb3 bo2 bo3 bezn2 bezn3 nurbs2 nurbs3`, after the
+    /// keyword.
     fn curve(&mut self, pos: SourcePos, keyword: &'static str, family: Family, dim: u8) -> Result<(), SwpError> {
         let index = self.doc.curves.len();
         let (name, name_pos) = self.name(&format!("{keyword} curve"))?;
@@ -273,8 +283,13 @@ impl<'a> Parser<'a> {
         let steps = self.steps(&label)?;
 
         let pairs = family == Family::Hermite;
-        // Kochanek–Bartels keys carry their tension, continuity and bias after the coordinates
-        let shaped = family == Family::KochanekBartels;
+        // Kochanek–Bartels keys carry their tension, continuity and bias after the coordinates,
+        // NURBS points their weight
+        let extra = match family {
+            Family::KochanekBartels => Extra::Shape,
+            Family::Nurbs => Extra::Weight,
+            _ => Extra::None,
+        };
         let items = if pairs { "point pairs" } else { "points" };
         let expected = || format!("the number of {items} (an integer ≥ 0) of {label}");
         let count_token = self.expect(expected)?;
@@ -282,23 +297,21 @@ impl<'a> Parser<'a> {
             Some(value) if value >= 0 => u64::try_from(value).unwrap_or(u64::MAX),
             _ => return Err(self.invalid_number(count_token, expected())),
         };
+        let header = Header { keyword, family, label: &label, count, count_token };
 
-        let options = self.options(family, &label)?;
-        let kind = family.kind(options.alpha);
-        if !kind.accepts_point_count(options.closed, count) {
-            return Err(self.error(
-                count_token.pos,
-                SwpErrorKind::PointCount { curve: label, keyword, closed: options.closed, found: count },
-            ));
-        }
+        let options = self.options(&header)?;
+        let kind = family.kind(options.alpha, options.degree);
+        self.check_count(&header, kind, options.closed)?;
 
         // Each point takes at least `dim + 2` tokens, so the remaining tokens bound how many
         // points can follow: never reserve memory for a count the input cannot back.
-        let tokens_per_item = (usize::from(dim + 2) + if shaped { 3 } else { 0 }) * if pairs { 2 } else { 1 };
+        let tokens_per_item = (usize::from(dim + 2) + extra.names().len()) * if pairs { 2 } else { 1 };
         let capacity = usize::try_from(count).unwrap_or(usize::MAX).min(self.remaining() / tokens_per_item);
+        let with_extra = |extra_kind: Extra| if extra == extra_kind { capacity } else { 0 };
         let mut points = Vec::with_capacity(capacity);
         let mut tangents = Vec::with_capacity(if pairs { capacity } else { 0 });
-        let mut shape = Vec::with_capacity(if shaped { capacity } else { 0 });
+        let mut shape = Vec::with_capacity(with_extra(Extra::Shape));
+        let mut weights = Vec::with_capacity(with_extra(Extra::Weight));
         for i in 0..count {
             let n = i + 1;
             match self.peek() {
@@ -316,24 +329,23 @@ impl<'a> Parser<'a> {
                 }
                 Some(_) => {}
             }
-            if shaped {
-                let (point, tcb) = self.bracketed(dim, true, "point", n, count, &label)?;
-                points.push(point);
-                shape.push(tcb);
-                continue;
+            let (point, values) = self.bracketed(dim, extra, "point", n, count, &label)?;
+            points.push(point);
+            match extra {
+                Extra::Shape => shape.push(Tcb::new(values[0], values[1], values[2])),
+                Extra::Weight => weights.push(values[0]),
+                Extra::None => {}
             }
-            points.push(self.point(dim, "point", n, count, &label)?);
             if pairs {
                 tangents.push(self.point(dim, "tangent", n, count, &label)?);
             }
         }
 
-        let geometry = if pairs {
-            SwpGeometry::Hermite { points, tangents }
-        } else if shaped {
-            SwpGeometry::Tcb { points, shape }
-        } else {
-            SwpGeometry::Points(points)
+        let geometry = match extra {
+            Extra::Shape => SwpGeometry::Tcb { points, shape },
+            Extra::Weight => SwpGeometry::Nurbs { points, weights, knots: options.knots },
+            Extra::None if pairs => SwpGeometry::Hermite { points, tangents },
+            Extra::None => SwpGeometry::Points(points),
         };
         self.register(name, name_pos, Named::Curve(index));
         self.doc.curves.push(SwpCurve {
@@ -348,77 +360,239 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// Checks NPOINTS against the point-count rule of `kind`, closed or open.
+    fn check_count(&self, header: &Header<'_, '_>, kind: SwpCurveKind, closed: bool) -> Result<(), SwpError> {
+        let Header { keyword, label, count, count_token, .. } = *header;
+        if kind.accepts_point_count(closed, count) {
+            return Ok(());
+        }
+        let rule = match kind {
+            SwpCurveKind::BezierN => {
+                format!("2 to {MAX_BEZIER_POINTS} points (one Bézier curve of degree NPOINTS − 1)")
+            }
+            SwpCurveKind::Nurbs { degree } => {
+                let least = (u64::from(degree) + 1).max(if closed { 3 } else { 2 });
+                let closed = if closed { ", and 3 for a closed curve" } else { "" };
+                let hint = if degree == DEFAULT_NURBS_DEGREE { "; `degree D` sets another degree" } else { "" };
+                format!("at least {least} points (degree {degree} + 1{closed}{hint}) and at most {MAX_NURBS_POINTS}")
+            }
+            _ => {
+                return Err(self.error(
+                    count_token.pos,
+                    SwpErrorKind::PointCount { curve: label.to_owned(), keyword, closed, found: count },
+                ));
+            }
+        };
+        Err(self.error(count_token.pos, SwpErrorKind::PointRange { curve: label.to_owned(), rule, found: count }))
+    }
+
     /// Reads the option words between NPOINTS and the first `[`. Stops at the first token that
     /// is not an option word and leaves it.
-    fn options(&mut self, family: Family, label: &str) -> Result<CurveOptions, SwpError> {
+    fn options(&mut self, header: &Header<'a, '_>) -> Result<CurveOptions, SwpError> {
+        let Header { keyword, family, label, .. } = *header;
         let mut closed: Option<Token<'a>> = None;
         let mut alpha: Option<(Token<'a>, f64)> = None;
+        let mut degree: Option<(Token<'a>, u32)> = None;
+        let mut knots: Option<(Token<'a>, Vec<f64>)> = None;
         while let Some(token) = self.peek() {
+            // `[knots k0 … kM]`: the knot vector in brackets
+            let bracketed_knots =
+                token.kind == TokenKind::Open && self.tokens.get(self.next + 1).is_some_and(|t| t.text == "knots");
             let word = match token.text {
                 "closed" | "open" => OptionWord::Openness,
                 "uniform" => OptionWord::Alpha(Some(0.0)),
                 "centripetal" => OptionWord::Alpha(Some(0.5)),
                 "chordal" => OptionWord::Alpha(Some(1.0)),
                 "alpha" => OptionWord::Alpha(None),
+                "degree" => OptionWord::Degree,
+                "knots" => OptionWord::Knots,
+                _ if bracketed_knots => OptionWord::Knots,
                 _ => break,
             };
             self.next += 1;
-            let OptionWord::Alpha(named_value) = word else {
-                if let Some(first) = closed {
-                    return Err(self.bad_option(token, already(label, first, "closed or open")));
-                }
-                closed = Some(token);
-                continue;
+            let (owner, owners) = match word {
+                OptionWord::Openness => (family, ""),
+                OptionWord::Alpha(_) => (Family::CatmullRom, "cr2 and cr3"),
+                OptionWord::Degree | OptionWord::Knots => (Family::Nurbs, "nurbs2 and nurbs3"),
             };
-            if family != Family::CatmullRom {
+            if owner != family {
+                let word = if bracketed_knots { "knots" } else { token.text };
                 return Err(self.bad_option(
                     token,
-                    format!(
-                        "a curve option of {label} ({}); `{}` applies to cr2 and cr3 only",
-                        option_list(family),
-                        token.text
-                    ),
+                    format!("a curve option of {label} ({}); `{word}` applies to {owners} only", option_list(family)),
                 ));
             }
-            if let Some((first, _)) = alpha {
-                return Err(self.bad_option(token, already(label, first, "a parametrization")));
-            }
-            let value = match named_value {
-                Some(value) => value,
-                None => {
-                    let expected = || format!("the alpha value (a number from 0 to 1) of {label}");
-                    let value_token = self.expect(expected)?;
-                    let value = number(value_token.text).ok_or_else(|| self.invalid_number(value_token, expected()))?;
-                    if !(0.0..=1.0).contains(&value) {
-                        return Err(self.bad_option(value_token, format!("an alpha value from 0 to 1 for {label}")));
+            match word {
+                OptionWord::Openness => {
+                    if let Some(first) = closed {
+                        return Err(self.bad_option(token, already(label, first, "closed or open")));
                     }
-                    value
+                    if token.text == "closed" && family == Family::BezierN {
+                        return Err(self.bad_option(
+                            token,
+                            format!(
+                                "`open` or `[` starting point 1 of {label}: a {keyword} curve is one open Bézier \
+                                 curve (repeat its first point at the end to close it)"
+                            ),
+                        ));
+                    }
+                    if token.text == "closed"
+                        && let Some((first, _)) = &knots
+                    {
+                        return Err(self.bad_option(token, periodic_with_knots(label, *first)));
+                    }
+                    closed = Some(token);
                 }
-            };
-            alpha = Some((token, value));
+                OptionWord::Alpha(named_value) => {
+                    if let Some((first, _)) = alpha {
+                        return Err(self.bad_option(token, already(label, first, "a parametrization")));
+                    }
+                    let value = match named_value {
+                        Some(value) => value,
+                        None => {
+                            let expected = || format!("the alpha value (a number from 0 to 1) of {label}");
+                            let value_token = self.expect(expected)?;
+                            let value =
+                                number(value_token.text).ok_or_else(|| self.invalid_number(value_token, expected()))?;
+                            if !(0.0..=1.0).contains(&value) {
+                                return Err(
+                                    self.bad_option(value_token, format!("an alpha value from 0 to 1 for {label}"))
+                                );
+                            }
+                            value
+                        }
+                    };
+                    alpha = Some((token, value));
+                }
+                OptionWord::Degree => {
+                    if let Some((first, _)) = degree {
+                        return Err(self.bad_option(token, already(label, first, "degree")));
+                    }
+                    if let Some((first, _)) = &knots {
+                        return Err(self.bad_option(
+                            token,
+                            format!(
+                                "`[` starting point 1 of {label}: `degree` must come before `knots` (at line {}, \
+                                 column {}), as the number of knots depends on it",
+                                first.pos.line, first.pos.column
+                            ),
+                        ));
+                    }
+                    let expected = || format!("a degree (an integer from 1 to {MAX_NURBS_DEGREE}) for {label}");
+                    let value_token = self.expect(expected)?;
+                    let value = int_value(value_token.text)
+                        .and_then(|d| u32::try_from(d).ok())
+                        .filter(|d| (1..=MAX_NURBS_DEGREE as u32).contains(d))
+                        .ok_or_else(|| self.invalid_number(value_token, expected()))?;
+                    degree = Some((token, value));
+                }
+                OptionWord::Knots => {
+                    if let Some((first, _)) = &knots {
+                        return Err(self.bad_option(token, already(label, *first, "knots")));
+                    }
+                    if let Some(first) = closed.filter(|t| t.text == "closed") {
+                        return Err(self.bad_option(token, periodic_with_knots(label, first)));
+                    }
+                    if bracketed_knots {
+                        self.next += 1; // the word `knots` after `[`
+                    }
+                    let d = degree.map_or(DEFAULT_NURBS_DEGREE, |(_, d)| d);
+                    let values = self.knots(header, d, bracketed_knots)?;
+                    knots = Some((token, values));
+                }
+            }
         }
         Ok(CurveOptions {
             closed: closed.is_some_and(|t| t.text == "closed"),
             alpha: alpha.map_or(0.0, |(_, value)| value),
+            degree: degree.map_or(DEFAULT_NURBS_DEGREE, |(_, d)| d),
+            knots: knots.map(|(_, values)| values),
         })
+    }
+
+    /// Reads the knot vector after the word `knots` of a NURBS of `degree`: NPOINTS + degree
+    /// + 1 non-decreasing numbers, in brackets if `in_brackets` (`[knots …]`) or if a `[`
+    ///   follows (`knots […]`), that leave the curve's domain non-empty.
+    fn knots(&mut self, header: &Header<'a, '_>, degree: u32, in_brackets: bool) -> Result<Vec<f64>, SwpError> {
+        let label = header.label;
+        let knots_pos = self.tokens.get(self.next.saturating_sub(1)).map_or_else(|| self.end_pos(), |t| t.pos);
+        // the count rule first, so that the number of knots to read is sane
+        self.check_count(header, SwpCurveKind::Nurbs { degree }, false)?;
+        let n = header.count;
+        let expected_count = n + u64::from(degree) + 1;
+        let in_brackets = in_brackets
+            || match self.peek() {
+                Some(token) if token.kind == TokenKind::Open => {
+                    self.next += 1;
+                    true
+                }
+                _ => false,
+            };
+        let rule = || format!("NPOINTS + degree + 1 = {n} + {degree} + 1");
+        let capacity = usize::try_from(expected_count).unwrap_or(usize::MAX).min(self.remaining());
+        let mut values: Vec<f64> = Vec::with_capacity(capacity);
+        for k in 1..=expected_count {
+            let expected = || format!("a number (knot {k} of the {expected_count} knots, {}, of {label})", rule());
+            let token = self.expect(expected)?;
+            let value = number(token.text).ok_or_else(|| self.invalid_number(token, expected()))?;
+            if let Some(&before) = values.last()
+                && value < before
+            {
+                return Err(self
+                    .invalid_number(token, format!("a knot ≥ {before} (knot {k} of {label}; knots never decrease)")));
+            }
+            values.push(value);
+        }
+        let extra_knot = |token: Token<'_>| token.kind == TokenKind::Word && number(token.text).is_some();
+        if in_brackets {
+            let expected = || format!("`]` closing the {expected_count} knots ({}) of {label}", rule());
+            let close = self.expect(expected)?;
+            if close.kind != TokenKind::Close {
+                return Err(self.unexpected(close, expected()));
+            }
+        } else if let Some(token) = self.peek().filter(|t| extra_knot(*t)) {
+            return Err(self.unexpected(
+                token,
+                format!("`[` starting point 1 of {label}, after its {expected_count} knots ({})", rule()),
+            ));
+        }
+        // the domain runs from knot `degree + 1` to knot `n + 1` (1-based)
+        let (first, last) = (degree as usize, usize::try_from(n).unwrap_or(usize::MAX));
+        if values[first] >= values[last] {
+            return Err(self.error(
+                knots_pos,
+                SwpErrorKind::BadOption {
+                    found: "knots".to_owned(),
+                    expected: format!(
+                        "a knot vector whose knot {} is less than its knot {} for {label}: the curve runs between \
+                         them, and they are both {}",
+                        first + 1,
+                        last + 1,
+                        values[first]
+                    ),
+                },
+            ));
+        }
+        Ok(values)
     }
 
     /// Reads `[x y]` or `[x y z]`: the `role` (point or tangent) number `n` of `label`.
     fn point(&mut self, dim: u8, role: &str, n: u64, count: u64, label: &str) -> Result<DVec3, SwpError> {
-        Ok(self.bracketed(dim, false, role, n, count, label)?.0)
+        Ok(self.bracketed(dim, Extra::None, role, n, count, label)?.0)
     }
 
-    /// Reads `[x y]` or `[x y z]`, followed before the `]` by a tension, continuity and bias
-    /// (each from −1 to 1) if `shaped`: the `role` (point or tangent) number `n` of `label`.
+    /// Reads `[x y]` or `[x y z]`, followed before the `]` by the `extra` numbers (a tension,
+    /// continuity and bias, each from −1 to 1, or a weight > 0): the `role` (point or tangent)
+    /// number `n` of `label`. The extra numbers come first in the array.
     fn bracketed(
         &mut self,
         dim: u8,
-        shaped: bool,
+        extra: Extra,
         role: &str,
         n: u64,
         count: u64,
         label: &str,
-    ) -> Result<(DVec3, Tcb), SwpError> {
+    ) -> Result<(DVec3, [f64; 3]), SwpError> {
         let expected_open = || format!("`[` starting {role} {n} of {count} of {label}");
         let open = self.expect(expected_open)?;
         if open.kind != TokenKind::Open {
@@ -430,26 +604,28 @@ impl<'a> Parser<'a> {
             let token = self.expect(expected)?;
             *slot = number(token.text).ok_or_else(|| self.invalid_number(token, expected()))?;
         }
-        let form = if dim == 3 { "[x y z t c b]" } else { "[x y t c b]" };
-        let mut tcb = [0.0; 3];
-        for (what, slot) in
-            ["tension", "continuity", "bias"].into_iter().zip(tcb.iter_mut()).take(if shaped { 3 } else { 0 })
-        {
-            let expected =
-                || format!("a number from -1 to 1 (the {what} of {role} {n} of {label}, whose points are {form})");
+        let form = extra.form(dim);
+        let mut values = [0.0; 3];
+        for (what, slot) in extra.names().iter().zip(values.iter_mut()) {
+            let (range, ok): (&str, fn(f64) -> bool) = match extra {
+                Extra::Weight => ("a number > 0", |v| v > 0.0),
+                Extra::Shape | Extra::None => ("a number from -1 to 1", |v| (-1.0..=1.0).contains(&v)),
+            };
+            let expected = || format!("{range} (the {what} of {role} {n} of {label}, whose points are {form})");
             let token = self.expect(expected)?;
-            *slot = number(token.text)
-                .filter(|v| (-1.0..=1.0).contains(v))
-                .ok_or_else(|| self.invalid_number(token, expected()))?;
+            *slot = number(token.text).filter(|&v| ok(v)).ok_or_else(|| self.invalid_number(token, expected()))?;
         }
         let expected_close = || format!("`]` closing {role} {n} of {label}");
         let close = self.expect(expected_close)?;
         if close.kind != TokenKind::Close {
-            let shape =
-                if shaped { format!("its points are {form}") } else { format!("its points have {dim} coordinates") };
+            let shape = if extra == Extra::None {
+                format!("its points have {dim} coordinates")
+            } else {
+                format!("its points are {form}")
+            };
             return Err(self.unexpected(close, format!("{} ({shape})", expected_close())));
         }
-        Ok((DVec3::from_array(xyz), Tcb::new(tcb[0], tcb[1], tcb[2])))
+        Ok((DVec3::from_array(xyz), values))
     }
 
     /// Reads a number that must satisfy `ok`; `what` describes it, like `a radius (a number ≥ 0)`.
@@ -837,21 +1013,80 @@ impl Role {
 enum OptionWord {
     Openness,
     Alpha(Option<f64>),
+    Degree,
+    Knots,
 }
 
 /// The options read for one curve.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct CurveOptions {
     closed: bool,
     alpha: f64,
+    degree: u32,
+    knots: Option<Vec<f64>>,
+}
+
+/// What a curve's header said before its options: the keyword, its family, the label for
+/// messages and NPOINTS with its token.
+#[derive(Clone, Copy)]
+struct Header<'a, 'l> {
+    keyword: &'static str,
+    family: Family,
+    label: &'l str,
+    count: u64,
+    count_token: Token<'a>,
+}
+
+/// The numbers a point carries inside its brackets after its coordinates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Extra {
+    None,
+    /// Tension, continuity and bias (Kochanek–Bartels).
+    Shape,
+    /// A weight (NURBS).
+    Weight,
+}
+
+impl Extra {
+    /// The names of the extra numbers, in order.
+    fn names(self) -> &'static [&'static str] {
+        match self {
+            Self::None => &[],
+            Self::Shape => &["tension", "continuity", "bias"],
+            Self::Weight => &["weight"],
+        }
+    }
+
+    /// A point's form in words, like `[x y w]`.
+    fn form(self, dim: u8) -> &'static str {
+        match (self, dim == 3) {
+            (Self::None, false) => "[x y]",
+            (Self::None, true) => "[x y z]",
+            (Self::Shape, false) => "[x y t c b]",
+            (Self::Shape, true) => "[x y z t c b]",
+            (Self::Weight, false) => "[x y w]",
+            (Self::Weight, true) => "[x y z w]",
+        }
+    }
 }
 
 /// The options a family accepts, for messages.
 fn option_list(family: Family) -> &'static str {
     match family {
         Family::CatmullRom => "closed, open, alpha A, uniform, centripetal or chordal",
+        Family::Nurbs => "closed, open, degree D or knots K…",
+        Family::BezierN => "open",
         _ => "closed or open",
     }
+}
+
+/// The message for `knots` and `closed` on one curve.
+fn periodic_with_knots(label: &str, first: Token<'_>) -> String {
+    format!(
+        "`[` starting point 1 of {label}: a closed NURBS is periodic with uniform knots of its own, so it takes no \
+         `knots` (line {}, column {} has the other)",
+        first.pos.line, first.pos.column
+    )
 }
 
 /// "… at most one of `group` …" message for an option given twice.
@@ -893,7 +1128,7 @@ mod tests {
     #[test]
     fn count_rules() {
         let accepted = |family: Family, closed: bool| -> Vec<u64> {
-            (0..12).filter(|&n| family.kind(0.5).accepts_point_count(closed, n)).collect()
+            (0..12).filter(|&n| family.kind(0.5, 3).accepts_point_count(closed, n)).collect()
         };
         assert_eq!(accepted(Family::Bezier, false), [4, 7, 10]);
         assert_eq!(accepted(Family::Bezier, true), [3, 6, 9]);

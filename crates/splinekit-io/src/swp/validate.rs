@@ -4,7 +4,7 @@ use std::collections::HashMap;
 use std::fmt;
 
 use glam::DVec3;
-use splinekit::Tcb;
+use splinekit::{MAX_BEZIER_POINTS, MAX_NURBS_DEGREE, MAX_NURBS_POINTS, Tcb};
 
 use super::error::quote;
 use super::lexer::is_space;
@@ -211,6 +211,16 @@ pub enum SwpNumber {
         /// Which value: 0 for the tension, 1 for the continuity, 2 for the bias.
         axis: usize,
     },
+    /// The weight of a NURBS control point.
+    Weight {
+        /// The index of the point, from 0 (messages count from 1: `point 1`).
+        index: usize,
+    },
+    /// A knot of a NURBS knot vector.
+    Knot {
+        /// The index of the knot, from 0 (messages count from 1: `knot 1`).
+        index: usize,
+    },
     /// The radius of a circle or helix.
     Radius,
     /// The pitch of a helix.
@@ -245,6 +255,8 @@ impl fmt::Display for SwpNumber {
                 let what = ["tension", "continuity", "bias"].get(axis).copied().unwrap_or("?");
                 write!(f, "the {what} of point {}", index.saturating_add(1))
             }
+            Self::Weight { index } => write!(f, "the weight of point {}", index.saturating_add(1)),
+            Self::Knot { index } => write!(f, "knot {}", index.saturating_add(1)),
             Self::Radius => f.write_str("the radius"),
             Self::Pitch => f.write_str("the pitch"),
             Self::Turns => f.write_str("the number of turns"),
@@ -315,6 +327,42 @@ pub enum SwpInvalidKind {
         /// The number of tensions, continuities and biases.
         shapes: usize,
     },
+    /// A NURBS curve with different numbers of points and weights.
+    WeightCount {
+        /// The number of points.
+        points: usize,
+        /// The number of weights.
+        weights: usize,
+    },
+    /// A NURBS degree that is not from 1 to [`MAX_NURBS_DEGREE`].
+    Degree {
+        /// The degree.
+        found: u32,
+    },
+    /// A NURBS knot vector whose length is not the number of points + degree + 1.
+    KnotCount {
+        /// The length needed.
+        expected: usize,
+        /// The length given.
+        found: usize,
+    },
+    /// A NURBS knot smaller than the knot before it.
+    KnotOrder {
+        /// The index of the knot, from 0.
+        index: usize,
+        /// Its value.
+        value: f64,
+        /// The value of the knot before it.
+        before: f64,
+    },
+    /// A NURBS knot vector that leaves the curve no domain: knot `degree + 1` equals knot
+    /// `points + 1` (1-based), between which the curve runs.
+    EmptyDomain {
+        /// The common value of the two knots.
+        value: f64,
+    },
+    /// A closed (periodic) NURBS curve with a knot vector of its own.
+    PeriodicKnots,
     /// `steps` of a curve or surface of revolution is not in `1..=MAX_STEPS`.
     Steps {
         /// The steps.
@@ -442,6 +490,32 @@ impl fmt::Display for SwpInvalidKind {
                 plural(*points, "point"),
                 plural(*shapes, "shape")
             ),
+            Self::WeightCount { points, weights } => write!(
+                f,
+                "a NURBS curve needs one weight for each point; this one has {} and {}",
+                plural(*points, "point"),
+                plural(*weights, "weight")
+            ),
+            Self::Degree { found } => {
+                write!(f, "the degree of a NURBS curve must be from 1 to {MAX_NURBS_DEGREE}; this one has {found}")
+            }
+            Self::KnotCount { expected, found } => write!(
+                f,
+                "the knot vector must have {expected} knots (points + degree + 1); this one has {}",
+                plural(*found, "knot")
+            ),
+            Self::KnotOrder { index, value, before } => write!(
+                f,
+                "knot {} is {value}, less than the knot before it ({before}); knots never decrease",
+                index.saturating_add(1)
+            ),
+            Self::EmptyDomain { value } => write!(
+                f,
+                "the knot vector leaves the curve no domain: the knots it runs between (degree + 1 and points + 1) are both {value}"
+            ),
+            Self::PeriodicKnots => f.write_str(
+                "a closed NURBS curve is periodic with uniform knots of its own, so it takes no knot vector",
+            ),
             Self::Steps { found } => {
                 write!(f, "the number of steps must be from 1 to {MAX_STEPS}; this one has {found}")
             }
@@ -458,6 +532,11 @@ impl fmt::Display for SwpInvalidKind {
                     (SwpCurveKind::Bezier, false) => "4, 7, 10, … points",
                     (SwpCurveKind::Bezier, true) => "3, 6, 9, … points",
                     (SwpCurveKind::Hermite, _) => "at least 2 points",
+                    (SwpCurveKind::BezierN, _) => &format!("2 to {MAX_BEZIER_POINTS} points"),
+                    (SwpCurveKind::Nurbs { degree }, closed) => &format!(
+                        "at least {} points (degree + 1) and at most {MAX_NURBS_POINTS}",
+                        (u64::from(*degree) + 1).max(if *closed { 3 } else { 2 })
+                    ),
                     // the interpolating kinds shaped as Catmull-Rom's, and the B-spline
                     (
                         SwpCurveKind::BSpline
@@ -528,6 +607,8 @@ fn noun(kind: SwpCurveKind, closed: bool) -> String {
         SwpCurveKind::Hermite => "Hermite spline",
         SwpCurveKind::KochanekBartels => "Kochanek–Bartels spline",
         SwpCurveKind::BesselOverhauser => "Bessel–Overhauser spline",
+        SwpCurveKind::BezierN => "Bézier curve",
+        SwpCurveKind::Nurbs { .. } => "NURBS curve",
         SwpCurveKind::Circle => "circle",
         SwpCurveKind::Helix => "helix",
         SwpCurveKind::Trefoil => "trefoil knot",
@@ -540,6 +621,8 @@ fn expected_data(kind: SwpCurveKind) -> &'static str {
     match kind {
         SwpCurveKind::Bezier | SwpCurveKind::BSpline | SwpCurveKind::CatmullRom { .. } => "control points",
         SwpCurveKind::BesselOverhauser => "points",
+        SwpCurveKind::BezierN => "control points",
+        SwpCurveKind::Nurbs { .. } => "control points with their weights",
         SwpCurveKind::Hermite => "points and tangents",
         SwpCurveKind::KochanekBartels => "points with their tension, continuity and bias",
         SwpCurveKind::Circle => "a radius",
@@ -554,6 +637,7 @@ fn geometry_data(geometry: &SwpGeometry) -> &'static str {
         SwpGeometry::Points(_) => "control points",
         SwpGeometry::Hermite { .. } => "points and tangents",
         SwpGeometry::Tcb { .. } => "points with their tension, continuity and bias",
+        SwpGeometry::Nurbs { .. } => "control points with their weights",
         SwpGeometry::Circle { .. } => "a circle's radius",
         SwpGeometry::Helix { .. } => "a helix's radius, pitch and turns",
         SwpGeometry::Trefoil { .. } => "a trefoil knot's size",
@@ -632,7 +716,7 @@ fn check_curve(curve: &SwpCurve) -> Result<(), SwpInvalidKind> {
     }
     let closed_ok = match kind {
         SwpCurveKind::Circle | SwpCurveKind::Trefoil => curve.closed,
-        SwpCurveKind::Helix => !curve.closed,
+        SwpCurveKind::Helix | SwpCurveKind::BezierN => !curve.closed,
         _ => true,
     };
     if !closed_ok {
@@ -641,14 +725,24 @@ fn check_curve(curve: &SwpCurve) -> Result<(), SwpInvalidKind> {
 
     let empty: &[DVec3] = &[];
     let mut shape: &[Tcb] = &[];
+    let mut weights: &[f64] = &[];
     let (points, tangents) = match (kind, &curve.geometry) {
         (
             SwpCurveKind::Bezier
             | SwpCurveKind::BSpline
             | SwpCurveKind::CatmullRom { .. }
-            | SwpCurveKind::BesselOverhauser,
+            | SwpCurveKind::BesselOverhauser
+            | SwpCurveKind::BezierN,
             SwpGeometry::Points(points),
         ) => (points.as_slice(), empty),
+        (SwpCurveKind::Nurbs { degree }, SwpGeometry::Nurbs { points, weights: w, knots }) => {
+            if w.len() != points.len() {
+                return Err(SwpInvalidKind::WeightCount { points: points.len(), weights: w.len() });
+            }
+            check_nurbs_header(degree, curve.closed, points.len(), knots.as_deref())?;
+            weights = w;
+            (points.as_slice(), empty)
+        }
         (SwpCurveKind::Hermite, SwpGeometry::Hermite { points, tangents }) => {
             if points.len() != tangents.len() {
                 return Err(SwpInvalidKind::TangentCount { points: points.len(), tangents: tangents.len() });
@@ -687,7 +781,7 @@ fn check_curve(curve: &SwpCurve) -> Result<(), SwpInvalidKind> {
             check_number(SwpNumber::Turns, turns, |t| t > 0.0 && t <= MAX_HELIX_TURNS)?;
         }
         SwpGeometry::Trefoil { size } => check_number(SwpNumber::Size, size, |s| s >= 0.0)?,
-        SwpGeometry::Points(_) | SwpGeometry::Hermite { .. } | SwpGeometry::Tcb { .. } => {}
+        SwpGeometry::Points(_) | SwpGeometry::Hermite { .. } | SwpGeometry::Tcb { .. } | SwpGeometry::Nurbs { .. } => {}
     }
     // In file order: each point, followed by its tangent for Hermite curves or its tension,
     // continuity and bias for Kochanek–Bartels curves.
@@ -696,6 +790,9 @@ fn check_curve(curve: &SwpCurve) -> Result<(), SwpInvalidKind> {
         if let Some(&t) = tangents.get(index) {
             check_point(t, curve.dim, |axis| SwpNumber::Tangent { index, axis })?;
         }
+        if let Some(&w) = weights.get(index) {
+            check_number(SwpNumber::Weight { index }, w, |w| w > 0.0)?;
+        }
         if let Some(s) = shape.get(index) {
             for (axis, value) in [s.tension, s.continuity, s.bias].into_iter().enumerate() {
                 check_number(SwpNumber::Shape { index, axis }, value, |v| (-1.0..=1.0).contains(&v))?;
@@ -703,6 +800,37 @@ fn check_curve(curve: &SwpCurve) -> Result<(), SwpInvalidKind> {
         }
     }
     Ok(())
+}
+
+/// Checks what a NURBS curve's header says: its degree, and its knot vector (if any) against
+/// the number of points `n`.
+fn check_nurbs_header(degree: u32, closed: bool, n: usize, knots: Option<&[f64]>) -> Result<(), SwpInvalidKind> {
+    if !(1..=MAX_NURBS_DEGREE as u32).contains(&degree) {
+        return Err(SwpInvalidKind::Degree { found: degree });
+    }
+    let Some(knots) = knots else { return Ok(()) };
+    if closed {
+        return Err(SwpInvalidKind::PeriodicKnots);
+    }
+    let degree = degree as usize;
+    let expected = n + degree + 1;
+    if knots.len() != expected {
+        return Err(SwpInvalidKind::KnotCount { expected, found: knots.len() });
+    }
+    for (index, &value) in knots.iter().enumerate() {
+        check_number(SwpNumber::Knot { index }, value, |_| true)?;
+        if let Some(&before) = index.checked_sub(1).and_then(|i| knots.get(i))
+            && value < before
+        {
+            return Err(SwpInvalidKind::KnotOrder { index, value, before });
+        }
+    }
+    // the curve runs from knot `degree` to knot `n` (0-based); too few points are the
+    // point-count rule's to report
+    match (knots.get(degree), knots.get(n)) {
+        (Some(&a), Some(&b)) if a >= b && n > degree => Err(SwpInvalidKind::EmptyDomain { value: a }),
+        _ => Ok(()),
+    }
 }
 
 /// Checks one surface (not its name). The curves have been checked already.

@@ -210,6 +210,20 @@ fn write_curve(out: &mut String, curve: &SwpCurve, name: &str) {
                 let _ = writeln!(out, " {} {} {}]", s.tension, s.continuity, s.bias);
             }
         }
+        (SwpCurveKind::Nurbs { .. }, geometry) => {
+            let weights = match geometry {
+                SwpGeometry::Nurbs { weights, .. } => weights.as_slice(),
+                _ => &[],
+            };
+            let count = points.len().min(weights.len());
+            let _ = writeln!(out, "{keyword} {name} {} {count}{}", curve.steps, options(curve));
+            for (p, w) in points.iter().zip(weights) {
+                write_point(out, *p, dim);
+                // the weight goes inside the brackets, after the coordinates
+                out.pop();
+                let _ = writeln!(out, " {w}]");
+            }
+        }
         _ => {
             let _ = writeln!(out, "{keyword} {name} {} {}{}", curve.steps, points.len(), options(curve));
             for p in points {
@@ -233,6 +247,15 @@ fn options(curve: &SwpCurve) -> String {
             options.push_str(" chordal");
         } else if alpha != 0.0 {
             let _ = write!(options, " alpha {alpha}");
+        }
+    }
+    if let SwpCurveKind::Nurbs { degree } = curve.kind {
+        let _ = write!(options, " degree {degree}");
+        if let SwpGeometry::Nurbs { knots: Some(knots), .. } = &curve.geometry {
+            options.push_str(" knots");
+            for k in knots {
+                let _ = write!(options, " {k}");
+            }
         }
     }
     options

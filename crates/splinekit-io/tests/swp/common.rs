@@ -86,3 +86,16 @@ pub fn assert_error(err: &SwpError, line: usize, column: usize, parts: &[&str]) 
         assert!(message.contains(part), "message lacks {part:?}:\n  {message}");
     }
 }
+
+/// Sweeps every surface of `doc` with the default options, panicking unless each gives a
+/// mesh of finite positions with as many triangles as its counted estimate says.
+#[allow(dead_code)] // for the files that include this one by path, not for tests/swp
+pub fn sweeps_every_surface(doc: &SwpDocument) {
+    let options = splinekit_io::surface::SurfaceOptions::default();
+    for k in 0..doc.surfaces.len() {
+        let mesh = doc.surface_mesh(k, &options).unwrap_or_else(|e| panic!("surface {k}: {e}"));
+        assert!(mesh.num_triangles() > 0);
+        assert!(mesh.positions.iter().all(|p| p.is_finite()), "surface {k}");
+        assert_eq!(doc.surface_counts(k, &options).unwrap().triangles, mesh.num_triangles() as u64, "surface {k}");
+    }
+}

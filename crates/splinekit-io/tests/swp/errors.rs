@@ -27,7 +27,7 @@ fn unknown_keyword() {
         2,
         3,
         &[
-            r#"found "BEZ2", expected a keyword (bez2, bsp2, bez3, bsp3, cr2, cr3, her2, her3, tcb2, tcb3, bo2, bo3, circ, helix, trefoil, srev or gcyl)"#,
+            r#"found "BEZ2", expected a keyword (bez2, bsp2, bez3, bsp3, cr2, cr3, her2, her3, tcb2, tcb3, bo2, bo3, bezn2, bezn3, nurbs2, nurbs3, circ, helix, trefoil, srev or gcyl)"#,
             "(keywords are lowercase)",
         ],
     );
@@ -229,7 +229,7 @@ fn profile_must_be_2d() {
         2,
         11,
         &[
-            r#"found 3D curve "wing" (bez3), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2 or circ) as the profile of srev surface "s""#,
+            r#"found 3D curve "wing" (bez3), expected a 2D curve (bez2, bsp2, cr2, her2, tcb2, bo2, bezn2, nurbs2 or circ) as the profile of srev surface "s""#,
         ],
     );
     assert!(matches!(err.kind(), SwpErrorKind::ProfileNot2D { keyword: "bez3", .. }));

@@ -88,7 +88,7 @@ fn shape_value() -> impl Strategy<Value = f64> {
 /// A curve of a random kind, usually valid, with at most a few things wrong.
 fn curve() -> impl Strategy<Value = SwpCurve> {
     let shape = (
-        0usize..9,
+        0usize..11,
         mostly(25, select(vec![0.0, 0.5, 1.0, 0.25]), select(vec![-0.5, 1.5, f64::NAN])),
         mostly(30, Just(None), (0u8..5).prop_map(Some)),
         (any::<bool>(), any::<bool>()),
@@ -106,17 +106,31 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
         prop::collection::vec((shape_value(), shape_value(), shape_value()), 14),
     );
     let scalars = (
-        mostly(30, Just(None), (0usize..6).prop_map(Some)),
+        mostly(30, Just(None), (0usize..7).prop_map(Some)),
         mostly(25, prop_oneof![Just(0.0), 0.0..5.0f64], select(vec![-1.0, f64::NAN, f64::INFINITY])),
         mostly(25, number(), bad_number()),
         mostly(25, select(vec![0.5, 1.0, 3.25, 10_000.0]), select(vec![0.0, -1.0, 10_000.5, f64::NAN])),
         name(),
     );
-    (shape, points, scalars).prop_map(
+    // NURBS: the degree, the weights, and a knot vector (none, or increments to sum up, its
+    // length off by the delta now and then, a decrease now and then)
+    let nurbs = (
+        mostly(40, 1u32..=4, select(vec![0u32, 33])),
+        prop::collection::vec(mostly(60, prop_oneof![Just(1.0), 0.1f64..5.0], select(vec![0.0, -1.0, f64::NAN])), 14),
+        prop::option::weighted(
+            0.5,
+            (
+                prop::collection::vec(mostly(8, prop_oneof![Just(0.0), Just(1.0), 0.0f64..3.0], Just(-1.0)), 20),
+                mostly(20, Just(0isize), select(vec![-1isize, 1])),
+            ),
+        ),
+    );
+    (shape, points, scalars, nurbs).prop_map(
         |(
             (kind, alpha, dim, (closed, three), fixed_closed, steps),
             (count, fix_count, raw_points, raw_tangents, non_finite, nonzero_z, tangent_delta, raw_shapes),
             (mismatch, radius, pitch, turns, name),
+            (degree, raw_weights, raw_knots),
         )| {
             let kind = match kind {
                 0 => SwpCurveKind::Bezier,
@@ -127,7 +141,9 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
                 5 => SwpCurveKind::Helix,
                 6 => SwpCurveKind::Trefoil,
                 7 => SwpCurveKind::KochanekBartels,
-                _ => SwpCurveKind::BesselOverhauser,
+                8 => SwpCurveKind::BesselOverhauser,
+                9 => SwpCurveKind::BezierN,
+                _ => SwpCurveKind::Nurbs { degree },
             };
             let natural_dim = match kind {
                 SwpCurveKind::Circle => 2,
@@ -153,6 +169,17 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
             let mut points = to_points(&raw_points);
             let mut tangents = to_points(&raw_tangents);
             let mut shapes: Vec<Tcb> = raw_shapes.iter().take(count).map(|&(t, c, b)| Tcb::new(t, c, b)).collect();
+            let mut weights: Vec<f64> = raw_weights.iter().take(count).copied().collect();
+            let knots = raw_knots.map(|(increments, delta)| {
+                let len = (count + degree as usize + 1).saturating_add_signed(delta).min(increments.len());
+                increments[..len]
+                    .iter()
+                    .scan(0.0, |sum, step| {
+                        *sum += step;
+                        Some(*sum)
+                    })
+                    .collect::<Vec<f64>>()
+            });
             if let Some((index, axis, value)) = non_finite
                 && let Some(p) = points.get_mut(index)
             {
@@ -168,10 +195,12 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
                 -1 => {
                     tangents.pop();
                     shapes.pop();
+                    weights.pop();
                 }
                 1 => {
                     tangents.push(DVec3::X);
                     shapes.push(Tcb::default());
+                    weights.push(1.0);
                 }
                 _ => {}
             }
@@ -180,19 +209,22 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
                 SwpCurveKind::Bezier
                 | SwpCurveKind::BSpline
                 | SwpCurveKind::CatmullRom { .. }
-                | SwpCurveKind::BesselOverhauser => 0,
+                | SwpCurveKind::BesselOverhauser
+                | SwpCurveKind::BezierN => 0,
                 SwpCurveKind::Hermite => 1,
                 SwpCurveKind::Circle => 2,
                 SwpCurveKind::Helix => 3,
                 SwpCurveKind::Trefoil => 4,
                 SwpCurveKind::KochanekBartels => 5,
+                SwpCurveKind::Nurbs { .. } => 6,
             }) {
                 0 => SwpGeometry::Points(points),
                 1 => SwpGeometry::Hermite { points, tangents },
                 2 => SwpGeometry::Circle { radius },
                 3 => helix,
                 4 => SwpGeometry::Trefoil { size: radius },
-                _ => SwpGeometry::Tcb { points, shape: shapes },
+                5 => SwpGeometry::Tcb { points, shape: shapes },
+                _ => SwpGeometry::Nurbs { points, weights, knots },
             };
             SwpCurve { name, kind, dim, steps, closed, geometry, pos: SourcePos::default() }
         },

@@ -123,6 +123,13 @@ pub enum SplineError {
         /// What is wrong.
         why: &'static str,
     },
+    /// A closed curve asked of a kind that is always open (a single Bézier curve), or a closed
+    /// (periodic) NURBS given a knot vector of its own.
+    #[error("{what}")]
+    NotClosable {
+        /// What cannot be, in words.
+        what: &'static str,
+    },
     /// A degree of 0 or above the largest supported.
     #[error("degree must be from 1 to {max}, got {degree}")]
     BadDegree {
