@@ -1,5 +1,5 @@
-//! Structure-aware SWP documents: every curve keyword (`bez2 bsp2 cr2 her2 tcb2 bo2 bez3 bsp3
-//! cr3 her3 tcb3 bo3 circ helix trefoil`), every surface keyword (`srev gcyl zrev xsweep lathe`) with their
+//! Structure-aware SWP documents: every curve keyword (`bez2 bsp2 cr2 her2 tcb2 bo2 bezn2 nurbs2
+//! bez3 bsp3 cr3 her3 tcb3 bo3 bezn3 nurbs3 circ helix trefoil`), every surface keyword (`srev gcyl zrev xsweep lathe`) with their
 //! options, clauses and settings, comments and every whitespace the format allows, filled
 //! with ordinary and extreme values. Most documents follow the grammar (so that they reach
 //! the geometry); a few break one rule (so that the errors are exercised too).
@@ -28,7 +28,7 @@ struct Doc<'a> {
 }
 
 /// The curve keywords, with their dimension.
-const CURVES: [(&str, u8); 15] = [
+const CURVES: [(&str, u8); 19] = [
     ("bez2", 2),
     ("bsp2", 2),
     ("cr2", 2),
@@ -41,6 +41,10 @@ const CURVES: [(&str, u8); 15] = [
     ("her3", 3),
     ("tcb3", 3),
     ("bo3", 3),
+    ("bezn2", 2),
+    ("bezn3", 3),
+    ("nurbs2", 2),
+    ("nurbs3", 3),
     ("circ", 2),
     ("helix", 3),
     ("trefoil", 3),
@@ -201,9 +205,19 @@ impl Doc<'_> {
     /// NPOINTS, options and the points (pairs for Hermite curves, with tension, continuity and
     /// bias for Kochanek–Bartels curves).
     fn control_points(&mut self, keyword: &str, dim: u8) {
-        let closed = self.rng.chance(0.3);
+        let bezn = keyword.starts_with("bezn");
+        let nurbs = keyword.starts_with("nurbs");
+        // a single Bézier curve is never closed
+        let closed = self.rng.chance(0.3) && (!bezn || self.mistake());
         let hermite = keyword.starts_with("her");
+        let degree = match self.rng.below(12) {
+            0 if self.mistake() => *self.rng.pick(&[0, 33]),
+            0 => *self.rng.pick(&[1, 7, 32]),
+            _ => self.rng.range(1, 6),
+        };
         let n = match &keyword[..2] {
+            _ if bezn => self.rng.size(2, 65),
+            "nu" => self.rng.size(degree.max(2) + 1, 120),
             "be" if closed => 3 * self.rng.size(1, 40),
             "be" => 3 * self.rng.size(1, 40) + 1,
             "he" => self.rng.size(2, 60),
@@ -235,14 +249,35 @@ impl Doc<'_> {
         if self.rng.chance(0.5) {
             options.reverse();
         }
+        if nurbs {
+            // `degree` must come before `knots`; no knots on a closed curve
+            options.push("degree".into());
+            options.push(degree.to_string());
+            if (!closed || self.mistake()) && self.rng.chance(0.5) {
+                options.push("knots".into());
+                options.extend(self.knots(n + degree + 1).iter().map(|k| values::format(self.rng, *k)));
+            }
+        }
         for o in options {
             self.tok(&o);
         }
         let points = self.point_set(n * if hermite { 2 } else { 1 }, dim);
+        if nurbs {
+            for p in points {
+                let weight = match self.rng.below(10) {
+                    0 if self.mistake() => *self.rng.pick(&[0.0, -1.0, -0.0]),
+                    0 => *self.rng.pick(&[1e-300, 1e300, 5e-324, 1e-9, 1e9]),
+                    1..=4 => 1.0,
+                    _ => self.rng.uniform(0.05, 20.0),
+                };
+                self.key(&p, dim, &[weight]);
+            }
+            return;
+        }
         if keyword.starts_with("tcb") {
             for p in points {
                 let shape = self.shape();
-                self.key(&p, dim, shape);
+                self.key(&p, dim, &shape);
             }
             return;
         }
@@ -294,10 +329,29 @@ impl Doc<'_> {
         })
     }
 
-    /// `[x y t c b]` or `[x y z t c b]`.
-    fn key(&mut self, p: &[f64; 3], dim: u8, shape: [f64; 3]) {
+    /// `m` knots: non-decreasing, with repeats (clamped ends now and then, interior knots of
+    /// any multiplicity), spans from tiny to huge; now and then one that decreases.
+    fn knots(&mut self, m: usize) -> Vec<f64> {
+        let s = self.scale;
+        let mut k = s.coord(self.rng);
+        let mut out = Vec::with_capacity(m);
+        for _ in 0..m {
+            out.push(k);
+            k += match self.rng.below(8) {
+                0..=2 => 0.0,
+                3 => *self.rng.pick(&[1e-300, 1e-12, 1e12, 5e-324]),
+                4 if self.mistake() => -1.0,
+                _ => self.rng.uniform(0.0, s.magnitude.max(1e-300)),
+            };
+        }
+        out
+    }
+
+    /// `[x y t c b]` or `[x y z t c b]` (a key and its shape), or `[x y w]` or `[x y z w]` (a
+    /// NURBS point and its weight).
+    fn key(&mut self, p: &[f64; 3], dim: u8, extra: &[f64]) {
         let mut t = String::from("[");
-        for (k, x) in p.iter().take(dim as usize).chain(&shape).enumerate() {
+        for (k, x) in p.iter().take(dim as usize).chain(extra).enumerate() {
             if k > 0 {
                 t.push(' ');
             }
@@ -354,11 +408,11 @@ impl Doc<'_> {
 
     /// A surface of a random kind with its options and settings.
     fn surface(&mut self) {
-        const PROFILES: [&str; 7] = ["bez2", "bsp2", "cr2", "her2", "tcb2", "bo2", "circ"];
+        const PROFILES: [&str; 9] = ["bez2", "bsp2", "cr2", "her2", "tcb2", "bo2", "bezn2", "nurbs2", "circ"];
         const SPLINES_2D: [&str; 6] = ["bez2", "bsp2", "cr2", "her2", "tcb2", "bo2"];
-        const SWEEPS: [&str; 15] = [
-            "bez2", "bsp2", "cr2", "her2", "tcb2", "bo2", "circ", "bez3", "bsp3", "cr3", "her3", "tcb3", "bo3",
-            "helix", "trefoil",
+        const SWEEPS: [&str; 19] = [
+            "bez2", "bsp2", "cr2", "her2", "tcb2", "bo2", "bezn2", "nurbs2", "circ", "bez3", "bsp3", "cr3", "her3",
+            "tcb3", "bo3", "bezn3", "nurbs3", "helix", "trefoil",
         ];
         let kind = *self.rng.pick(&["srev", "gcyl", "zrev", "xsweep", "lathe"]);
         // the curves first (a reference may define one)

@@ -86,6 +86,9 @@ impl<P: Vector> BezierCurve<P> {
     /// The `order`-th derivative at `t` (0 is the point); zero beyond the degree.
     #[must_use]
     pub fn deriv_at(&self, t: f64, order: usize) -> P {
+        if order <= 3 {
+            return casteljau::derivs(&self.points, t, lerp)[order];
+        }
         let mut points = self.points.clone();
         for _ in 0..order {
             if points.len() == 1 {

@@ -5,16 +5,71 @@
 //! [`BezierCurve`]: super::BezierCurve
 //! [`Nurbs`]: super::Nurbs
 
-/// The point at `t` (`points` not empty).
+use core::ops::{Add, Mul, Sub};
+
+/// The most control points [`eval`] and [`derivs`] work on in place, on the stack (a
+/// [`BezierCurve`]'s most; a [`Nurbs`]' pieces have at most 33): evaluation allocates nothing.
+const STACK: usize = super::bezier_n::MAX_BEZIER_POINTS;
+
+/// The point at `t` (`points` not empty; more than [`STACK`] of them are evaluated on the heap).
 pub(crate) fn eval<T: Copy>(points: &[T], t: f64, lerp: impl Fn(T, T, f64) -> T) -> T {
-    let mut work = points.to_vec();
-    let n = work.len();
+    let n = points.len();
+    let mut stack = [points[0]; STACK];
+    let mut heap = Vec::new();
+    let work: &mut [T] = if n <= STACK {
+        stack[..n].copy_from_slice(points);
+        &mut stack[..n]
+    } else {
+        heap.extend_from_slice(points);
+        &mut heap
+    };
     for level in 1..n {
         for i in 0..n - level {
             work[i] = lerp(work[i], work[i + 1], t);
         }
     }
     work[0]
+}
+
+/// The point and its first three derivatives at `t` (zero past the degree), from one de
+/// Casteljau triangle: with `p` the degree, the `r`-th derivative is `p!/(p − r)!` times the
+/// `r`-th forward difference of the triangle's level `p − r` (its `r + 1` points). `points`
+/// not empty, at most [`STACK`] of them.
+pub(crate) fn derivs<T>(points: &[T], t: f64, lerp: impl Fn(T, T, f64) -> T) -> [T; 4]
+where
+    T: Copy + Add<Output = T> + Sub<Output = T> + Mul<f64, Output = T>,
+{
+    let n = points.len().min(STACK);
+    let p = n - 1;
+    let mut work = [points[0]; STACK];
+    work[..n].copy_from_slice(&points[..n]);
+    let mut out = [points[0] * 0.0; 4];
+    // down to the level of four points (or fewer, for degrees below 3)
+    let mut len = n;
+    while len > 4 {
+        for i in 0..len - 1 {
+            work[i] = lerp(work[i], work[i + 1], t);
+        }
+        len -= 1;
+    }
+    loop {
+        let r = len - 1;
+        let difference = match r {
+            0 => work[0],
+            1 => work[1] - work[0],
+            2 => work[2] - work[1] * 2.0 + work[0],
+            _ => work[3] - work[2] * 3.0 + work[1] * 3.0 - work[0],
+        };
+        let falling: f64 = (0..r).map(|i| (p - i) as f64).product();
+        out[r] = difference * falling;
+        if r == 0 {
+            return out;
+        }
+        for i in 0..r {
+            work[i] = lerp(work[i], work[i + 1], t);
+        }
+        len -= 1;
+    }
 }
 
 /// The control points of the halves over `[0, t]` and `[t, 1]`, each reparametrized to

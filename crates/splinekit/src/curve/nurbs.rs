@@ -221,57 +221,32 @@ impl<P: Vector> Nurbs<P> {
         (self.points[i].to_dvec3() * w).extend(w)
     }
 
-    /// The derivatives of order 0..=3 of the homogeneous curve `(A(x), w(x))` at `x` in
-    /// `span`, by de Boor's algorithm on the derivative control points.
-    fn homogeneous_derivs(&self, span: usize, x: f64) -> [DVec4; 4] {
-        let p = self.degree;
-        // the p + 1 control points acting on the span, and their derivative differences
-        let mut ctrl: Vec<DVec4> = (span - p..=span).map(|i| self.homogeneous(i)).collect();
-        let mut out = [DVec4::ZERO; 4];
-        for (order, slot) in out.iter_mut().enumerate() {
-            let degree = p - order;
-            // de Boor at x over the current points, which have degree `degree` and knots
-            // knots[span - degree + 1 ..] (the derivative drops the outer knots)
-            let mut d = ctrl.clone();
-            for r in 1..=degree {
-                for j in (r..=degree).rev() {
-                    let i = span - degree + j;
-                    let (lo, hi) = (self.knots[i], self.knots[i + degree + 1 - r]);
-                    let alpha = if hi > lo { (x - lo) / (hi - lo) } else { 0.0 };
-                    d[j] = d[j - 1] * (1.0 - alpha) + d[j] * alpha;
-                }
-            }
-            *slot = d[degree];
-            if degree == 0 {
-                break;
-            }
-            // the derivative's control points: degree·(Qⱼ − Qⱼ₋₁)/(knots[i + degree] − knots[i])
-            ctrl = (1..=degree)
-                .map(|j| {
-                    let i = span - degree + j;
-                    let h = self.knots[i + degree] - self.knots[i];
-                    if h > 0.0 { (ctrl[j] - ctrl[j - 1]) * (degree as f64 / h) } else { DVec4::ZERO }
-                })
-                .collect();
+    /// The `order`-th derivative (0 to 3) with respect to the curve parameter `u`: from the
+    /// derivatives of the segment's homogeneous rational Bézier piece `(A(t), w(t))` at
+    /// `t = u − k` (one de Casteljau triangle; `u` and `t` differ by a constant), by the
+    /// quotient rule `C = A/w`, `A⁽ʳ⁾ = Σ C(r, i)·w⁽ⁱ⁾·C⁽ʳ⁻ⁱ⁾`.
+    fn at(&self, u: f64, order: usize) -> P {
+        let m = self.pieces.len();
+        let k = if u > 0.0 { (u.floor() as usize).min(m - 1) } else { 0 };
+        let piece = &self.pieces[k];
+        let t = u - k as f64;
+        if order == 0 {
+            let q = casteljau::eval(piece, t, DVec4::lerp);
+            return P::from_dvec3(q.truncate() / q.w);
         }
-        out
-    }
-
-    /// Position and derivatives up to order 3 with respect to the knot parameter `x`.
-    fn derivs_x(&self, span: usize, x: f64) -> [DVec3; 4] {
-        let [a0, a1, a2, a3] = self.homogeneous_derivs(span, x);
+        let [a0, a1, a2, a3] = casteljau::derivs(piece, t, DVec4::lerp);
         let (w0, w1, w2, w3) = (a0.w, a1.w, a2.w, a3.w);
         let c0 = a0.truncate() / w0;
         let c1 = (a1.truncate() - c0 * w1) / w0;
-        let c2 = (a2.truncate() - c1 * (2.0 * w1) - c0 * w2) / w0;
-        let c3 = (a3.truncate() - c2 * (3.0 * w1) - c1 * (3.0 * w2) - c0 * w3) / w0;
-        [c0, c1, c2, c3]
-    }
-
-    /// The `order`-th derivative (0 to 3) with respect to the curve parameter `u`.
-    fn at(&self, u: f64, order: usize) -> P {
-        let (_, span, x, dxdu) = self.locate(u);
-        P::from_dvec3(self.derivs_x(span, x)[order] * dxdu.powi(order as i32))
+        let c = match order {
+            1 => c1,
+            2 => (a2.truncate() - c1 * (2.0 * w1) - c0 * w2) / w0,
+            _ => {
+                let c2 = (a2.truncate() - c1 * (2.0 * w1) - c0 * w2) / w0;
+                (a3.truncate() - c2 * (3.0 * w1) - c1 * (3.0 * w2) - c0 * w3) / w0
+            }
+        };
+        P::from_dvec3(c)
     }
 
     /// Inserts the knot `x` once (Boehm's algorithm); the curve is unchanged. `x` must lie in

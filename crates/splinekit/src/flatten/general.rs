@@ -7,7 +7,9 @@
 //!   within `M·h²/8` of its chord (the error of linear interpolation), and every point of the
 //!   chord within that of the curve's point at the same parameter; so halving each segment
 //!   until `M·h²/8 ≤ tolerance` meets the tolerance in both directions (a two-sided
-//!   Hausdorff bound, as the cubic planner's). The tolerance is raised to `4ε` of the
+//!   Hausdorff bound, as the cubic planner's). Halving stops at the latest at the width where
+//!   the whole segment's `M` meets it (the bound of a part can exceed its segment's), so a
+//!   segment gives at most twice the pieces of that uniform width. The tolerance is raised to `4ε` of the
 //!   curve's extent, below which the chords' own rounding is larger.
 //! - **Angle**: halving while an exterior angle of the part's control polygon exceeds half
 //!   the tolerance, at most [`MAX_ANGLE_DEPTH`] times, as for cubics.
@@ -56,7 +58,11 @@ pub(crate) fn flatten_general<P: Vector, C: ParamCurve<P> + Hull<P>>(curve: &C, 
         Tessellation::Distance { tolerance } => {
             let tolerance = distance_tolerance(curve, tolerance);
             for k in 0..m {
-                distance_split(curve, k as f64, (k + 1) as f64, tolerance, 0, &mut out);
+                let (a, b) = (k as f64, (k + 1) as f64);
+                // the segment's own bound meets the tolerance at this width: halving need not
+                // (and, the bounds of parts being no smaller in general, must not) go finer
+                let enough = 1.0 / uniform_pieces(curve.deriv2_bound(a, b), tolerance);
+                distance_split(curve, a, b, tolerance, enough, &mut out);
             }
         }
         Tessellation::Angle { tolerance } => {
@@ -81,10 +87,8 @@ pub(crate) fn general_count<P: Vector, C: ParamCurve<P>>(curve: &C, mode: Tessel
         Tessellation::Distance { tolerance } => {
             let tolerance = distance_tolerance(curve, tolerance);
             (0..curve.num_segments()).fold(0u64, |n, k| {
-                let bound = curve.deriv2_bound(k as f64, (k + 1) as f64);
-                let uniform = (bound / (8.0 * tolerance)).sqrt().ceil().max(1.0);
-                let halved = (2.0 * uniform).min((1u64 << MAX_DISTANCE_DEPTH) as f64);
-                n.saturating_add(if halved.is_finite() { halved as u64 } else { 1 << MAX_DISTANCE_DEPTH })
+                let uniform = uniform_pieces(curve.deriv2_bound(k as f64, (k + 1) as f64), tolerance);
+                n.saturating_add((2.0 * uniform).min((1u64 << MAX_DISTANCE_DEPTH) as f64) as u64)
             })
         }
     };
@@ -99,19 +103,32 @@ fn distance_tolerance<P: Vector, C: ParamCurve<P>>(curve: &C, tolerance: f64) ->
     valid_or(tolerance, DEFAULT_TOLERANCE).max(4.0 * f64::EPSILON * extent)
 }
 
+/// The number of equal pieces of a unit segment whose second derivative is at most `bound`
+/// that keeps each within `tolerance` of its chord (`M·h²/8 ≤ tolerance`), at least 1, at
+/// most `2^MAX_DISTANCE_DEPTH` (also for an infinite or NaN bound).
+fn uniform_pieces(bound: f64, tolerance: f64) -> f64 {
+    let n = (bound / (8.0 * tolerance)).sqrt().ceil();
+    if n.is_nan() { MAX_PIECES } else { n.clamp(1.0, MAX_PIECES) }
+}
+
+/// The most pieces the distance mode cuts a segment into.
+const MAX_PIECES: f64 = (1u64 << MAX_DISTANCE_DEPTH) as f64;
+
+/// Halves `[a, b]` while its part's own bound does not meet the tolerance and it is wider than
+/// `enough` (at which width the segment's bound does).
 fn distance_split<P: Vector, C: ParamCurve<P>>(
     curve: &C,
     a: f64,
     b: f64,
     tolerance: f64,
-    depth: u32,
+    enough: f64,
     out: &mut Vec<f64>,
 ) {
     let h = b - a;
-    if depth < MAX_DISTANCE_DEPTH && curve.deriv2_bound(a, b) * h * h / 8.0 > tolerance {
+    if h > enough && curve.deriv2_bound(a, b) * h * h / 8.0 > tolerance {
         let mid = 0.5 * (a + b);
-        distance_split(curve, a, mid, tolerance, depth + 1, out);
-        distance_split(curve, mid, b, tolerance, depth + 1, out);
+        distance_split(curve, a, mid, tolerance, enough, out);
+        distance_split(curve, mid, b, tolerance, enough, out);
     } else {
         out.push(b);
     }
