@@ -2,7 +2,7 @@
 # Installs the Loop subdivision peers used by compare_loop.sh and make_loop_references.sh:
 #   Debian: libosd-dev (OpenSubdiv 3.5), libcgal-dev (CGAL 5.5), libopenmesh-dev (OpenMesh 9.0),
 #           g++, and GNU time (/usr/bin/time, for peak memory);
-#   PyPI, in the venv bench/.venv (or $BENCH_VENV): libigl (pinned), numpy, scipy.
+#   PyPI, in the venv bench/.venv (or $BENCH_VENV): libigl and geomdl (pinned), numpy, scipy.
 # Only what is missing is installed. Uses sudo when not root. Never run by CI.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -24,8 +24,8 @@ if [ ${#missing[@]} -gt 0 ]; then
     DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
-if ! "$venv/bin/python" -c 'import igl, numpy, scipy' 2>/dev/null; then
-    echo "install_peers.sh: creating $venv with libigl" >&2
+if ! "$venv/bin/python" -c 'import igl, numpy, scipy, geomdl' 2>/dev/null; then
+    echo "install_peers.sh: creating $venv with libigl and geomdl" >&2
     python3 -m venv "$venv"
     "$venv/bin/pip" install -q --disable-pip-version-check -r "$here/requirements.txt"
 fi

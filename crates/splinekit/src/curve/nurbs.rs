@@ -206,6 +206,31 @@ impl<P: Vector> Nurbs<P> {
         self.locate(u).2
     }
 
+    /// The curve parameter `u` of the knot-vector parameter `x`, the inverse of
+    /// [`knot_at`](Self::knot_at): `u = k + (x − xₛ)/(xₛ₊₁ − xₛ)` for the segment `k` whose
+    /// span `[xₛ, xₛ₊₁)` holds `x` (at an interior knot, the segment that starts there, so
+    /// the result is the integer `k` exactly; at the domain's end, `num_segments`). Outside
+    /// the domain `[x_p, x_n]` it extrapolates linearly over the first or last span, as
+    /// evaluation does. `dx/du` is that span's length.
+    ///
+    /// ```
+    /// use glam::DVec2;
+    /// use splinekit::{Nurbs, ParamCurve};
+    /// let knots = vec![0.0, 0.0, 0.0, 0.5, 2.0, 2.0, 2.0];
+    /// let c = Nurbs::new(2, vec![DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y], vec![1.0; 4], Some(knots)).unwrap();
+    /// assert_eq!(c.param_at_knot(0.5), 1.0);
+    /// assert_eq!(c.param_at_knot(1.25), 1.5);
+    /// assert_eq!(c.knot_at(c.param_at_knot(1.25)), 1.25);
+    /// ```
+    #[must_use]
+    pub fn param_at_knot(&self, x: f64) -> f64 {
+        // the spans' starts increase strictly: the last segment starting at or before x
+        let k = self.spans.partition_point(|&span| self.knots[span] <= x).saturating_sub(1);
+        let span = self.spans[k];
+        let (a, b) = (self.knots[span], self.knots[span + 1]);
+        k as f64 + (x - a) / (b - a)
+    }
+
     /// For `u`: its segment, that segment's knot span, the knot parameter `x` and `dx/du`.
     fn locate(&self, u: f64) -> (usize, usize, f64, f64) {
         let m = self.spans.len();
@@ -412,5 +437,46 @@ impl<P: Vector> ParamCurve<P> for Nurbs<P> {
             bound = bound.max(c2 * scale * scale);
         }
         bound
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec2;
+
+    use super::*;
+
+    /// A cubic over non-uniform knots with a double interior knot and a domain away from 0.
+    fn curve() -> Nurbs<DVec2> {
+        let points: Vec<DVec2> = (0..7).map(|i| DVec2::new(i as f64, (i * i % 5) as f64)).collect();
+        let knots = vec![1.0, 1.0, 1.0, 1.0, 1.5, 2.25, 2.25, 4.0, 4.0, 4.0, 4.0];
+        Nurbs::new(3, points, vec![1.0, 2.0, 0.5, 1.0, 3.0, 1.0, 0.25], Some(knots)).unwrap()
+    }
+
+    #[test]
+    fn param_at_knot_inverts_knot_at() {
+        let c = curve();
+        assert_eq!(ParamCurve::<DVec2>::num_segments(&c), 3);
+        // the distinct knots of the domain are the segments' ends, exactly
+        for (x, u) in [(1.0, 0.0), (1.5, 1.0), (2.25, 2.0), (4.0, 3.0)] {
+            assert_eq!(c.param_at_knot(x), u, "x = {x}");
+            assert_eq!(c.knot_at(u), x, "u = {u}");
+        }
+        for i in 0..=300 {
+            let x = 1.0 + 3.0 * i as f64 / 300.0;
+            let u = c.param_at_knot(x);
+            assert!((c.knot_at(u) - x).abs() <= 4.0 * f64::EPSILON * x, "x = {x}, u = {u}");
+            let k = c.knot_at(u.floor().min(2.0));
+            assert!(k <= x, "x = {x} lies in the segment of u = {u}");
+        }
+    }
+
+    #[test]
+    fn param_at_knot_extrapolates_outside_the_domain() {
+        let c = curve();
+        // first span [1, 1.5], last span [2.25, 4]
+        assert_eq!(c.param_at_knot(0.5), -1.0);
+        assert_eq!(c.param_at_knot(5.75), 4.0);
+        assert!(c.param_at_knot(f64::NAN).is_nan());
     }
 }
