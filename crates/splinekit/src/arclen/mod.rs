@@ -38,10 +38,18 @@ const MAX_DEPTH: u32 = 48;
 /// The most Gauss–Kronrod intervals one integral is split into. Bisection stops there, so an
 /// integral takes at most about 250 000 speed evaluations whatever the curve and the accuracy
 /// asked; the error estimate then tells what was reached (more than asked). Smooth curves
-/// need a handful of intervals, a cusp a few hundred; only rounding noise in the speed (a
-/// curve with coordinates far larger than its detail, say `1e8` beside `1`) or an accuracy
-/// below the rounding level of the length meets the limit.
+/// need a handful of intervals, a cusp a few hundred; rounding noise in the speed (a curve
+/// with coordinates far larger than its detail, say `1e8` beside `1`) stops bisection where
+/// halving no longer shrinks the error (see [`NOISE_DEPTH`]), so only an accuracy below the
+/// rounding level of a curve's length over a long range meets the limit.
 pub const MAX_INTERVALS: usize = 1 << 14;
+
+/// The depth from which [`adapt`] stops where halving does not shrink the error estimate
+/// below [`NOISE_RATIO`] of it: rounding noise, not a feature of the curve.
+const NOISE_DEPTH: u32 = 6;
+/// See [`NOISE_DEPTH`]: a smooth speed's error falls by orders of magnitude when an interval
+/// is halved, a kink's (a cusp) to about a quarter, a jump's to about a half.
+const NOISE_RATIO: f64 = 0.75;
 
 /// The smallest accuracy an integral is refined for, relative to `∫|speed|`: an absolute
 /// accuracy below this cannot be met in `f64` arithmetic, so asking for less stops here.
@@ -161,6 +169,14 @@ fn adapt<F: Fn(f64) -> f64>(
     let m = 0.5 * (a + b);
     let lower = gk15(f, a, m);
     let upper = gk15(f, m, b);
+    // Rounding noise in the speed: halving no longer shrinks the error (a smooth speed's
+    // drops by orders of magnitude, a kink's or a jump's by at least half), so no bisection
+    // will; keep the halves' estimate and stop, instead of running to the interval limit.
+    if depth >= NOISE_DEPTH && lower.1 + upper.1 >= NOISE_RATIO * err {
+        out.length += lower.0 + upper.0;
+        out.error += lower.1 + upper.1;
+        return;
+    }
     adapt(f, a, m, lower, 0.5 * tol, depth + 1, left, out);
     adapt(f, m, b, upper, 0.5 * tol, depth + 1, left, out);
 }
