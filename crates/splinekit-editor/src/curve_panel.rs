@@ -3,6 +3,8 @@
 
 use eframe::egui;
 
+use splinekit_io::SwpCurveKind;
+
 use crate::{EditorApp, Plane, doc};
 
 impl EditorApp {
@@ -31,16 +33,17 @@ impl EditorApp {
             let (kind, closed) = (curve.kind, curve.closed);
             egui::ComboBox::from_label("Kind").selected_text(doc::kind_name(kind)).show_ui(ui, |ui| {
                 for (k, name) in doc::KINDS {
-                    if ui.selectable_label(k == kind, name).clicked() {
+                    if ui.selectable_label(doc::same_kind(k, kind), name).clicked() {
                         self.doc.set_kind(k);
                         self.status_kind();
                     }
                 }
             });
             let mut c = closed;
-            if ui.checkbox(&mut c, "Closed").changed() {
+            if ui.add_enabled(kind != SwpCurveKind::BezierN, egui::Checkbox::new(&mut c, "Closed")).changed() {
                 self.doc.set_closed(c);
             }
+            self.nurbs_settings(ui);
             if !self.doc.is_2d() {
                 ui.horizontal(|ui| {
                     ui.label("Plane");
@@ -72,6 +75,33 @@ impl EditorApp {
         ui.checkbox(&mut self.show_table, "Arc-length table");
         if ui.button("Fit view").clicked() {
             self.view.fit_pending = true;
+        }
+    }
+}
+
+impl EditorApp {
+    /// A NURBS's degree (typed or dragged, one undo step) and its knot vector as the curve
+    /// uses it.
+    fn nurbs_settings(&mut self, ui: &mut egui::Ui) {
+        let Some(degree) = self.doc.nurbs_degree() else { return };
+        ui.horizontal(|ui| {
+            let label = ui.label("Degree");
+            let mut d = degree;
+            let max = splinekit::MAX_NURBS_DEGREE as u32;
+            let r = ui.add(egui::DragValue::new(&mut d).range(1..=max).speed(0.05)).labelled_by(label.id);
+            if r.changed() && d != degree {
+                self.doc.set_degree(d);
+            }
+        });
+        match self.doc.knots() {
+            Some((knots, own)) => {
+                let list: Vec<String> = knots.iter().map(|k| format!("{k}")).collect();
+                let whose = if own { "from the file" } else { "default" };
+                ui.label(format!("Knots ({whose}): {}", list.join(" ")));
+            }
+            None => {
+                ui.label(format!("Knots: a NURBS of degree {degree} needs at least {} points", degree + 1));
+            }
         }
     }
 }

@@ -22,7 +22,7 @@ use splinekit_io::{SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpGeometry, 
 pub const MAX_UNDO: usize = 500;
 
 /// The spline kinds the kind switch offers, in the order `s` cycles through them.
-pub const KINDS: [(SwpCurveKind, &str); 7] = [
+pub const KINDS: [(SwpCurveKind, &str); 9] = [
     (SwpCurveKind::Bezier, "Bézier"),
     (SwpCurveKind::BSpline, "B-spline"),
     (SwpCurveKind::CatmullRom { alpha: 0.0 }, "Catmull-Rom (uniform)"),
@@ -30,7 +30,15 @@ pub const KINDS: [(SwpCurveKind, &str); 7] = [
     (SwpCurveKind::Hermite, "Hermite"),
     (SwpCurveKind::KochanekBartels, "Kochanek–Bartels (TCB)"),
     (SwpCurveKind::BesselOverhauser, "Bessel–Overhauser"),
+    (SwpCurveKind::BezierN, "Bézier (one curve, any degree)"),
+    (SwpCurveKind::Nurbs { degree: splinekit_io::DEFAULT_NURBS_DEGREE }, "NURBS"),
 ];
+
+/// Whether `a` and `b` are the same entry of [`KINDS`] (a NURBS of any degree is "NURBS").
+#[must_use]
+pub fn same_kind(a: SwpCurveKind, b: SwpCurveKind) -> bool {
+    a == b || matches!((a, b), (SwpCurveKind::Nurbs { .. }, SwpCurveKind::Nurbs { .. }))
+}
 
 /// The display name of a curve kind.
 #[must_use]
@@ -40,6 +48,7 @@ pub fn kind_name(kind: SwpCurveKind) -> &'static str {
         SwpCurveKind::Helix => "helix",
         SwpCurveKind::Trefoil => "trefoil",
         SwpCurveKind::CatmullRom { alpha } if alpha != 0.0 && alpha != 0.5 => "Catmull-Rom",
+        SwpCurveKind::Nurbs { .. } => "NURBS",
         _ => KINDS.iter().find(|(k, _)| *k == kind).map_or("?", |(_, name)| name),
     }
 }
@@ -349,6 +358,67 @@ impl Document {
         }
     }
 
+    /// The weight of point `i` of the active curve, if it is a NURBS.
+    #[must_use]
+    pub fn weight(&self, i: usize) -> Option<f64> {
+        match self.curve().map(|c| &c.geometry) {
+            Some(SwpGeometry::Nurbs { weights, .. }) => weights.get(i).copied(),
+            _ => None,
+        }
+    }
+
+    /// Sets the weight of point `i` of a NURBS; ignored unless finite and positive. Call
+    /// [`begin_move`](Self::begin_move) first for one undo step per drag.
+    pub fn set_weight(&mut self, i: usize, weight: f64) {
+        if !(weight.is_finite() && weight > 0.0) {
+            return;
+        }
+        if let Some(SwpGeometry::Nurbs { weights, .. }) = self.swp.curves.get_mut(self.active).map(|c| &mut c.geometry)
+            && let Some(w) = weights.get_mut(i)
+        {
+            *w = weight;
+            self.revision = next_revision();
+        }
+    }
+
+    /// The degree of the active curve if it is a NURBS.
+    #[must_use]
+    pub fn nurbs_degree(&self) -> Option<u32> {
+        match self.curve().map(|c| c.kind) {
+            Some(SwpCurveKind::Nurbs { degree }) => Some(degree),
+            _ => None,
+        }
+    }
+
+    /// Sets the degree of a NURBS (1 to 32) as one undo step; a knot vector of its own goes
+    /// back to the default, since the number of knots depends on the degree.
+    pub fn set_degree(&mut self, degree: u32) {
+        let max = splinekit::MAX_NURBS_DEGREE as u32;
+        if self.nurbs_degree().is_none_or(|d| d == degree) || !(1..=max).contains(&degree) {
+            return;
+        }
+        self.checkpoint();
+        if let Some(curve) = self.swp.curves.get_mut(self.active) {
+            curve.kind = SwpCurveKind::Nurbs { degree };
+            if let SwpGeometry::Nurbs { knots, .. } = &mut curve.geometry {
+                *knots = None;
+            }
+        }
+    }
+
+    /// The knot vector of the active NURBS as the curve uses it (the file's own, or the
+    /// clamped uniform or periodic default), and whether it is the file's own; `None` for
+    /// other kinds or a NURBS that is not a curve yet (too few points).
+    #[must_use]
+    pub fn knots(&self) -> Option<(Vec<f64>, bool)> {
+        let curve = self.curve()?;
+        let SwpGeometry::Nurbs { knots, .. } = &curve.geometry else { return None };
+        match curve.to_curve().ok()? {
+            AnyCurve::Nurbs(nurbs) => Some((nurbs.knots().to_vec(), knots.is_some())),
+            _ => None,
+        }
+    }
+
     /// Whether the active curve lives in the xy-plane (a 2D SWP kind).
     #[must_use]
     pub fn is_2d(&self) -> bool {
@@ -452,6 +522,11 @@ impl Document {
                 tangents.insert(at.min(tangents.len()), t);
             }
             Some(SwpGeometry::Tcb { shape, .. }) => shape.insert(at.min(shape.len()), Tcb::default()),
+            Some(SwpGeometry::Nurbs { weights, knots, .. }) => {
+                weights.insert(at.min(weights.len()), 1.0);
+                // one knot more is needed: the default vector, rather than a guess
+                *knots = None;
+            }
             _ => {}
         }
     }
@@ -537,6 +612,13 @@ impl Document {
                         shape.remove(i);
                     }
                 }
+                SwpGeometry::Nurbs { points, weights, knots } => {
+                    points.remove(i);
+                    if i < weights.len() {
+                        weights.remove(i);
+                    }
+                    *knots = None;
+                }
                 _ => {}
             }
         }
@@ -552,6 +634,7 @@ impl Document {
             curve.geometry = match curve.geometry {
                 SwpGeometry::Hermite { .. } => SwpGeometry::Hermite { points: Vec::new(), tangents: Vec::new() },
                 SwpGeometry::Tcb { .. } => SwpGeometry::Tcb { points: Vec::new(), shape: Vec::new() },
+                SwpGeometry::Nurbs { .. } => empty_geometry(SwpCurveKind::Nurbs { degree: 3 }),
                 _ => SwpGeometry::Points(Vec::new()),
             };
         }
@@ -559,21 +642,32 @@ impl Document {
 
     /// Changes the active curve's kind, keeping its points (a Hermite curve gets
     /// Catmull-Rom tangents, a Kochanek–Bartels curve tension, continuity and bias 0 at every
-    /// key, the same curve as uniform Catmull-Rom; leaving them drops the tangents or shapes).
+    /// key, the same curve as uniform Catmull-Rom, a NURBS weights 1 and the clamped uniform
+    /// knots, of degree 3 or, with fewer than 4 points, one less than their number; leaving
+    /// them drops the tangents, shapes or weights). A single Bézier curve is open.
     pub fn set_kind(&mut self, kind: SwpCurveKind) {
-        if self.curve().is_none_or(|c| c.kind == kind) {
+        if self.curve().is_none_or(|c| same_kind(c.kind, kind)) {
             return;
         }
         self.checkpoint();
         let points = self.points_mut().map(|p| p.clone()).unwrap_or_default();
         let Some(curve) = self.swp.curves.get_mut(self.active) else { return };
-        curve.kind = kind;
+        curve.kind = match kind {
+            SwpCurveKind::Nurbs { degree } if points.len() >= 2 => {
+                SwpCurveKind::Nurbs { degree: degree.min(points.len() as u32 - 1) }
+            }
+            _ => kind,
+        };
+        if kind == SwpCurveKind::BezierN {
+            curve.closed = false;
+        }
         curve.geometry = match kind {
             SwpCurveKind::Hermite => {
                 let tangents = catmull_rom_tangents(&points, curve.closed);
                 SwpGeometry::Hermite { points, tangents }
             }
             SwpCurveKind::KochanekBartels => SwpGeometry::Tcb { shape: vec![Tcb::default(); points.len()], points },
+            SwpCurveKind::Nurbs { .. } => SwpGeometry::Nurbs { weights: vec![1.0; points.len()], points, knots: None },
             _ => SwpGeometry::Points(points),
         };
     }
@@ -581,21 +675,32 @@ impl Document {
     /// Switches to the next kind of [`KINDS`] (the `s` key).
     pub fn cycle_kind(&mut self) {
         let Some(curve) = self.curve() else { return };
-        let next = KINDS.iter().position(|(k, _)| *k == curve.kind).map_or(0, |i| (i + 1) % KINDS.len());
+        let next = KINDS.iter().position(|(k, _)| same_kind(*k, curve.kind)).map_or(0, |i| (i + 1) % KINDS.len());
         self.set_kind(KINDS[next].0);
     }
 
-    /// Opens or closes the active curve.
+    /// Opens or closes the active curve (not a single Bézier curve, which is always open; a
+    /// closed NURBS is periodic, with knots of its own).
     pub fn set_closed(&mut self, closed: bool) {
         if self.curve().is_none_or(|c| {
             c.closed == closed
-                || !matches!(c.geometry, SwpGeometry::Points(_) | SwpGeometry::Hermite { .. } | SwpGeometry::Tcb { .. })
+                || c.kind == SwpCurveKind::BezierN
+                || !matches!(
+                    c.geometry,
+                    SwpGeometry::Points(_)
+                        | SwpGeometry::Hermite { .. }
+                        | SwpGeometry::Tcb { .. }
+                        | SwpGeometry::Nurbs { .. }
+                )
         }) {
             return;
         }
         self.checkpoint();
         if let Some(curve) = self.swp.curves.get_mut(self.active) {
             curve.closed = closed;
+            if let SwpGeometry::Nurbs { knots, .. } = &mut curve.geometry {
+                *knots = None;
+            }
         }
     }
 
@@ -807,12 +912,18 @@ fn empty_curve(name: &str, kind: SwpCurveKind, dim: u8) -> SwpCurve {
         dim,
         steps: 16,
         closed: false,
-        geometry: match kind {
-            SwpCurveKind::Hermite => SwpGeometry::Hermite { points: Vec::new(), tangents: Vec::new() },
-            SwpCurveKind::KochanekBartels => SwpGeometry::Tcb { points: Vec::new(), shape: Vec::new() },
-            _ => SwpGeometry::Points(Vec::new()),
-        },
+        geometry: empty_geometry(kind),
         pos: SourcePos::new(1, 1),
+    }
+}
+
+/// The geometry of a curve of `kind` with no points.
+fn empty_geometry(kind: SwpCurveKind) -> SwpGeometry {
+    match kind {
+        SwpCurveKind::Hermite => SwpGeometry::Hermite { points: Vec::new(), tangents: Vec::new() },
+        SwpCurveKind::KochanekBartels => SwpGeometry::Tcb { points: Vec::new(), shape: Vec::new() },
+        SwpCurveKind::Nurbs { .. } => SwpGeometry::Nurbs { points: Vec::new(), weights: Vec::new(), knots: None },
+        _ => SwpGeometry::Points(Vec::new()),
     }
 }
 

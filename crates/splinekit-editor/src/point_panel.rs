@@ -1,5 +1,6 @@
-//! The selected point's values (coordinates, and a Kochanek–Bartels key's tension, continuity
-//! and bias), and the rule that a value dragged or typed is one undo step.
+//! The selected point's values (coordinates, a NURBS point's weight, and a Kochanek–Bartels
+//! key's tension, continuity and bias), and the rule that a value dragged or typed is one undo
+//! step.
 
 use eframe::egui;
 use splinekit::Tcb;
@@ -8,8 +9,8 @@ use crate::EditorApp;
 
 impl EditorApp {
     /// The selected point's coordinates, to type or drag (`Point x`, `Point y`, and `Point z`
-    /// for a 3D curve), and a Kochanek–Bartels key's `Tension`, `Continuity` and `Bias`; each
-    /// change one undo step.
+    /// for a 3D curve), a NURBS point's `Weight`, and a Kochanek–Bartels key's `Tension`,
+    /// `Continuity` and `Bias`; each change one undo step.
     pub(crate) fn selected_point(&mut self, ui: &mut egui::Ui) {
         let Some(i) = self.view.selected else { return };
         let Some(&p) = self.doc.points().get(i) else { return };
@@ -30,6 +31,20 @@ impl EditorApp {
                 }
             }
         });
+        // a NURBS point's weight, > 0
+        if let Some(w) = self.doc.weight(i) {
+            ui.horizontal(|ui| {
+                let label = ui.label("Weight");
+                let mut v = w;
+                let r = ui
+                    .add(egui::DragValue::new(&mut v).range(1e-6..=1e6).speed(0.01 * w).max_decimals(6))
+                    .labelled_by(label.id);
+                if r.changed() && v != w {
+                    self.edit_value(&r);
+                    self.doc.set_weight(i, v);
+                }
+            });
+        }
         // a Kochanek–Bartels key's tension, continuity and bias, each in [−1, 1]
         let Some(shape) = self.doc.shape(i) else { return };
         ui.horizontal_wrapped(|ui| {

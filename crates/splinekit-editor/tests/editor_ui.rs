@@ -9,7 +9,7 @@ use eframe::egui::{self, Modifiers, Pos2, Vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::{DVec2, DVec3};
-use splinekit::{KochanekBartels, ParamCurve, Tcb};
+use splinekit::{BezierCurve, KochanekBartels, Nurbs, ParamCurve, Tcb};
 use splinekit_editor::EditorApp;
 use splinekit_io::{SwpCurveKind, SwpDocument};
 
@@ -851,6 +851,51 @@ fn tcb_shapes_are_edited_per_key_and_bessel_overhauser_is_a_kind() {
     assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::BesselOverhauser);
     assert!(h.state().doc.spline().is_ok());
     assert!(h.query_by_label("Tension").is_none(), "only Kochanek–Bartels keys have a shape");
+}
+
+/// #41: the kind menu offers NURBS and a single Bézier curve of any degree; a NURBS point's
+/// weight is typed in the point panel (one undo step), the degree in the curve panel, and the
+/// knot vector the curve uses is shown; the curve follows at once and saves as nurbs2.
+#[test]
+fn nurbs_weights_degree_and_knots_and_one_bezier_of_any_degree() {
+    let mut h = four_points();
+    pick_kind(&mut h, "NURBS");
+    assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::Nurbs { degree: 3 });
+    let points = h.state().doc.points().to_vec();
+    assert_eq!(points.len(), 4, "points kept");
+    // weights 1 over the clamped knots: the cubic Bézier curve of the four points
+    let bezier = BezierCurve::new(points.clone()).unwrap();
+    let plain = h.state().doc.spline().unwrap();
+    assert!((plain.eval(0.3) - bezier.eval(0.3)).length() < 1e-14);
+    h.get_by_label("Knots (default): 0 0 0 0 1 1 1 1");
+    assert!(h.query_by_label("Weight").is_none(), "no point selected yet");
+    h.get_by_label("P1").click();
+    h.run();
+    type_value(&mut h, "Weight", "4");
+    assert_eq!(h.state().doc.weight(1), Some(4.0));
+    let expected = Nurbs::new(3, points.clone(), vec![1.0, 4.0, 1.0, 1.0], None).unwrap();
+    let weighted = h.state().doc.spline().unwrap();
+    assert!((weighted.eval(0.3) - expected.eval(0.3)).length() < 1e-15);
+    assert!((weighted.eval(0.3) - plain.eval(0.3)).length() > 1e-2, "the curve follows the weight");
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    h.run();
+    assert_eq!(h.state().doc.weight(1), Some(1.0), "one undo step per value typed");
+    type_value(&mut h, "Degree", "2");
+    assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::Nurbs { degree: 2 });
+    h.get_by_label("Knots (default): 0 0 0 1 2 2 2");
+    let text = h.state().doc.to_swp_string();
+    assert!(text.contains("nurbs2 profile 16 4 degree 2\n[0 0 1]\n"), "{text}");
+    // a single Bézier curve of degree 3 through the same points; never closed
+    pick_kind(&mut h, "Bézier (one curve, any degree)");
+    assert_eq!(h.state().doc.curve().unwrap().kind, SwpCurveKind::BezierN);
+    assert!((h.state().doc.spline().unwrap().eval(0.7) - bezier.eval(0.7)).length() < 1e-15);
+    assert!(h.query_by_label("Weight").is_none(), "only NURBS points have a weight");
+    h.get_by_label("Closed").click();
+    h.run();
+    assert!(!h.state().doc.curve().unwrap().closed, "a single Bézier curve stays open");
+    h.state_mut().doc.add_point(DVec3::new(5.0, 1.0, 0.0));
+    let five = h.state().doc.spline().unwrap();
+    assert!((five.eval(1.0) - DVec3::new(5.0, 1.0, 0.0)).length() < 1e-15, "degree 4 now, ending at the new point");
 }
 
 /// #37: a click on a 3D curve's handle in the 3D view selects it (highlighted there, its

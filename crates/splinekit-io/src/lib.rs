@@ -73,6 +73,7 @@ pub use location::{Location, Position, SourcePos};
 pub use mesh::atomic;
 pub use mesh::{LoadedMesh, MeshFormat, MeshIoError, MeshIoErrorKind, ReadWarning, load_mesh};
 pub use swp::{
-    MAX_STEPS, SwpCurve, SwpCurveKind, SwpCurveRole, SwpDocument, SwpError, SwpErrorKind, SwpFrames, SwpGeometry,
-    SwpInvalid, SwpInvalidKind, SwpNumber, SwpObject, SwpSurface, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation,
+    DEFAULT_NURBS_DEGREE, MAX_STEPS, SwpCurve, SwpCurveKind, SwpCurveRole, SwpDocument, SwpError, SwpErrorKind,
+    SwpFrames, SwpGeometry, SwpInvalid, SwpInvalidKind, SwpNumber, SwpObject, SwpSurface, SwpSurfaceKind,
+    SwpSurfaceSettings, SwpTessellation,
 };
