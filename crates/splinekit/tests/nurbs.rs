@@ -202,6 +202,39 @@ fn every_point_of_a_nurbs_circle_is_at_its_radius() {
     }
 }
 
+/// Elliptic arcs: every point on the ellipse's equation (to 1e-14), the ends at the start and
+/// end angles, each span's middle at its middle angle (the rational quadratic's property), a
+/// circular arc as long as `r·|sweep|`, and bad arcs refused.
+#[test]
+fn elliptic_arcs_are_exact() {
+    use std::f64::consts::{PI, TAU};
+    let (rx, ry) = (2.5, 0.75);
+    for (start, sweep) in [(0.0, 0.3), (0.4, PI / 2.0), (-1.0, 2.0), (1.0, -3.5), (0.25, TAU), (2.0, -TAU), (0.0, 4.7)]
+    {
+        let arc = Nurbs::<DVec2>::elliptic_arc(rx, ry, start, sweep).unwrap();
+        let spans = arc.num_segments();
+        assert_eq!(spans, ((sweep.abs() / (PI / 2.0)) - 1e-9).ceil().max(1.0) as usize, "{start} {sweep}");
+        let at = |angle: f64| DVec2::new(rx * angle.cos(), ry * angle.sin());
+        for i in 0..=1000 {
+            let p = arc.eval(spans as f64 * i as f64 / 1000.0);
+            assert!(((p.x / rx).powi(2) + (p.y / ry).powi(2) - 1.0).abs() <= 1e-14, "{start} {sweep}: {p}");
+        }
+        assert!((arc.eval(0.0) - at(start)).length() <= 1e-15 * rx);
+        assert!((arc.eval(spans as f64) - at(start + sweep)).length() <= 1e-14 * rx);
+        let delta = sweep / spans as f64;
+        for k in 0..spans {
+            let middle = at(start + delta * (k as f64 + 0.5));
+            assert!((arc.eval(k as f64 + 0.5) - middle).length() <= 1e-14 * rx, "span {k} of {start} {sweep}");
+        }
+        assert_eq!(arc.is_closed(), sweep.abs() == TAU);
+        let circle = Nurbs::<DVec2>::elliptic_arc(1.5, 1.5, start, sweep).unwrap();
+        assert!((circle.arclen(1e-12) - 1.5 * sweep.abs()).abs() <= 1e-11, "{start} {sweep}");
+    }
+    for (rx, start, sweep) in [(1.0, 0.0, 0.0), (1.0, 0.0, 7.0), (f64::NAN, 0.0, 1.0), (1.0, f64::INFINITY, 1.0)] {
+        assert!(matches!(Nurbs::<DVec2>::elliptic_arc(rx, 1.0, start, sweep), Err(SplineError::BadArc { .. })));
+    }
+}
+
 #[test]
 fn periodic_curves_close_smoothly() {
     let points = vec![

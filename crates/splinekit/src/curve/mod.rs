@@ -123,6 +123,13 @@ pub enum SplineError {
         /// What is wrong.
         why: &'static str,
     },
+    /// An elliptic arc that cannot be made: a non-finite value, or a sweep of 0 or past a full
+    /// turn.
+    #[error("an elliptic arc: {why}")]
+    BadArc {
+        /// What is wrong.
+        why: &'static str,
+    },
     /// A closed curve asked of a kind that is always open (a single Bézier curve), or a closed
     /// (periodic) NURBS given a knot vector of its own.
     #[error("{what}")]

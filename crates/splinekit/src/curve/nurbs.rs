@@ -127,6 +127,52 @@ impl<P: Vector> Nurbs<P> {
         Self::build(2, knots, points, weights, true).unwrap_or_else(|_| unreachable!("the circle's NURBS is valid"))
     }
 
+    /// The exact arc of the axis-aligned ellipse with semi-axes `rx` (along x) and `ry` about
+    /// the origin in the xy-plane, from the point at angle `start` (radians) by `sweep`
+    /// (negative: clockwise; at most a full turn), the point at angle `θ` being
+    /// `(rx·cos θ, ry·sin θ)`: a quadratic with one span per quarter turn or less, each the
+    /// rational quadratic through the span's end points whose middle control point is where
+    /// their tangents meet, of weight `cos(Δ/2)` for a span of `Δ` (the circle's arc, scaled).
+    /// The spans join at the angles `start + k·Δ`; a full turn is closed.
+    ///
+    /// # Errors
+    ///
+    /// [`SplineError::BadArc`] for a non-finite value, a sweep of 0 or more than a full turn.
+    pub fn elliptic_arc(rx: f64, ry: f64, start: f64, sweep: f64) -> Result<Self, SplineError> {
+        use core::f64::consts::{FRAC_PI_2, TAU};
+        if ![rx, ry, start, sweep].iter().all(|v| v.is_finite()) {
+            return Err(SplineError::BadArc { why: "its semi-axes and angles must be finite" });
+        }
+        if sweep == 0.0 || sweep.abs() > TAU {
+            return Err(SplineError::BadArc { why: "its sweep must be nonzero and at most a full turn (2π)" });
+        }
+        // spans of at most a quarter turn (a little more from rounding is harmless)
+        let n = ((sweep.abs() / FRAC_PI_2) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
+        let delta = sweep / n as f64;
+        let on_ellipse =
+            |angle: f64, scale: f64| P::from_dvec3(DVec3::new(rx * angle.cos() * scale, ry * angle.sin() * scale, 0.0));
+        let middle_weight = (0.5 * delta).cos();
+        let mut points = Vec::with_capacity(2 * n + 1);
+        let mut weights = Vec::with_capacity(2 * n + 1);
+        let mut knots = vec![0.0; 3];
+        points.push(on_ellipse(start, 1.0));
+        weights.push(1.0);
+        for k in 0..n {
+            let a0 = start + delta * k as f64;
+            points.push(on_ellipse(a0 + 0.5 * delta, 1.0 / middle_weight));
+            weights.push(middle_weight);
+            points.push(on_ellipse(a0 + delta, 1.0));
+            weights.push(1.0);
+            let knot = (k + 1) as f64;
+            // interior knots double (the spans join with C¹ direction, C⁰ in the parameter), the
+            // last one clamped
+            let repeat = if k + 1 < n { 2 } else { 3 };
+            knots.extend(std::iter::repeat_n(knot, repeat));
+        }
+        let closed = sweep.abs() == TAU;
+        Self::build(2, knots, points, weights, closed)
+    }
+
     fn build(
         degree: usize,
         knots: Vec<f64>,
