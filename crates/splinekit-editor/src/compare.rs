@@ -4,10 +4,10 @@
 
 use eframe::egui;
 use splinekit::TriMesh;
-use splinekit::subdiv::{LoopOptions, LoopPyramid};
+use splinekit::subdiv::Scheme;
 
-use crate::Scheme;
 use crate::doc::ViewedMesh;
+use crate::subdivision::{level_options, scheme_level};
 use crate::view3d::{Camera, Overlay, View3d, View3dSettings};
 
 /// The most schemes shown at once.
@@ -59,7 +59,7 @@ impl Comparison {
         match (present, on) {
             (None, true) if self.views.len() < MAX_COMPARED => {
                 let mut view = View3d::new();
-                view.label = format!("{} view", scheme.name());
+                view.label = format!("{} view", scheme.title());
                 self.views.push(Compared { scheme, view, key: None, counts: Ok((0, 0)) });
             }
             (Some(i), false) => {
@@ -92,7 +92,7 @@ impl Comparison {
                 continue;
             }
             c.key = Some(key);
-            match scheme_level(source, c.scheme, level, color_by_level) {
+            match compared_level(source, c.scheme, level, color_by_level) {
                 Ok(mesh) => {
                     c.counts = Ok((mesh.num_vertices(), mesh.num_triangles_or_faces()));
                     c.view.set_mesh(&mesh.mesh);
@@ -128,8 +128,8 @@ impl Comparison {
             let mut child = ui.new_child(egui::UiBuilder::new().max_rect(cell).id_salt(("compare", i)));
             let (response, _) = c.view.ui_with_overlay(&mut child, frame, &[], &Overlay::default());
             let text = match &c.counts {
-                Ok((v, f)) => format!("{}: level {level}\n{v} vertices, {f} faces", c.scheme.name()),
-                Err(why) => format!("{}: {why}", c.scheme.name()),
+                Ok((v, f)) => format!("{}: level {level}\n{v} vertices, {f} faces", c.scheme.title()),
+                Err(why) => format!("{}: {why}", c.scheme.title()),
             };
             let painter = ui.painter_at(response.rect);
             let at = response.rect.left_top() + egui::vec2(8.0, 6.0);
@@ -173,33 +173,23 @@ impl Level {
     }
 }
 
-/// Level `level` of `source` by `scheme` (Loop without creases through a [`LoopPyramid`], the
-/// others level by level), or why not: the scheme's own refusal, or a level estimated at more
-/// than [`COMPARE_MAX_FACES`] faces.
+/// Level `level` of `source` by `scheme` ([`subdivide`](splinekit::subdiv::subdivide) on
+/// the loaded mesh), or why not: the scheme's own refusal, or a level estimated at more than
+/// [`COMPARE_MAX_FACES`] faces.
 ///
 /// # Errors
 /// As above, in words.
-pub fn scheme_level(source: &ViewedMesh, scheme: Scheme, level: usize, color_by_level: bool) -> Result<Level, String> {
-    let base = &source.base;
-    let growth: f64 = if scheme == Scheme::Sqrt3 { 3.0 } else { 4.0 };
-    let estimate = base.num_faces() as f64 * growth.powi(i32::try_from(level).unwrap_or(i32::MAX));
+pub fn compared_level(
+    source: &ViewedMesh,
+    scheme: Scheme,
+    level: usize,
+    color_by_level: bool,
+) -> Result<Level, String> {
+    let growth = f64::from(scheme.face_growth());
+    let estimate = source.base.num_faces() as f64 * growth.powi(i32::try_from(level).unwrap_or(i32::MAX));
     if estimate > COMPARE_MAX_FACES as f64 {
         return Err(format!("about {estimate:.0} faces, too many to compare here"));
     }
-    if scheme == Scheme::Loop && source.creases.is_empty() {
-        let mut p = LoopPyramid::new(base, LoopOptions { color_by_level, ..LoopOptions::default() })
-            .map_err(|e| e.to_string())?;
-        p.refine_to(level, |_| {}).map_err(|e| e.to_string())?;
-        let mesh = p.level(level).clone().into_tri_mesh();
-        let faces = mesh.num_triangles();
-        return Ok(Level { mesh, faces });
-    }
-    let mut levels: Vec<splinekit::PolyMesh> = Vec::with_capacity(level);
-    for depth in 1..=level {
-        let coarse = levels.last().unwrap_or(base);
-        let fine = scheme.polygon_level(base, coarse, &source.creases, depth, color_by_level)?;
-        levels.push(fine);
-    }
-    let shown = levels.last().unwrap_or(base);
+    let shown = scheme_level(source, scheme, level, &level_options(color_by_level))?;
     Ok(Level { mesh: shown.to_tri_mesh(), faces: shown.num_faces() })
 }

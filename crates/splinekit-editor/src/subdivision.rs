@@ -3,11 +3,11 @@
 
 use std::sync::Arc;
 
-use splinekit::subdiv::{LoopOptions, LoopPyramid};
+use splinekit::subdiv::{LoopOptions, LoopPyramid, Scheme, SubdivisionOptions, subdivide};
 use splinekit::{PolyMesh, TriMesh};
 
 use crate::app::cancel;
-use crate::{EditorApp, Scheme, ViewedMesh, view3d, work};
+use crate::{EditorApp, ViewedMesh, view3d, work};
 
 /// The mesh opened for viewing and its subdivision levels.
 pub struct MeshState {
@@ -16,9 +16,11 @@ pub struct MeshState {
     /// The document's mesh: the loaded mesh (triangles or polygons) and its sharp and
     /// semi-sharp edges and vertices (its OBJ's crease tags), used by Loop and Catmull-Clark.
     pub source: Arc<ViewedMesh>,
-    /// The Loop levels (level 0 is the loaded mesh), or why it cannot be Loop-subdivided.
+    /// The Loop levels (level 0 is the loaded mesh), or why it cannot be Loop-subdivided
+    /// this way (then [`subdivide`] makes Loop's levels, or says why not).
     pub pyramid: Result<LoopPyramid, String>,
-    /// The levels 1, 2, … made so far with `scheme` when it is not Loop without creases.
+    /// The levels 1, 2, … made so far with `scheme` by [`subdivide`] when they are not the
+    /// Loop pyramid's.
     pub levels: Vec<PolyMesh>,
     /// The scheme of the levels shown.
     pub scheme: Scheme,
@@ -27,12 +29,12 @@ pub struct MeshState {
 }
 
 impl MeshState {
-    /// Whether the levels are the Loop pyramid's (Loop without creases).
-    fn uses_pyramid(&self) -> bool {
-        self.scheme == Scheme::Loop && self.source.creases.is_empty()
+    /// The Loop pyramid, if the levels are its (Loop without creases, on a mesh it takes).
+    fn loop_pyramid(&self) -> Option<&LoopPyramid> {
+        if uses_pyramid(self.scheme, &self.source) { self.pyramid.as_ref().ok() } else { None }
     }
 
-    /// The level shown of a scheme other than Loop (the loaded mesh at level 0).
+    /// The level shown when it is not the Loop pyramid's (the loaded mesh at level 0).
     fn polygon_level(&self) -> &PolyMesh {
         if self.level == 0 { &self.source.base } else { &self.levels[self.level - 1] }
     }
@@ -40,38 +42,52 @@ impl MeshState {
     /// The number of faces of the level shown.
     #[must_use]
     pub fn faces(&self) -> usize {
-        match (self.uses_pyramid(), &self.pyramid) {
-            (true, Ok(p)) => p.level(self.level).num_triangles(),
-            (true, Err(_)) => self.source.base.num_faces(),
-            _ => self.polygon_level().num_faces(),
+        match self.loop_pyramid() {
+            Some(p) => p.level(self.level).num_triangles(),
+            None => self.polygon_level().num_faces(),
         }
     }
 
     /// The number of vertices of the level shown.
     #[must_use]
     pub fn vertices(&self) -> usize {
-        match (self.uses_pyramid(), &self.pyramid) {
-            (true, Ok(p)) => p.level(self.level).num_vertices(),
-            (true, Err(_)) => self.source.base.positions.len(),
-            _ => self.polygon_level().num_vertices(),
+        match self.loop_pyramid() {
+            Some(p) => p.level(self.level).num_vertices(),
+            None => self.polygon_level().num_vertices(),
         }
     }
 
     /// The level shown, triangulated for the 3D view and export.
     #[must_use]
     pub fn shown(&self) -> TriMesh {
-        match (self.uses_pyramid(), &self.pyramid) {
-            (true, Ok(p)) => p.level(self.level).clone().into_tri_mesh(),
-            (true, Err(_)) => self.source.base.to_tri_mesh(),
-            _ => self.polygon_level().to_tri_mesh(),
+        match self.loop_pyramid() {
+            Some(p) => p.level(self.level).clone().into_tri_mesh(),
+            None => self.polygon_level().to_tri_mesh(),
         }
     }
+}
 
-    /// Whether the level shown can be refined.
-    #[must_use]
-    pub fn can_refine(&self) -> bool {
-        !self.uses_pyramid() || self.pyramid.is_ok()
-    }
+/// Whether the levels of `scheme` on `source` are made as a [`LoopPyramid`] (Loop without
+/// creases: the interactive fast path, one level at a time), if the pyramid takes the mesh.
+fn uses_pyramid(scheme: Scheme, source: &ViewedMesh) -> bool {
+    scheme == Scheme::Loop && source.creases.is_empty()
+}
+
+/// The options the editor makes every scheme's levels with: the library's defaults (as the
+/// command line's), the vertices coloured by level or not.
+pub(crate) fn level_options(color_by_level: bool) -> SubdivisionOptions {
+    SubdivisionOptions::DEFAULT.with_color_by_level(color_by_level)
+}
+
+/// Level `depth` of `source` by `scheme` with `options`: [`subdivide`] on the loaded mesh with
+/// its creases (which only Loop and Catmull-Clark use), or the scheme's refusal in words.
+pub(crate) fn scheme_level(
+    source: &ViewedMesh,
+    scheme: Scheme,
+    depth: usize,
+    options: &SubdivisionOptions,
+) -> Result<PolyMesh, String> {
+    subdivide(&source.base, depth, scheme, options, &source.creases).map(|s| s.mesh).map_err(|e| e.to_string())
 }
 
 /// Subdivision levels of more faces than this are made on a worker thread.
@@ -136,8 +152,14 @@ impl EditorApp {
         }
     }
 
+    /// The options of every scheme's levels ([`level_options`]).
+    pub(crate) fn subdivision_options(&self) -> SubdivisionOptions {
+        level_options(self.color_by_level)
+    }
+
+    /// The options of the Loop pyramid, [`subdivision_options`](Self::subdivision_options)'.
     pub(crate) fn loop_options(&self) -> LoopOptions {
-        LoopOptions { color_by_level: self.color_by_level, ..LoopOptions::default() }
+        self.subdivision_options().loop_options()
     }
 
     /// Refines the loaded mesh one level with its scheme (kept levels are reused when
@@ -147,12 +169,11 @@ impl EditorApp {
         if self.refine_task.is_some() {
             return;
         }
-        let color_by_level = self.color_by_level;
+        let options = self.subdivision_options();
         let Some(m) = &mut self.mesh else { return };
         let key = mesh_key(m);
-        match m.scheme {
-            Scheme::Loop if m.uses_pyramid() => {
-                let Ok(p) = &mut m.pyramid else { return };
+        match (&mut m.pyramid, m.scheme) {
+            (Ok(p), scheme) if uses_pyramid(scheme, &m.source) => {
                 if m.level + 1 > p.finest().depth() {
                     if 4 * p.finest().num_triangles() > BACKGROUND_FACES {
                         let mut p = p.clone();
@@ -172,24 +193,22 @@ impl EditorApp {
                 }
                 m.level = (m.level + 1).min(p.finest().depth());
             }
-            scheme => {
+            (_, scheme) => {
                 if m.level >= m.levels.len() {
                     let depth = m.levels.len() + 1;
                     let coarse = m.levels.last().unwrap_or(&m.source.base);
-                    if 4 * coarse.num_faces() > BACKGROUND_FACES {
-                        let (source, coarse) = (Arc::clone(&m.source), m.levels.last().cloned());
-                        let label = format!("Refining to level {depth} ({})", scheme.name());
+                    if scheme.face_growth() as usize * coarse.num_faces() > BACKGROUND_FACES {
+                        let source = Arc::clone(&m.source);
+                        let label = format!("Refining to level {depth} ({})", scheme.title());
                         let task = work::Task::spawn(label, 0, self.egui_ctx.clone(), move |_| {
-                            let coarse = coarse.as_ref().unwrap_or(&source.base);
-                            let fine =
-                                scheme.polygon_level(&source.base, coarse, &source.creases, depth, color_by_level)?;
+                            let fine = scheme_level(&source, scheme, depth, &options)?;
                             let prepared = view3d::PreparedMesh::new(&fine.to_tri_mesh());
                             Ok(Refined::Level(fine, prepared))
                         });
                         self.refine_task = Some((key, task));
                         return;
                     }
-                    match scheme.polygon_level(&m.source.base, coarse, &m.source.creases, depth, color_by_level) {
+                    match scheme_level(&m.source, scheme, depth, &options) {
                         Ok(fine) => m.levels.push(fine),
                         Err(e) => {
                             self.status = format!("Error: {}: {e}", m.name);
@@ -261,8 +280,8 @@ impl EditorApp {
             m.level = 0;
             m.levels.clear();
             self.mesh_generation += 1;
-            self.status = format!("{} subdivision", scheme.name());
-            if !m.source.creases.is_empty() && !scheme.has_creases() {
+            self.status = format!("{} subdivision", scheme.title());
+            if !m.source.creases.is_empty() && !scheme.supports_creases() {
                 self.status.push_str(" (it has no creases: the mesh's crease tags are left out)");
             }
         }
@@ -271,10 +290,10 @@ impl EditorApp {
     /// Rebuilds the loaded mesh's levels with the current colour setting, keeping the level shown.
     pub(crate) fn recolor(&mut self) {
         self.cancel_refine();
-        let options = self.loop_options();
+        let options = self.subdivision_options();
         let Some(m) = &mut self.mesh else { return };
         let (source, scheme, pyramid, level, count) =
-            (Arc::clone(&m.source), m.scheme, m.uses_pyramid(), m.level, m.levels.len());
+            (Arc::clone(&m.source), m.scheme, m.loop_pyramid().is_some(), m.level, m.levels.len());
         let finest = match (&m.pyramid, pyramid) {
             (Ok(p), true) => p.finest().num_triangles(),
             _ => m.levels.last().map_or(0, PolyMesh::num_faces),
@@ -323,9 +342,9 @@ fn recolored(
     pyramid: bool,
     level: usize,
     count: usize,
-    options: LoopOptions,
+    options: SubdivisionOptions,
 ) -> (Result<LoopPyramid, String>, Vec<PolyMesh>, usize) {
-    let mut p = LoopPyramid::new(&source.base, options).map_err(|e| e.to_string());
+    let mut p = LoopPyramid::new(&source.base, options.loop_options()).map_err(|e| e.to_string());
     let mut level = level;
     if let Ok(p) = &mut p
         && pyramid
@@ -339,8 +358,7 @@ fn recolored(
     let mut levels: Vec<PolyMesh> = Vec::with_capacity(count);
     if !pyramid {
         for depth in 1..=count {
-            let coarse = levels.last().unwrap_or(&source.base);
-            match scheme.polygon_level(&source.base, coarse, &source.creases, depth, options.color_by_level) {
+            match scheme_level(source, scheme, depth, &options) {
                 Ok(fine) => levels.push(fine),
                 Err(_) => break,
             }

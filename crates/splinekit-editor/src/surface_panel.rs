@@ -4,11 +4,12 @@
 use std::sync::Arc;
 
 use eframe::egui;
+use splinekit::subdiv::Scheme;
 use splinekit_io::{SwpFrames, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation};
 use splinekit_render::{Curvature, SurfaceColour};
 
 use crate::scene::paint_legend;
-use crate::{EditorApp, Pending, Scheme, compare, view3d};
+use crate::{EditorApp, Pending, compare, view3d};
 
 /// The axis `Revolve` turns the active curve about.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -30,17 +31,17 @@ impl EditorApp {
             ui.label(format!("Mesh {}", m.name));
             ui.label(format!("Level {}: {} vertices", m.level, m.vertices()));
             ui.label(format!("Faces: {}", m.faces()));
-            let (can_refine, scheme) = (m.can_refine(), m.scheme);
-            egui::ComboBox::from_label("Scheme").selected_text(scheme.name()).show_ui(ui, |ui| {
+            let scheme = m.scheme;
+            egui::ComboBox::from_label("Scheme").selected_text(scheme.title()).show_ui(ui, |ui| {
                 for s in Scheme::ALL {
-                    if ui.selectable_label(s == scheme, s.name()).clicked() {
+                    if ui.selectable_label(s == scheme, s.title()).on_hover_text(s.description()).clicked() {
                         self.set_scheme(s);
                     }
                 }
             });
             let refining = self.refine_task.is_some();
             ui.horizontal(|ui| {
-                if ui.add_enabled(can_refine && !refining, egui::Button::new("Refine subdivision")).clicked() {
+                if ui.add_enabled(!refining, egui::Button::new("Refine subdivision")).clicked() {
                     self.refine();
                 }
                 let coarser = self.mesh.as_ref().is_some_and(|m| m.level > 0);
@@ -59,7 +60,9 @@ impl EditorApp {
                     for s in Scheme::ALL {
                         let mut on = chosen.contains(&s);
                         let room = on || chosen.len() < compare::MAX_COMPARED;
-                        if ui.add_enabled(room, egui::Checkbox::new(&mut on, format!("compare {}", s.name()))).changed()
+                        if ui
+                            .add_enabled(room, egui::Checkbox::new(&mut on, format!("compare {}", s.title())))
+                            .changed()
                         {
                             self.compare.set(s, on);
                         }

@@ -283,7 +283,7 @@ fn surfaces_coloured_by_curvature_and_a_uv_checker() {
 #[test]
 fn schemes_compared_side_by_side() {
     use egui_kittest::kittest::NodeT as _;
-    use splinekit_editor::Scheme;
+    use splinekit::subdiv::Scheme;
     let mut h = harness(EditorApp::new(Some(&data("obj/icosahedron.obj"))));
     assert!(h.get_by_label("Coarsen subdivision").accesskit_node().is_disabled());
     for _ in 0..2 {
