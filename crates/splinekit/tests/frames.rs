@@ -10,7 +10,7 @@ use splinekit::frame::{
     self, CurveSample, Frame, FrameMethod, FrameOptions, Side, StartNormal, close_by_arclen, close_by_index, frenet,
     is_closed_loop, rotation_minimizing, sample, sample_with_corners, sequential,
 };
-use splinekit::{AnyCurve, BSpline, BezierSpline, CatmullRom, Circle, ParamCurve, PiecewiseCubic, Vector};
+use splinekit::{AnyCurve, BSpline, BezierSpline, CatmullRom, Circle, Nurbs, ParamCurve, PiecewiseCubic, Vector};
 
 /// Orthonormality and handedness tolerance.
 const FRAME_EQ: f64 = 1e-12;
@@ -431,7 +431,13 @@ fn closed_loops() -> Vec<(&'static str, Vec<CurveSample>)> {
     .map(|&p| DVec3::from_array(p))
     .collect();
     let weirder = BSpline::new(&weirder, false).unwrap().to_piecewise();
+    // NURBS: the exact circle, and a periodic rational cubic through the ring's points
+    let nurbs_circle: AnyCurve<DVec2> = AnyCurve::Nurbs(Nurbs::circle(1.5));
+    let weights = vec![1.0, 2.5, 0.6, 1.0, 3.0, 0.8, 1.2];
+    let periodic = AnyCurve::Nurbs(Nurbs::periodic(3, ring.clone(), weights).unwrap());
     vec![
+        ("nurbs circle", sample(&nurbs_circle, &params(4, 10))),
+        ("periodic rational nurbs", sample(&periodic, &params(7, 12))),
         ("closed b-spline", sample(&bsp, &params(7, 12))),
         ("closed catmull-rom", sample(&cr, &params(7, 12))),
         ("trefoil", trefoil(150)),
