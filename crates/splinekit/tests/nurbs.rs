@@ -4,7 +4,7 @@
 
 use glam::{DVec2, DVec3, DVec4};
 use proptest::prelude::*;
-use splinekit::{Nurbs, ParamCurve, SplineError, Vector};
+use splinekit::{BezierCurve, Nurbs, ParamCurve, SplineError, Vector};
 
 /// `N_{i,p}(x)` by the Cox–de Boor recursion (half-open spans; the last span closed).
 fn basis(knots: &[f64], i: usize, p: usize, x: f64, last: f64) -> f64 {
@@ -290,4 +290,47 @@ fn bad_definitions_are_refused() {
     .unwrap();
     assert_eq!(c.knots(), &[0.0, 0.0, 0.0, 1.0, 2.0, 2.0, 2.0]);
     assert!((c.eval(0.0) - DVec2::ZERO).length() < 1e-15 && (c.eval(2.0) - DVec2::new(3.0, 1.0)).length() < 1e-15);
+}
+
+/// A chain of Bézier curves of mixed degrees as one NURBS: segment `k` is piece `k` at the
+/// same parameter (value and derivative), its length the pieces' lengths summed; pieces that
+/// do not join, or a degree past the NURBS limit, are refused.
+#[test]
+fn chains_of_bezier_curves_of_any_degree() {
+    let quadratic = BezierCurve::new(vec![DVec2::new(0.0, 0.0), DVec2::new(1.0, 2.0), DVec2::new(2.0, 0.0)]).unwrap();
+    let quintic = BezierCurve::new(vec![
+        DVec2::new(2.0, 0.0),
+        DVec2::new(2.5, -1.0),
+        DVec2::new(3.0, 1.5),
+        DVec2::new(3.5, -2.0),
+        DVec2::new(4.0, 2.0),
+        DVec2::new(5.0, 0.5),
+    ])
+    .unwrap();
+    let cubic =
+        BezierCurve::new(vec![DVec2::new(5.0, 0.5), DVec2::new(6.0, 0.0), DVec2::new(6.0, 3.0), DVec2::new(4.0, 3.0)])
+            .unwrap();
+    let pieces = [quadratic, quintic, cubic];
+    let chain = Nurbs::from_beziers(&pieces).unwrap();
+    assert_eq!((chain.degree(), chain.num_segments()), (5, 3));
+    for (k, piece) in pieces.iter().enumerate() {
+        for i in 0..=50 {
+            let t = i as f64 / 50.0;
+            let u = k as f64 + t;
+            assert!((chain.eval(u) - piece.eval(t)).length() <= 1e-14, "piece {k} at {t}");
+            if t == 1.0 && k + 1 < pieces.len() {
+                continue; // the join belongs to the next piece, whose derivative differs
+            }
+            let (d, e) = (ParamCurve::<DVec2>::deriv(&chain, u), piece.deriv_at(t, 1));
+            assert!((d - e).length() <= 1e-12 * e.length().max(1.0), "piece {k} at {t}: {d} vs {e}");
+        }
+    }
+    let sum: f64 = pieces.iter().map(|p| ParamCurve::<DVec2>::arclen(p, 1e-12)).sum();
+    assert!((chain.arclen(1e-12) - sum).abs() <= 1e-10);
+    // a gap, a degree past 32, no pieces
+    let apart = BezierCurve::new(vec![DVec2::new(2.0, 1e-9), DVec2::new(3.0, 1.0)]).unwrap();
+    assert_eq!(Nurbs::from_beziers(&[pieces[0].clone(), apart]), Err(SplineError::NotJoined { index: 1 }));
+    let high = BezierCurve::new((0..40).map(|i| DVec2::new(i as f64, 0.0)).collect()).unwrap();
+    assert!(matches!(Nurbs::from_beziers(&[high]), Err(SplineError::BadDegree { degree: 39, .. })));
+    assert_eq!(Nurbs::<DVec2>::from_beziers(&[]), Err(SplineError::Empty));
 }

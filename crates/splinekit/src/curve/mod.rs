@@ -123,6 +123,13 @@ pub enum SplineError {
         /// What is wrong.
         why: &'static str,
     },
+    /// A piece of a chain of Bézier curves that does not start where the piece before it
+    /// ends.
+    #[error("Bézier piece {index} does not start where piece {} ends", .index - 1)]
+    NotJoined {
+        /// The piece's index, from 1.
+        index: usize,
+    },
     /// An elliptic arc that cannot be made: a non-finite value, or a sweep of 0 or past a full
     /// turn.
     #[error("an elliptic arc: {why}")]

@@ -6,7 +6,7 @@ use glam::{DVec3, DVec4};
 
 use crate::arclen::{self, ArclenEstimate};
 use crate::curve::by_segment::arclen_by_segment;
-use crate::curve::{Aabb, ParamCurve, SplineError, casteljau};
+use crate::curve::{Aabb, BezierCurve, ParamCurve, SplineError, casteljau};
 use crate::vector::Vector;
 
 /// The most control points a [`Nurbs`] takes.
@@ -125,6 +125,46 @@ impl<P: Vector> Nurbs<P> {
         let knots = vec![0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0];
         // a valid definition by construction
         Self::build(2, knots, points, weights, true).unwrap_or_else(|_| unreachable!("the circle's NURBS is valid"))
+    }
+
+    /// The chain of Bézier curves `pieces` as one NURBS: each piece raised to the highest
+    /// degree among them ([`BezierCurve::elevate`], the same curve), the pieces joined end to
+    /// start over knots of multiplicity `degree` at the joins (so the curve is exactly the
+    /// chain, continuous there and no more), all weights 1. Segment `k` is piece `k`, with the
+    /// same parameter: `eval(k + t)` is `pieces[k].eval(t)`.
+    ///
+    /// # Errors
+    ///
+    /// [`SplineError::Empty`] without pieces, [`SplineError::BadDegree`] above
+    /// [`MAX_NURBS_DEGREE`], and [`SplineError::NotJoined`] where a piece does not start
+    /// exactly at the point where the one before it ends.
+    pub fn from_beziers(pieces: &[BezierCurve<P>]) -> Result<Self, SplineError> {
+        let Some(degree) = pieces.iter().map(BezierCurve::degree).max() else { return Err(SplineError::Empty) };
+        if degree > MAX_NURBS_DEGREE {
+            return Err(SplineError::BadDegree { degree, max: MAX_NURBS_DEGREE });
+        }
+        let mut points: Vec<P> = Vec::with_capacity(pieces.len() * degree + 1);
+        let mut knots = vec![0.0; degree + 1];
+        for (k, piece) in pieces.iter().enumerate() {
+            let mut raised = piece.clone();
+            while raised.degree() < degree {
+                raised = raised.elevate();
+            }
+            let own = raised.points();
+            if let Some(&end) = points.last() {
+                if own[0] != end {
+                    return Err(SplineError::NotJoined { index: k });
+                }
+                points.extend_from_slice(&own[1..]);
+            } else {
+                points.extend_from_slice(own);
+            }
+            let knot = (k + 1) as f64;
+            knots.extend(std::iter::repeat_n(knot, if k + 1 < pieces.len() { degree } else { degree + 1 }));
+        }
+        let weights = vec![1.0; points.len()];
+        check_definition(degree, &points, &weights)?;
+        Self::build(degree, knots, points, weights, false)
     }
 
     /// The exact arc of the axis-aligned ellipse with semi-axes `rx` (along x) and `ry` about
