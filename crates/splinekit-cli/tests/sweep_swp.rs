@@ -282,3 +282,28 @@ fn surface_settings_and_the_options_that_replace_them() {
     let (w, _) = read_obj(&dir.path().join("d/tube.obj"));
     assert!(v.len() > 4 * w.len(), "the tolerance makes many more vertices: {} vs {}", v.len(), w.len());
 }
+
+/// #42: one meaning of "sweep": `sweep`, `info`'s welded count and `render` give a closed
+/// profile swept along an open path the same triangles, end caps included (they once
+/// differed: `render`, `gallery` and the editor swept without caps).
+#[test]
+fn sweep_info_and_render_agree_on_caps() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("tube.swp");
+    fs::write(&file, "circ ring 12 0.3\nbez3 path 8 4 [0 0 0] [1 0 0] [2 1 0] [2 2 1]\ngcyl tube ring path\n").unwrap();
+    let file = file.to_str().unwrap();
+    let out = dir.path().join("out");
+    let swept = splinekit(&["sweep", file, "-o", out.to_str().unwrap()]).ok().to_owned();
+    // 12 profile steps by 9 path samples of walls, and a fan of 10 triangles per cap
+    let walls = 2 * 12 * 8;
+    let capped = walls + 2 * 10;
+    assert!(swept.contains(&format!("{capped} triangles")), "{swept}");
+    let info = splinekit(&["info", file]).ok().to_owned();
+    assert!(info.contains(&format!("welded 132 vertices, {capped} triangles")), "{info}");
+    let png = dir.path().join("tube.png");
+    let rendered = splinekit(&["render", file, "-o", png.to_str().unwrap(), "--size", "64x48"]).ok().to_owned();
+    assert!(rendered.contains(&format!("1 surfaces ({capped} triangles)")), "{rendered}");
+    // without caps, all three lose the same 20 triangles
+    let open = splinekit(&["sweep", file, "-o", out.to_str().unwrap(), "--no-caps", "--force"]).ok().to_owned();
+    assert!(open.contains(&format!("{walls} triangles")), "{open}");
+}

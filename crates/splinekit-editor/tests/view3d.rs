@@ -75,8 +75,12 @@ fn data(path: &str) -> PathBuf {
 }
 
 fn swp_surface(path: &str) -> TriMesh {
+    swp_surface_with(path, &splinekit_io::surface::SurfaceOptions::default())
+}
+
+fn swp_surface_with(path: &str, options: &splinekit_io::surface::SurfaceOptions) -> TriMesh {
     let doc = splinekit_io::SwpDocument::read(&data(path)).unwrap();
-    doc.surface_mesh(0, &splinekit_io::surface::SurfaceOptions::default()).unwrap()
+    doc.surface_mesh(0, options).unwrap()
 }
 
 /// Grey-blue, lit or in shadow.
@@ -143,7 +147,10 @@ fn revolution_surface_from_swp() {
 
 #[test]
 fn open_twisted_horn_shows_its_inside_in_the_back_colour() {
-    let mut harness = harness(&swp_surface("swp/ext/scale-twist.swp"), false);
+    // without its caps (on by default), so that its inside shows
+    let mut options = splinekit_io::surface::SurfaceOptions::default();
+    options.sweep.caps = false;
+    let mut harness = harness(&swp_surface_with("swp/ext/scale-twist.swp", &options), false);
     harness.state_mut().view.settings.wireframe = true;
     harness.run();
     harness.snapshot("view3d_horn");

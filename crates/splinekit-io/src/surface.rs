@@ -78,8 +78,10 @@ pub enum SurfaceFrames {
 /// a mesh of this size takes a few gigabytes in memory and as OBJ text.
 pub const DEFAULT_MAX_TRIANGLES: usize = 50_000_000;
 
-/// Options for [`SwpDocument::surface_mesh`]; the default is the course program's file steps,
-/// the welded layout, sequential frames and at most [`DEFAULT_MAX_TRIANGLES`] triangles.
+/// Options for [`SwpDocument::surface_mesh`]; the default is what `splinekit sweep` does
+/// without options, and what `render`, `gallery` and the editor sweep with: the course
+/// program's file steps, the welded layout with end caps on open sweeps of closed profiles,
+/// sequential frames and at most [`DEFAULT_MAX_TRIANGLES`] triangles.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceOptions {
     /// Vertex layout and UVs.
@@ -108,6 +110,10 @@ impl SurfaceOptions {
         }
         if let Some(layout) = settings.layout {
             o.sweep.layout = layout;
+            // the course's layout has no caps unless the surface asks for them
+            if layout == MeshLayout::Compat && settings.caps.is_none() {
+                o.sweep.caps = false;
+            }
         }
         match settings.frames {
             Some(SwpFrames::Sequential) => o.frames = SurfaceFrames::Sequential,

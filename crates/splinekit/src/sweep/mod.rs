@@ -44,13 +44,17 @@ pub struct SweepOptions {
     /// both normalized to `[0, 1]`.
     pub uvs: bool,
     /// Close an open generalized cylinder whose profile is a closed loop with flat end caps
-    /// (their own vertices, so the rim is a sharp edge). Ignored by revolutions.
+    /// (their own vertices, so the rim is a sharp edge). Ignored by revolutions. On by
+    /// default, as `splinekit sweep` does: a closed profile swept along an open path then
+    /// encloses a solid.
     pub caps: bool,
 }
 
 impl Default for SweepOptions {
+    /// The welded layout with caps and without UVs: what `splinekit sweep`, `render`,
+    /// `gallery` and the editor all sweep with unless told otherwise.
     fn default() -> Self {
-        Self { layout: MeshLayout::Welded, uvs: false, caps: false }
+        Self { layout: MeshLayout::Welded, uvs: false, caps: true }
     }
 }
 
