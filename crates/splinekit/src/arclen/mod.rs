@@ -40,8 +40,9 @@ const MAX_DEPTH: u32 = 48;
 /// asked; the error estimate then tells what was reached (more than asked). Smooth curves
 /// need a handful of intervals, a cusp a few hundred; rounding noise in the speed (a curve
 /// with coordinates far larger than its detail, say `1e8` beside `1`) stops bisection where
-/// halving no longer shrinks the error (below six halvings, when the halves together keep three quarters of the error), so only an accuracy below the
-/// rounding level of a curve's length over a long range meets the limit.
+/// halving no longer shrinks the error (from the sixth halving on, where the two halves keep
+/// three quarters of the error or more), so only an accuracy below the rounding level of a
+/// curve's length over a long range meets the limit.
 pub const MAX_INTERVALS: usize = 1 << 14;
 
 /// The depth from which [`adapt`] stops where halving does not shrink the error estimate
