@@ -113,6 +113,10 @@ pub enum Frames {
     Sequential,
     /// Rotation-minimizing frames (double reflection)
     Rmf,
+    /// Frenet frames: N toward the centre of curvature (carried across straight parts)
+    Frenet,
+    /// Z-up frames (Blender's "Z-Up"): the profile's y leans toward +z, no twist builds up
+    Zup,
 }
 
 fn options(args: &SweepArgs) -> anyhow::Result<SurfaceOptions> {
@@ -133,6 +137,8 @@ fn options(args: &SweepArgs) -> anyhow::Result<SurfaceOptions> {
         frames: match args.frames.unwrap_or(Frames::Sequential) {
             Frames::Sequential => SurfaceFrames::Sequential,
             Frames::Rmf => SurfaceFrames::RotationMinimizing,
+            Frames::Frenet => SurfaceFrames::Frenet,
+            Frames::Zup => SurfaceFrames::ZUp,
         },
         max_triangles: Some(args.max_triangles),
     })

@@ -343,17 +343,25 @@ fn settings_controls(
         edited = layout_control(ui, name, settings).or(edited);
     }
     if keyword == "gcyl" {
-        let rmf = settings.frames == Some(SwpFrames::RotationMinimizing);
-        let mut f = rmf;
+        const FRAMES: [(SwpFrames, &str); 4] = [
+            (SwpFrames::Sequential, "sequential"),
+            (SwpFrames::RotationMinimizing, "rotation-minimizing"),
+            (SwpFrames::Frenet, "Frenet"),
+            (SwpFrames::ZUp, "Z-up"),
+        ];
+        let current = settings.frames.unwrap_or(SwpFrames::Sequential);
+        let mut f = current;
+        let text = FRAMES.iter().find(|(m, _)| *m == current).map_or("sequential", |(_, t)| t);
         let r = egui::ComboBox::from_label(format!("{name} frames"))
-            .selected_text(if rmf { "rotation-minimizing" } else { "sequential" })
+            .selected_text(text)
             .show_ui(ui, |ui| {
-                ui.selectable_value(&mut f, false, "sequential");
-                ui.selectable_value(&mut f, true, "rotation-minimizing");
+                for (method, text) in FRAMES {
+                    ui.selectable_value(&mut f, method, text);
+                }
             })
             .response;
-        if f != rmf {
-            settings.frames = Some(if f { SwpFrames::RotationMinimizing } else { SwpFrames::Sequential });
+        if f != current {
+            settings.frames = Some(f);
             edited = Some(r);
         }
         let mut caps = settings.caps.unwrap_or(true);

@@ -72,6 +72,11 @@ pub enum SurfaceFrames {
     Sequential,
     /// Rotation-minimizing frames (double reflection), closed-curve correction by arc length.
     RotationMinimizing,
+    /// Frenet frames: N toward the centre of curvature (carried across straight parts).
+    Frenet,
+    /// Z-up frames (Blender's "Z-Up"): the profile's y leans toward +z everywhere, no twist
+    /// builds up ([`splinekit::frame::fixed_up`]).
+    ZUp,
 }
 
 /// The default of [`SurfaceOptions::max_triangles`] and [`crate::mesh::RebuildOptions`]:
@@ -118,6 +123,8 @@ impl SurfaceOptions {
         match settings.frames {
             Some(SwpFrames::Sequential) => o.frames = SurfaceFrames::Sequential,
             Some(SwpFrames::RotationMinimizing) => o.frames = SurfaceFrames::RotationMinimizing,
+            Some(SwpFrames::Frenet) => o.frames = SurfaceFrames::Frenet,
+            Some(SwpFrames::ZUp) => o.frames = SurfaceFrames::ZUp,
             None => {}
         }
         if let Some(caps) = settings.caps {
@@ -527,6 +534,8 @@ fn frames_for(samples: &[CurveSample], method: SurfaceFrames) -> Vec<Frame> {
     let method = match method {
         SurfaceFrames::Sequential => FrameMethod::Sequential(Side::Left),
         SurfaceFrames::RotationMinimizing => FrameMethod::RotationMinimizing(StartNormal::Auto(Side::Left)),
+        SurfaceFrames::Frenet => FrameMethod::Frenet,
+        SurfaceFrames::ZUp => FrameMethod::FixedUp(DVec3::Z),
     };
     frame::frames_for_samples(samples, &FrameOptions::DEFAULT.with_method(method))
 }

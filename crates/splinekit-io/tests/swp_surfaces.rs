@@ -243,7 +243,7 @@ fn settings_are_read_written_back_and_checked() {
         (format!("{BSP}zrev s p layout welded\n"), "t.swp:2:10", "layout applies to srev, gcyl, xsweep only"),
         (format!("{TUBE}gcyl s ring path tolerance 0.1 angle-tolerance 4\n"), "t.swp:3:32", "at most one of tolerance"),
         (format!("{TUBE}gcyl s ring path angle-tolerance 200\n"), "t.swp:3:34", "at most 180"),
-        (format!("{TUBE}gcyl s ring path frames frenet\n"), "t.swp:3:25", "sequential or rmf"),
+        (format!("{TUBE}gcyl s ring path frames up\n"), "t.swp:3:25", "sequential or rmf or frenet or zup"),
         (format!("{TUBE}gcyl s ring path caps no-caps\n"), "t.swp:3:23", "at most one of caps or no-caps"),
     ];
     for (text, at, what) in cases {
@@ -339,4 +339,36 @@ fn xsweep_parses_and_refuses_what_the_tool_cannot_hold() {
     assert!(err.contains("2D B-splines (bsp2)"), "{err}");
     let err = cr.surface_mesh(0, &SurfaceOptions::default()).map(|_| ()).unwrap_err().to_string();
     assert!(err.contains("must be a 2D B-spline"), "{err}");
+}
+
+/// #42: `frames frenet` and `frames zup` are read, written back and sweep as they say: a
+/// straight bar profile along a helix about z keeps each cross-section level (its profile x
+/// axis, N, horizontal) with Z-up frames, and with Frenet frames (a helix's principal normal
+/// points at its axis), but not with rotation-minimizing ones (which turn against the helix's
+/// torsion).
+#[test]
+fn frenet_and_z_up_frames_keep_a_bar_level_along_a_helix() {
+    let text = "bez2 bar 1 4 [-0.3 0] [-0.1 0] [0.1 0] [0.3 0]\nhelix coil 90 1 0.8 1.5\n\
+                gcyl z bar coil frames zup\ngcyl f bar coil frames frenet\ngcyl r bar coil frames rmf\n";
+    let doc = parse(text);
+    let written = doc.to_swp_string();
+    assert!(written.contains("gcyl z bar coil frames zup\n") && written.contains("gcyl f bar coil frames frenet\n"));
+    let back = parse(&written);
+    for (a, b) in doc.surfaces.iter().zip(&back.surfaces) {
+        assert_eq!((a.kind, a.settings), (b.kind, b.settings));
+    }
+    let options = SurfaceOptions {
+        sweep: SweepOptions { layout: MeshLayout::Compat, ..SweepOptions::default() },
+        ..SurfaceOptions::default()
+    };
+    // the widest tilt of a cross-section: the z difference of its two ends (one segment of
+    // one step: two vertices per ring, ring by ring)
+    let tilt = |k: usize| {
+        let mesh = doc.surface_mesh(k, &options).unwrap();
+        assert_eq!(mesh.positions.len(), 2 * 91);
+        mesh.positions.chunks(2).map(|ring| (ring[0].z - ring[1].z).abs()).fold(0.0, f64::max)
+    };
+    assert!(tilt(0) <= 1e-12, "zup: {}", tilt(0));
+    assert!(tilt(1) <= 1e-12, "frenet: {}", tilt(1));
+    assert!(tilt(2) > 1e-2, "rmf: {}", tilt(2));
 }

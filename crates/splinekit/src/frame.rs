@@ -391,9 +391,21 @@ pub fn frenet(samples: &[CurveSample]) -> Vec<Frame> {
     let diag = bounding_diagonal(samples);
     let normals: Vec<Option<DVec3>> =
         samples.iter().zip(&ts).map(|(s, &t)| principal_normal(s.curvature, t, diag)).collect();
-    let Some(first) = normals.iter().position(Option::is_some) else {
-        return rotation_minimizing(samples, StartNormal::default());
-    };
+    // each principal normal up to sign: the side the carried normal is on
+    frames_from_normals(samples, &ts, &normals, |nf, r| if nf.dot(r) >= 0.0 { nf } else { -nf })
+        .unwrap_or_else(|| rotation_minimizing(samples, StartNormal::default()))
+}
+
+/// Frames with the given normals where known (`pick(normal, carried)` chooses each from it
+/// and the previous frame's normal carried by a rotation-minimizing step), carried between
+/// them and backward before the first; `None` when no sample has a normal.
+fn frames_from_normals(
+    samples: &[CurveSample],
+    ts: &[DVec3],
+    normals: &[Option<DVec3>],
+    pick: impl Fn(DVec3, DVec3) -> DVec3,
+) -> Option<Vec<Frame>> {
+    let first = normals.iter().position(Option::is_some)?;
     let mut frames = vec![Frame::IDENTITY; ts.len()];
     let n0 = normals[first].unwrap_or(DVec3::ZERO);
     frames[first] = frame_from(ts[first], n0, ts[first].any_orthonormal_vector());
@@ -405,14 +417,36 @@ pub fn frenet(samples: &[CurveSample]) -> Vec<Frame> {
     for i in first + 1..ts.len() {
         let p = frames[i - 1];
         let r = transport(samples[i - 1].position, p.t, p.n, samples[i].position, ts[i]);
-        let n = match normals[i] {
-            Some(nf) if nf.dot(r) >= 0.0 => nf,
-            Some(nf) => -nf,
-            None => r,
-        };
+        let n = normals[i].map_or(r, |nf| pick(nf, r));
         frames[i] = frame_from(ts[i], n, r);
     }
-    frames
+    Some(frames)
+}
+
+/// Frames whose binormal leans toward a fixed `up` everywhere (Blender's "Z-Up" twist method
+/// with `up = +z`): `N = normalize(up × T)`, `B = T × N`, so B is `up` made perpendicular to
+/// T and no twist builds up along the curve; a planar curve in a plane through `up` keeps its
+/// profile upright.
+///
+/// Where T is (nearly) parallel to `up` (`|up × T|` below 1e-9) the previous frame is carried
+/// by a rotation-minimizing step (a leading run backward from the first sample that has a
+/// direction); a curve running along `up` everywhere, or an `up` of zero length or not finite,
+/// gets [`rotation_minimizing`] with `StartNormal::Auto(Side::Left)`. Where the path passes
+/// close to the `up` direction the frame turns quickly about T (by up to a half turn where it
+/// passes through it), as Blender's does; rotation-minimizing frames do not.
+#[must_use]
+pub fn fixed_up(samples: &[CurveSample], up: DVec3) -> Vec<Frame> {
+    let ts = unit_tangents(samples);
+    let Some(up) = up.try_normalize() else { return rotation_minimizing(samples, StartNormal::default()) };
+    let normals: Vec<Option<DVec3>> = ts
+        .iter()
+        .map(|&t| {
+            let n = up.cross(t);
+            (n.length() > 1e-9).then(|| n.normalize())
+        })
+        .collect();
+    frames_from_normals(samples, &ts, &normals, |nf, _| nf)
+        .unwrap_or_else(|| rotation_minimizing(samples, StartNormal::default()))
 }
 
 /// True when there are at least two samples, the first and last positions are within
@@ -494,6 +528,9 @@ pub enum FrameMethod {
     RotationMinimizing(StartNormal),
     /// [`frenet`] (closed fix and twist by arc length).
     Frenet,
+    /// [`fixed_up`] with this up vector (Blender's "Z-Up" with `+z`; closed fix and twist by
+    /// arc length).
+    FixedUp(DVec3),
 }
 
 /// Options for [`frames`]: start from [`FrameOptions::DEFAULT`] and adjust with `with_*`.
@@ -555,6 +592,7 @@ pub fn frames_for_samples(samples: &[CurveSample], options: &FrameOptions) -> Ve
         FrameMethod::Sequential(side) => sequential(samples, side),
         FrameMethod::RotationMinimizing(start) => rotation_minimizing(samples, start),
         FrameMethod::Frenet => frenet(samples),
+        FrameMethod::FixedUp(up) => fixed_up(samples, up),
     };
     let tolerance = CLOSED_RELATIVE_TOLERANCE * bounding_diagonal(samples);
     if options.close && is_closed_loop(samples, tolerance, CLOSED_ANGLE_TOLERANCE) {

@@ -7,8 +7,8 @@ use core::f64::consts::TAU;
 use glam::{DMat3, DVec2, DVec3};
 use proptest::prelude::*;
 use splinekit::frame::{
-    self, CurveSample, Frame, FrameMethod, FrameOptions, Side, StartNormal, close_by_arclen, close_by_index, frenet,
-    is_closed_loop, rotation_minimizing, sample, sample_with_corners, sequential,
+    self, CurveSample, Frame, FrameMethod, FrameOptions, Side, StartNormal, close_by_arclen, close_by_index, fixed_up,
+    frenet, is_closed_loop, rotation_minimizing, sample, sample_with_corners, sequential,
 };
 use splinekit::{AnyCurve, BSpline, BezierSpline, CatmullRom, Circle, Nurbs, ParamCurve, PiecewiseCubic, Vector};
 
@@ -39,6 +39,8 @@ fn all_options() -> Vec<FrameOptions> {
         FrameMethod::RotationMinimizing(StartNormal::Up(DVec3::new(0.3, -1.0, 0.2))),
         FrameMethod::RotationMinimizing(StartNormal::Normal(DVec3::X)),
         FrameMethod::Frenet,
+        FrameMethod::FixedUp(DVec3::Z),
+        FrameMethod::FixedUp(DVec3::new(0.2, 1.0, -0.4)),
     ];
     let mut out = Vec::new();
     for m in methods {
@@ -674,4 +676,48 @@ fn circle_sides() {
             assert!((f.n - outward * sign).length() <= 1e-12, "{side:?}: {f:?} at {}", s.position);
         }
     }
+}
+
+/// Fixed-up frames (Blender's Z-Up): on a helix about z every normal is horizontal and every
+/// binormal leans toward +z as far as it can (`B·z = √(1 − (T·z)²)`), with no twist building
+/// up; where the path runs along z the frame is carried (finite, orthonormal); an up of zero
+/// length falls back to rotation-minimizing frames.
+#[test]
+fn fixed_up_frames_keep_the_binormal_toward_up() {
+    let helix = AnyCurve::<DVec3>::Helix(splinekit::Helix::new(1.5, 0.8, 3.0));
+    let samples = sample(&helix, &params(1, 300));
+    let frames = fixed_up(&samples, DVec3::Z);
+    for (k, f) in frames.iter().enumerate() {
+        assert_frame(f, &format!("helix sample {k}"));
+        assert!(f.n.z.abs() <= 1e-12, "sample {k}: N·z = {}", f.n.z);
+        let most = (1.0 - f.t.z * f.t.z).sqrt();
+        assert!((f.b.z - most).abs() <= 1e-12, "sample {k}: B·z = {} of {most}", f.b.z);
+    }
+    // a path that climbs straight up for a while: frames carried through, no jump
+    let points = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(2.0, 0.0, 0.0),
+        DVec3::new(2.0, 0.0, 1.0),
+        DVec3::new(2.0, 0.0, 2.0),
+        DVec3::new(2.0, 0.0, 3.0),
+        DVec3::new(2.0, 1.0, 3.0),
+    ];
+    let climb = BezierSpline::new(&points, false).unwrap().to_piecewise();
+    let samples = sample(&climb, &params(2, 200));
+    let frames = fixed_up(&samples, DVec3::Z);
+    for (k, f) in frames.iter().enumerate() {
+        assert_frame(f, &format!("climb sample {k}"));
+    }
+    // where T is vertical (the join at u = 1) the previous frame is carried; past it, the
+    // normal is up × T again, whatever side that is on (the turn about T that fixed-up
+    // frames make near the up direction)
+    assert_eq!(samples[200].tangent.normalize(), DVec3::Z);
+    assert!((frames[200].n - frames[199].n).length() <= 1e-6, "{:?} then {:?}", frames[199], frames[200]);
+    for k in [150, 250, 300] {
+        let t = frames[k].t;
+        assert!((frames[k].n - DVec3::Z.cross(t).normalize()).length() <= 1e-12, "sample {k}");
+    }
+    let fallback = fixed_up(&samples, DVec3::ZERO);
+    assert_eq!(fallback, rotation_minimizing(&samples, StartNormal::default()));
 }

@@ -474,7 +474,7 @@ pub struct SwpSurfaceSettings {
     pub tessellation: Option<SwpTessellation>,
     /// `layout welded` or `layout compat` (`srev`, `gcyl`).
     pub layout: Option<MeshLayout>,
-    /// `frames sequential` or `frames rmf` (`gcyl`).
+    /// `frames sequential`, `frames rmf`, `frames frenet` or `frames zup` (`gcyl`).
     pub frames: Option<SwpFrames>,
     /// `caps` or `no-caps`: flat caps on an open sweep of a closed profile (`gcyl`).
     pub caps: Option<bool>,
@@ -506,6 +506,10 @@ pub enum SwpFrames {
     Sequential,
     /// `frames rmf`: rotation-minimizing frames.
     RotationMinimizing,
+    /// `frames frenet`: Frenet frames.
+    Frenet,
+    /// `frames zup`: frames whose binormal leans toward +z (Blender's "Z-Up").
+    ZUp,
 }
 
 /// The setting words and the surface keywords each applies to.

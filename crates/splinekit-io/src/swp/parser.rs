@@ -887,7 +887,7 @@ impl<'a> Parser<'a> {
 
     /// Reads one setting of the surface `label` (whose keyword is `keyword`) if the next
     /// token is a setting word: `tolerance D`, `angle-tolerance DEGREES`, `layout
-    /// welded|compat`, `frames sequential|rmf`, `caps` or `no-caps`. Returns whether it read
+    /// welded|compat`, `frames sequential|rmf|frenet|zup`, `caps` or `no-caps`. Returns whether it read
     /// one. A setting given twice (or both tolerances), or one that does not apply to the
     /// kind, is an error.
     fn setting(
@@ -937,8 +937,9 @@ impl<'a> Parser<'a> {
                 settings.layout = Some([MeshLayout::Welded, MeshLayout::Compat][k]);
             }
             "frames" => {
-                let k = choice(&["sequential", "rmf"], "frames")?;
-                settings.frames = Some([SwpFrames::Sequential, SwpFrames::RotationMinimizing][k]);
+                let k = choice(&["sequential", "rmf", "frenet", "zup"], "frames")?;
+                settings.frames =
+                    Some([SwpFrames::Sequential, SwpFrames::RotationMinimizing, SwpFrames::Frenet, SwpFrames::ZUp][k]);
             }
             "caps" => settings.caps = Some(true),
             _ => settings.caps = Some(false),

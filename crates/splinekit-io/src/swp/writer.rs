@@ -144,6 +144,8 @@ fn write_settings(out: &mut String, settings: &SwpSurfaceSettings) {
     match settings.frames {
         Some(SwpFrames::Sequential) => out.push_str(" frames sequential"),
         Some(SwpFrames::RotationMinimizing) => out.push_str(" frames rmf"),
+        Some(SwpFrames::Frenet) => out.push_str(" frames frenet"),
+        Some(SwpFrames::ZUp) => out.push_str(" frames zup"),
         None => {}
     }
     match settings.caps {
