@@ -27,6 +27,21 @@ pub const DEFAULT_SLICES: u32 = 32;
 impl EditorApp {
     pub(crate) fn right_panel(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame) {
         ui.heading("Surface");
+        // the controls scroll within at most about half the column, so that the 3D view keeps
+        // its room however many surfaces the document has
+        let most = (0.5 * ui.available_height()).max(160.0);
+        egui::ScrollArea::vertical()
+            .id_salt("surface controls")
+            .max_height(most)
+            .auto_shrink([false, true])
+            .show(ui, |ui| self.surface_and_display_controls(ui));
+        ui.separator();
+        self.view_3d(ui, frame);
+    }
+
+    /// The loaded mesh's subdivision controls, or the document's surfaces with their
+    /// settings, and the 3D display settings.
+    fn surface_and_display_controls(&mut self, ui: &mut egui::Ui) {
         if let Some(m) = &self.mesh {
             ui.label(format!("Mesh {}", m.name));
             ui.label(format!("Level {}: {} vertices", m.level, m.vertices()));
@@ -116,7 +131,11 @@ impl EditorApp {
                 }
             });
         });
-        ui.separator();
+    }
+
+    /// The 3D view (or the side-by-side comparison of schemes), with the handles of a 3D
+    /// curve.
+    fn view_3d(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame) {
         self.update_view3d(Some(ui.ctx()));
         // the control points of a 3D curve, dragged in the 3D view; every curve drawn over it
         let handles = if self.mesh.is_none() && !self.doc.is_2d() { self.doc.points().to_vec() } else { Vec::new() };
