@@ -33,7 +33,7 @@ use splinekit::{AnyCurve, ArclenIndex, ArclenTable, ParamCurve, PolyMesh, TableM
 use splinekit_io::mesh::{
     MeshFormat, RebuildOptions, SplineHeader, read_creases, read_mesh, write_mesh, write_obj, write_obj_poly,
 };
-use splinekit_io::surface::{SurfaceFrames, SurfaceOptions, SurfaceTessellation};
+use splinekit_io::surface::{ProfileAlign, SurfaceFrames, SurfaceOptions, SurfaceTessellation};
 use splinekit_io::{SwpCurve, SwpDocument, SwpGeometry, SwpSurfaceKind};
 use splinekit_render::{
     Curvature, CurveOptions, FileOptions, ImageSize, PictureFormat, SurfaceColour, View, render_swp_document,
@@ -414,9 +414,15 @@ fn sweep(doc: &SwpDocument, k: usize, rng: &mut Rng) -> Result<(), Finding> {
     }
     let frames = if rng.chance(0.3) {
         own.frames = None;
-        SurfaceFrames::RotationMinimizing
+        *rng.pick(&[SurfaceFrames::RotationMinimizing, SurfaceFrames::Frenet, SurfaceFrames::ZUp])
     } else {
         SurfaceFrames::Sequential
+    };
+    let align = if rng.chance(0.2) {
+        own.align = None;
+        *rng.pick(&[ProfileAlign::Origin, ProfileAlign::Centre, ProfileAlign::Start])
+    } else {
+        ProfileAlign::Origin
     };
     let options = SurfaceOptions {
         sweep: SweepOptions {
@@ -426,6 +432,7 @@ fn sweep(doc: &SwpDocument, k: usize, rng: &mut Rng) -> Result<(), Finding> {
         },
         tessellation,
         frames,
+        align,
         max_triangles: Some(MAX_TRIANGLES),
     };
     let Ok(mesh) = doc.surface_mesh(k, &options) else { return Ok(()) };

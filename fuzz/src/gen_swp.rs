@@ -476,8 +476,10 @@ impl Doc<'_> {
                 let mut it = tail.into_iter().peekable();
                 while let Some(w) = it.next() {
                     let mut group = vec![w.clone()];
-                    if matches!(w.as_str(), "scale" | "twist" | "tolerance" | "angle-tolerance" | "layout" | "frames")
-                        && let Some(v) = it.next()
+                    if matches!(
+                        w.as_str(),
+                        "scale" | "twist" | "tolerance" | "angle-tolerance" | "layout" | "frames" | "align"
+                    ) && let Some(v) = it.next()
                     {
                         group.push(v);
                     }
@@ -526,10 +528,14 @@ impl Doc<'_> {
         if kind == "gcyl" || self.mistake() {
             if self.rng.chance(0.3) {
                 words.push("frames".into());
-                words.push((*self.rng.pick(&["sequential", "rmf"])).into());
+                words.push((*self.rng.pick(&["sequential", "rmf", "frenet", "zup"])).into());
             }
             if self.rng.chance(0.3) {
                 words.push((*self.rng.pick(&["caps", "no-caps"])).into());
+            }
+            if self.rng.chance(0.2) {
+                words.push("align".into());
+                words.push((*self.rng.pick(&["origin", "centre", "center", "start"])).into());
             }
         }
         if self.mistake() && !words.is_empty() {

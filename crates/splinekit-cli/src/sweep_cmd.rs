@@ -10,7 +10,9 @@ use splinekit::TriMesh;
 use splinekit::sweep::{MeshLayout, SweepOptions};
 use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildError, RebuildOptions, SplineHeader};
-use splinekit_io::surface::{DEFAULT_MAX_TRIANGLES, SurfaceError, SurfaceFrames, SurfaceOptions, SurfaceTessellation};
+use splinekit_io::surface::{
+    DEFAULT_MAX_TRIANGLES, ProfileAlign, SurfaceError, SurfaceFrames, SurfaceOptions, SurfaceTessellation,
+};
 
 use crate::select;
 
@@ -83,6 +85,10 @@ pub struct SweepArgs {
     #[arg(long, value_enum, value_name = "METHOD")]
     pub frames: Option<Frames>,
 
+    /// Which point of each gcyl's profile rides on the path (SWP only) [default: origin]
+    #[arg(long, value_enum, value_name = "POINT")]
+    pub align: Option<Align>,
+
     /// Add arc-length texture coordinates (welded seams are then split for the UV jump)
     #[arg(long)]
     pub uvs: bool,
@@ -104,6 +110,18 @@ pub struct SweepArgs {
     /// fixes the tessellation, so --tolerance and --angle-tolerance are refused
     #[arg(long)]
     pub annotated: bool,
+}
+
+/// Which point of a profile rides on the path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Align {
+    /// The profile's origin (0, 0), as the course program
+    Origin,
+    /// The centre of the profile's bounding box
+    #[value(alias = "center")]
+    Centre,
+    /// The profile's first point
+    Start,
 }
 
 /// Frame methods.
@@ -139,6 +157,11 @@ fn options(args: &SweepArgs) -> anyhow::Result<SurfaceOptions> {
             Frames::Rmf => SurfaceFrames::RotationMinimizing,
             Frames::Frenet => SurfaceFrames::Frenet,
             Frames::Zup => SurfaceFrames::ZUp,
+        },
+        align: match args.align {
+            Some(Align::Centre) => ProfileAlign::Centre,
+            Some(Align::Start) => ProfileAlign::Start,
+            Some(Align::Origin) | None => ProfileAlign::Origin,
         },
         max_triangles: Some(args.max_triangles),
     })
@@ -195,6 +218,9 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
         }
         if args.frames.is_some() {
             own.frames = None;
+        }
+        if args.align.is_some() {
+            own.align = None;
         }
         if args.compat {
             own.layout = None;

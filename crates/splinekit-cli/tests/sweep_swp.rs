@@ -307,3 +307,30 @@ fn sweep_info_and_render_agree_on_caps() {
     let open = splinekit(&["sweep", file, "-o", out.to_str().unwrap(), "--no-caps", "--force"]).ok().to_owned();
     assert!(open.contains(&format!("{walls} triangles")), "{open}");
 }
+
+/// #42: `--frames frenet|zup` and `--align centre|center|start` are accepted and change the
+/// surface (the file's own settings give way to them); a wrong word is refused by name.
+#[test]
+fn frames_and_align_flags() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bar.swp");
+    fs::write(&file, "bsp2 square 2 4 closed [1 0] [2 0] [2 1] [1 1]\nhelix coil 40 1 0.5 1\ngcyl bar square coil\n")
+        .unwrap();
+    let file = file.to_str().unwrap();
+    let read = |flags: &[&str]| {
+        let out = dir.path().join(flags.join("_"));
+        let mut args = vec!["sweep", file, "-o", out.to_str().unwrap()];
+        args.extend_from_slice(flags);
+        splinekit(&args).ok();
+        fs::read_to_string(out.join("bar.obj")).unwrap()
+    };
+    let plain = read(&[]);
+    for flags in [["--frames", "frenet"], ["--frames", "zup"], ["--align", "centre"], ["--align", "start"]] {
+        assert_ne!(read(&flags), plain, "{flags:?} changes nothing");
+    }
+    assert_eq!(read(&["--align", "center"]), read(&["--align", "centre"]));
+    assert_eq!(read(&["--align", "origin"]), plain);
+    let run = splinekit(&["sweep", file, "-o", dir.path().join("x").to_str().unwrap(), "--align", "middle"]);
+    assert_eq!(run.code, Some(2));
+    assert!(run.stderr.contains("possible values: origin, centre, start"), "{}", run.stderr);
+}

@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use eframe::egui;
 use splinekit::subdiv::Scheme;
+use splinekit_io::surface::ProfileAlign;
 use splinekit_io::{SwpFrames, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation};
 use splinekit_render::{Curvature, SurfaceColour};
 
@@ -369,18 +370,18 @@ fn settings_controls(
             (SwpFrames::ZUp, "Z-up"),
         ];
         let current = settings.frames.unwrap_or(SwpFrames::Sequential);
-        let mut f = current;
-        let text = FRAMES.iter().find(|(m, _)| *m == current).map_or("sequential", |(_, t)| t);
-        let r = egui::ComboBox::from_label(format!("{name} frames"))
-            .selected_text(text)
-            .show_ui(ui, |ui| {
-                for (method, text) in FRAMES {
-                    ui.selectable_value(&mut f, method, text);
-                }
-            })
-            .response;
+        let (f, r) = menu(ui, &format!("{name} frames"), &FRAMES, current);
         if f != current {
             settings.frames = Some(f);
+            edited = Some(r);
+        }
+        const ALIGN: [(ProfileAlign, &str); 3] =
+            [(ProfileAlign::Origin, "origin"), (ProfileAlign::Centre, "centre"), (ProfileAlign::Start, "start")];
+        let current = settings.align.unwrap_or_default();
+        let (a, r) = menu(ui, &format!("{name} align"), &ALIGN, current);
+        let r = r.on_hover_text("which point of the profile rides on the path");
+        if a != current {
+            settings.align = Some(a);
             edited = Some(r);
         }
         let mut caps = settings.caps.unwrap_or(true);
@@ -474,4 +475,20 @@ fn optional_curve_choice(
         })
         .response;
     (*curve != before).then_some(r)
+}
+
+/// A menu labelled `label` of `choices` (value, text) showing `current`; returns the value
+/// chosen (`current` if none) and the menu's response.
+fn menu<T: Copy + PartialEq>(ui: &mut egui::Ui, label: &str, choices: &[(T, &str)], current: T) -> (T, egui::Response) {
+    let mut chosen = current;
+    let text = choices.iter().find(|(v, _)| *v == current).map_or("", |(_, t)| t);
+    let r = egui::ComboBox::from_label(label)
+        .selected_text(text)
+        .show_ui(ui, |ui| {
+            for &(value, text) in choices {
+                ui.selectable_value(&mut chosen, value, text);
+            }
+        })
+        .response;
+    (chosen, r)
 }

@@ -79,6 +79,34 @@ pub enum SurfaceFrames {
     ZUp,
 }
 
+/// Which point of a `gcyl`'s profile rides on the path (the profile's other points keep
+/// their offsets from it, in the frame's N and B).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ProfileAlign {
+    /// The profile's origin `(0, 0)`, as the course program places it.
+    #[default]
+    Origin,
+    /// The centre of the profile's tessellated points' bounding box.
+    Centre,
+    /// The profile's first point.
+    Start,
+}
+
+impl ProfileAlign {
+    /// The point of `points` that rides on the path (the origin for no points).
+    #[must_use]
+    pub fn anchor(self, points: &[DVec2]) -> DVec2 {
+        match (self, points.first()) {
+            (Self::Origin, _) | (_, None) => DVec2::ZERO,
+            (Self::Start, Some(&first)) => first,
+            (Self::Centre, Some(&first)) => {
+                let (lo, hi) = points.iter().fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+                0.5 * (lo + hi)
+            }
+        }
+    }
+}
+
 /// The default of [`SurfaceOptions::max_triangles`] and [`crate::mesh::RebuildOptions`]:
 /// a mesh of this size takes a few gigabytes in memory and as OBJ text.
 pub const DEFAULT_MAX_TRIANGLES: usize = 50_000_000;
@@ -95,6 +123,8 @@ pub struct SurfaceOptions {
     pub tessellation: SurfaceTessellation,
     /// Frames along sweep curves.
     pub frames: SurfaceFrames,
+    /// Which point of a `gcyl`'s profile rides on the path.
+    pub align: ProfileAlign,
     /// The most triangles a mesh may have (`None`: as many as 32-bit indices allow). Checked
     /// from the sample counts before the mesh is built (each curve's as soon as it is
     /// tessellated), so a tolerance far too fine for the size of a surface, or absurd steps in
@@ -130,6 +160,9 @@ impl SurfaceOptions {
         if let Some(caps) = settings.caps {
             o.sweep.caps = caps;
         }
+        if let Some(align) = settings.align {
+            o.align = align;
+        }
         o
     }
 }
@@ -140,6 +173,7 @@ impl Default for SurfaceOptions {
             sweep: SweepOptions::default(),
             tessellation: SurfaceTessellation::default(),
             frames: SurfaceFrames::default(),
+            align: ProfileAlign::default(),
             max_triangles: Some(DEFAULT_MAX_TRIANGLES),
         }
     }
@@ -295,7 +329,9 @@ impl SwpDocument {
                 B::revolve(&prof, steps, options.sweep).map_err(sweep_err)
             }
             SwpSurfaceKind::GeneralizedCylinder { profile, sweep: path, scale, twist } => {
-                let prof = profile_of(profile)?;
+                let mut prof = profile_of(profile)?;
+                let anchor = options.align.anchor(&prof.points);
+                prof.points.iter_mut().for_each(|p| *p -= anchor);
                 let c = curve(path)?;
                 let samples = sample_curve(&c, self.curves[path].steps, options, &limit)?;
                 let (p, s) = (prof.points.len(), samples.len());

@@ -372,3 +372,44 @@ fn frenet_and_z_up_frames_keep_a_bar_level_along_a_helix() {
     assert!(tilt(1) <= 1e-12, "frenet: {}", tilt(1));
     assert!(tilt(2) > 1e-2, "rmf: {}", tilt(2));
 }
+
+/// #42: `align origin|centre|start` puts the profile's origin, bounding-box centre or first
+/// point on the path: a square away from the origin, swept up a straight line, stays where it
+/// is, is centred on the line, or touches it with its first corner; read and written back.
+#[test]
+fn align_puts_the_chosen_point_of_the_profile_on_the_path() {
+    let text = "bsp2 square 1 4 closed [1.5 0.5] [2.5 0.5] [2.5 1.5] [1.5 1.5]\n\
+                bez3 up 4 4 [0 0 0] [0 0 1] [0 0 2] [0 0 3]\n\
+                gcyl o square up frames zup\ngcyl c square up frames zup align centre\n\
+                gcyl s square up frames zup align start\ngcyl a square up frames zup align center\n";
+    let doc = parse(text);
+    let written = doc.to_swp_string();
+    assert!(written.contains("gcyl c square up frames zup align centre\n"), "{written}");
+    assert!(written.contains("gcyl a square up frames zup align centre\n"), "`center` is read as `centre`");
+    let back = parse(&written);
+    for (a, b) in doc.surfaces.iter().zip(&back.surfaces) {
+        assert_eq!(a.settings, b.settings);
+    }
+    let options =
+        SurfaceOptions { sweep: SweepOptions { caps: false, ..SweepOptions::default() }, ..SurfaceOptions::default() };
+    // the box of the walls' vertices across the path (x, y)
+    let across = |k: usize| {
+        let mesh = doc.surface_mesh(k, &options).unwrap();
+        let lo = mesh.positions.iter().fold(DVec2::splat(f64::INFINITY), |m, p| m.min(p.truncate()));
+        let hi = mesh.positions.iter().fold(DVec2::splat(f64::NEG_INFINITY), |m, p| m.max(p.truncate()));
+        (lo, hi)
+    };
+    // origin: the profile's box centre stays at its distance from the line, |(2, 1)| = √5
+    let (lo, hi) = across(0);
+    let size = hi - lo;
+    assert!(((0.5 * (lo + hi)).length() - 5f64.sqrt()).abs() < 1e-9, "{lo} {hi}");
+    // centre (and center): the box centred on the line, the same size
+    for k in [1, 3] {
+        let (lo, hi) = across(k);
+        assert!((0.5 * (lo + hi)).length() < 1e-9 && (hi - lo - size).length() < 1e-9, "surface {k}: {lo} {hi}");
+    }
+    // start: the profile's first point on the line, a vertex of every ring there
+    let mesh = doc.surface_mesh(2, &options).unwrap();
+    let on_line = mesh.positions.iter().filter(|p| p.truncate().length() < 1e-9).count();
+    assert_eq!(on_line, 5, "one vertex on the line per path sample");
+}

@@ -478,6 +478,9 @@ pub struct SwpSurfaceSettings {
     pub frames: Option<SwpFrames>,
     /// `caps` or `no-caps`: flat caps on an open sweep of a closed profile (`gcyl`).
     pub caps: Option<bool>,
+    /// `align origin`, `align centre` (or `center`) or `align start`: which point of the
+    /// profile rides on the path (`gcyl`).
+    pub align: Option<crate::surface::ProfileAlign>,
 }
 
 impl SwpSurfaceSettings {
@@ -513,12 +516,13 @@ pub enum SwpFrames {
 }
 
 /// The setting words and the surface keywords each applies to.
-pub(crate) const SETTING_WORDS: [(&str, &[&str]); 5] = [
+pub(crate) const SETTING_WORDS: [(&str, &[&str]); 6] = [
     ("tolerance", &["srev", "gcyl", "zrev", "lathe"]),
     ("angle-tolerance", &["srev", "gcyl", "zrev", "lathe"]),
     ("layout", &["srev", "gcyl", "xsweep"]),
     ("frames", &["gcyl"]),
     ("caps", &["gcyl"]),
+    ("align", &["gcyl"]),
 ];
 
 impl SwpSurface {

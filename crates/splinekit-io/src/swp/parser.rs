@@ -10,6 +10,8 @@ use super::lexer::{Token, TokenKind, tokenize};
 use super::validate::SwpCurveRole;
 use splinekit::sweep::MeshLayout;
 
+use crate::surface::ProfileAlign;
+
 use super::{
     DEFAULT_NURBS_DEGREE, DEFAULT_XSWEEP_EPSILON, DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, MAX_HELIX_TURNS,
     MAX_STEPS, SETTING_WORDS, SourcePos, SwpClause, SwpCurve, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry,
@@ -132,7 +134,7 @@ fn label(keyword: &str, noun: &str, name: Option<&str>, index: usize) -> String 
 
 /// The first token of each group of surface settings read so far (tessellation, layout,
 /// frames, caps).
-type Seen<'a> = [Option<Token<'a>>; 4];
+type Seen<'a> = [Option<Token<'a>>; 5];
 
 /// What a name refers to.
 #[derive(Debug, Clone, Copy)]
@@ -887,7 +889,8 @@ impl<'a> Parser<'a> {
 
     /// Reads one setting of the surface `label` (whose keyword is `keyword`) if the next
     /// token is a setting word: `tolerance D`, `angle-tolerance DEGREES`, `layout
-    /// welded|compat`, `frames sequential|rmf|frenet|zup`, `caps` or `no-caps`. Returns whether it read
+    /// welded|compat`, `frames sequential|rmf|frenet|zup`, `caps` or `no-caps`, `align
+    /// origin|centre|center|start`. Returns whether it read
     /// one. A setting given twice (or both tolerances), or one that does not apply to the
     /// kind, is an error.
     fn setting(
@@ -908,10 +911,11 @@ impl<'a> Parser<'a> {
             "tolerance" | "angle-tolerance" => 0,
             "layout" => 1,
             "frames" => 2,
+            "align" => 4,
             _ => 3,
         };
         if let Some(first) = seen[group] {
-            let groups = ["tolerance or angle-tolerance", "layout", "frames", "caps or no-caps"];
+            let groups = ["tolerance or angle-tolerance", "layout", "frames", "caps or no-caps", "align"];
             return Err(self.bad_option(token, already(label, first, groups[group])));
         }
         seen[group] = Some(token);
@@ -940,6 +944,11 @@ impl<'a> Parser<'a> {
                 let k = choice(&["sequential", "rmf", "frenet", "zup"], "frames")?;
                 settings.frames =
                     Some([SwpFrames::Sequential, SwpFrames::RotationMinimizing, SwpFrames::Frenet, SwpFrames::ZUp][k]);
+            }
+            "align" => {
+                let k = choice(&["origin", "centre", "center", "start"], "align")?;
+                settings.align =
+                    Some([ProfileAlign::Origin, ProfileAlign::Centre, ProfileAlign::Centre, ProfileAlign::Start][k]);
             }
             "caps" => settings.caps = Some(true),
             _ => settings.caps = Some(false),

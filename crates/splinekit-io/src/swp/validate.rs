@@ -865,6 +865,7 @@ fn check_surface(curves: &[SwpCurve], surface: &SwpSurface) -> Result<(), SwpInv
         ("layout", settings.layout.is_some()),
         ("frames", settings.frames.is_some()),
         ("caps", settings.caps.is_some()),
+        ("align", settings.align.is_some()),
     ];
     for (word, is_given) in given {
         let applies = SETTING_WORDS.iter().any(|(w, kinds)| *w == word && kinds.contains(&keyword));

@@ -1,5 +1,6 @@
 //! The SWP writer; see [`SwpDocument::to_swp_string`].
 
+use crate::surface::ProfileAlign;
 use std::collections::HashSet;
 use std::fmt::Write as _;
 
@@ -151,6 +152,12 @@ fn write_settings(out: &mut String, settings: &SwpSurfaceSettings) {
     match settings.caps {
         Some(true) => out.push_str(" caps"),
         Some(false) => out.push_str(" no-caps"),
+        None => {}
+    }
+    match settings.align {
+        Some(ProfileAlign::Origin) => out.push_str(" align origin"),
+        Some(ProfileAlign::Centre) => out.push_str(" align centre"),
+        Some(ProfileAlign::Start) => out.push_str(" align start"),
         None => {}
     }
 }

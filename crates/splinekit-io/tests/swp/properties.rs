@@ -184,15 +184,17 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
 }
 
 /// Raw draws of surface settings: which tessellation (none, distance, angle) with a distance
-/// and an angle, then layout (compat?), frames (rmf?) and caps.
-type RawSettings = ((u8, f64, f64), Option<bool>, Option<bool>, Option<bool>);
+/// and an angle, then layout (compat?), frames (which of four), caps and align (which of
+/// three).
+type RawSettings = ((u8, f64, f64), Option<bool>, Option<u8>, Option<bool>, Option<u8>);
 
 /// Valid settings for a surface of `kind` from raw draws: only those that apply to it.
 fn settings_for(
     kind: SwpSurfaceKind,
-    ((t, distance, degrees), layout, frames, caps): RawSettings,
+    ((t, distance, degrees), layout, frames, caps, align): RawSettings,
 ) -> SwpSurfaceSettings {
     use splinekit::sweep::MeshLayout;
+    use splinekit_io::surface::ProfileAlign;
     use splinekit_io::swp::{SwpFrames, SwpTessellation};
     let gcyl = matches!(kind, SwpSurfaceKind::GeneralizedCylinder { .. });
     let laid_out = gcyl || matches!(kind, SwpSurfaceKind::Revolution { .. } | SwpSurfaceKind::ToolSweep { .. });
@@ -204,8 +206,14 @@ fn settings_for(
             _ => Some(SwpTessellation::AngleDegrees(degrees)),
         },
         layout: layout.filter(|_| laid_out).map(|c| if c { MeshLayout::Compat } else { MeshLayout::Welded }),
-        frames: frames.filter(|_| gcyl).map(|r| if r { SwpFrames::RotationMinimizing } else { SwpFrames::Sequential }),
+        frames: frames.filter(|_| gcyl).map(|k| {
+            [SwpFrames::Sequential, SwpFrames::RotationMinimizing, SwpFrames::Frenet, SwpFrames::ZUp]
+                [usize::from(k % 4)]
+        }),
         caps: caps.filter(|_| gcyl),
+        align: align
+            .filter(|_| gcyl)
+            .map(|k| [ProfileAlign::Origin, ProfileAlign::Centre, ProfileAlign::Start][usize::from(k % 3)]),
     }
 }
 
@@ -215,12 +223,13 @@ fn document() -> impl Strategy<Value = SwpDocument> {
     let positive = || prop_oneof![Just(1.0), 1e-3f64..10.0, proptest::num::f64::POSITIVE | proptest::num::f64::NORMAL];
     // zrev numbers: epsilon, slice tolerance (at most MAX_STEPS slices), scale; lathe slices
     let extension = (positive(), (core::f64::consts::TAU / f64::from(MAX_STEPS))..10.0, positive(), 3..=MAX_STEPS);
-    // surface settings: a tessellation (none, distance, angle), layout, frames, caps
+    // surface settings: a tessellation (none, distance, angle), layout, frames, caps, align
     let settings = (
         (0u8..3, positive(), 1e-3f64..=180.0),
         prop::option::of(any::<bool>()),
+        prop::option::of(0u8..4),
         prop::option::of(any::<bool>()),
-        prop::option::of(any::<bool>()),
+        prop::option::of(0u8..3),
     );
     let surface =
         ((0u8..5, extension), 1..=MAX_STEPS, any::<Index>(), any::<Index>(), prop::option::of("[a-z]{1,5}"), settings);
