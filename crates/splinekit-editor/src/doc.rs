@@ -631,12 +631,7 @@ impl Document {
         }
         self.checkpoint();
         if let Some(curve) = self.swp.curves.get_mut(self.active) {
-            curve.geometry = match curve.geometry {
-                SwpGeometry::Hermite { .. } => SwpGeometry::Hermite { points: Vec::new(), tangents: Vec::new() },
-                SwpGeometry::Tcb { .. } => SwpGeometry::Tcb { points: Vec::new(), shape: Vec::new() },
-                SwpGeometry::Nurbs { .. } => empty_geometry(SwpCurveKind::Nurbs { degree: 3 }),
-                _ => SwpGeometry::Points(Vec::new()),
-            };
+            curve.geometry = empty_geometry(curve.kind);
         }
     }
 

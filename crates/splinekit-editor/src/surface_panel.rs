@@ -125,12 +125,7 @@ impl EditorApp {
                 (SurfaceColour::Curvature(Curvature::Gaussian), "Gaussian curvature"),
                 (SurfaceColour::UvChecker, "UV checker"),
             ];
-            let current = choices.iter().find(|(c, _)| *c == self.colouring).map_or("shaded", |(_, n)| n);
-            egui::ComboBox::from_label("Colour").selected_text(current).show_ui(ui, |ui| {
-                for (c, name) in choices {
-                    ui.selectable_value(&mut self.colouring, c, name);
-                }
-            });
+            self.colouring = menu(ui, "Colour", &choices, self.colouring).0;
         });
     }
 
@@ -399,20 +394,14 @@ fn settings_controls(
 /// `{name} layout`: welded or compat; the response when it changed.
 fn layout_control(ui: &mut egui::Ui, name: &str, settings: &mut SwpSurfaceSettings) -> Option<egui::Response> {
     use splinekit::sweep::MeshLayout;
-    let compat = settings.layout == Some(MeshLayout::Compat);
-    let mut c = compat;
-    let r = egui::ComboBox::from_label(format!("{name} layout"))
-        .selected_text(if compat { "compat" } else { "welded" })
-        .show_ui(ui, |ui| {
-            ui.selectable_value(&mut c, false, "welded");
-            ui.selectable_value(&mut c, true, "compat");
-        })
-        .response
-        .on_hover_text("welded: seams and poles shared; compat: the course program's vertices");
-    if c == compat {
+    const LAYOUTS: [(MeshLayout, &str); 2] = [(MeshLayout::Welded, "welded"), (MeshLayout::Compat, "compat")];
+    let current = settings.layout.unwrap_or_default();
+    let (layout, r) = menu(ui, &format!("{name} layout"), &LAYOUTS, current);
+    let r = r.on_hover_text("welded: seams and poles shared; compat: the course program's vertices");
+    if layout == current {
         return None;
     }
-    settings.layout = Some(if c { MeshLayout::Compat } else { MeshLayout::Welded });
+    settings.layout = Some(layout);
     Some(r)
 }
 

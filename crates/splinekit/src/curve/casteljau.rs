@@ -39,6 +39,7 @@ pub(crate) fn derivs<T>(points: &[T], t: f64, lerp: impl Fn(T, T, f64) -> T) -> 
 where
     T: Copy + Add<Output = T> + Sub<Output = T> + Mul<f64, Output = T>,
 {
+    debug_assert!(points.len() <= STACK, "{} points", points.len());
     let n = points.len().min(STACK);
     let p = n - 1;
     let mut work = [points[0]; STACK];

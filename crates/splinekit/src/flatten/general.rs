@@ -61,8 +61,9 @@ pub(crate) fn flatten_general<P: Vector, C: ParamCurve<P> + Hull<P>>(curve: &C, 
                 let (a, b) = (k as f64, (k + 1) as f64);
                 // the segment's own bound meets the tolerance at this width: halving need not
                 // (and, the bounds of parts being no smaller in general, must not) go finer
-                let enough = 1.0 / uniform_pieces(curve.deriv2_bound(a, b), tolerance);
-                distance_split(curve, a, b, tolerance, enough, &mut out);
+                let bound = curve.deriv2_bound(a, b);
+                let enough = 1.0 / uniform_pieces(bound, tolerance);
+                distance_split(curve, (a, b, bound), tolerance, enough, &mut out);
             }
         }
         Tessellation::Angle { tolerance } => {
@@ -114,21 +115,20 @@ fn uniform_pieces(bound: f64, tolerance: f64) -> f64 {
 /// The most pieces the distance mode cuts a segment into.
 const MAX_PIECES: f64 = (1u64 << MAX_DISTANCE_DEPTH) as f64;
 
-/// Halves `[a, b]` while its part's own bound does not meet the tolerance and it is wider than
-/// `enough` (at which width the segment's bound does).
+/// Halves `[a, b]`, whose second derivative is at most `bound`, while that bound does not meet
+/// the tolerance and it is wider than `enough` (at which width the segment's bound does).
 fn distance_split<P: Vector, C: ParamCurve<P>>(
     curve: &C,
-    a: f64,
-    b: f64,
+    (a, b, bound): (f64, f64, f64),
     tolerance: f64,
     enough: f64,
     out: &mut Vec<f64>,
 ) {
     let h = b - a;
-    if h > enough && curve.deriv2_bound(a, b) * h * h / 8.0 > tolerance {
+    if h > enough && bound * h * h / 8.0 > tolerance {
         let mid = 0.5 * (a + b);
-        distance_split(curve, a, mid, tolerance, enough, out);
-        distance_split(curve, mid, b, tolerance, enough, out);
+        distance_split(curve, (a, mid, curve.deriv2_bound(a, mid)), tolerance, enough, out);
+        distance_split(curve, (mid, b, curve.deriv2_bound(mid, b)), tolerance, enough, out);
     } else {
         out.push(b);
     }
