@@ -28,7 +28,7 @@ use splinekit::subdiv::{
     catmull_clark_subdivide_creased, doo_sabin_subdivide, loop_limit_creased, loop_limit_normals, loop_limit_positions,
     loop_subdivide, loop_subdivide_creased, sqrt3_subdivide,
 };
-use splinekit::sweep::{MeshLayout, SweepOptions};
+use splinekit::sweep::{DEFAULT_MITRE_LIMIT, Join, MeshLayout, SweepOptions};
 use splinekit::{AnyCurve, ArclenIndex, ArclenTable, ParamCurve, PolyMesh, TableMethod, TriMesh};
 use splinekit_io::mesh::{
     MeshFormat, RebuildOptions, SplineHeader, read_creases, read_mesh, write_mesh, write_obj, write_obj_poly,
@@ -383,7 +383,7 @@ fn info_counts(doc: &SwpDocument, k: usize) -> Result<(), Finding> {
         let caps = layout == MeshLayout::Welded;
         doc.surfaces[k].settings.caps = if caps { own_caps } else { None };
         let options = SurfaceOptions {
-            sweep: SweepOptions { layout, uvs: false, caps },
+            sweep: SweepOptions { layout, uvs: false, caps, ..SweepOptions::default() },
             max_triangles: Some(MAX_TRIANGLES),
             ..SurfaceOptions::default()
         };
@@ -424,11 +424,19 @@ fn sweep(doc: &SwpDocument, k: usize, rng: &mut Rng) -> Result<(), Finding> {
     } else {
         ProfileAlign::Origin
     };
+    if rng.chance(0.2) {
+        own.join = None;
+        own.mitre_limit = None;
+    }
+    let join = *rng.pick(&[Join::Mitre, Join::Round, Join::Bevel]);
     let options = SurfaceOptions {
         sweep: SweepOptions {
             layout: if compat { MeshLayout::Compat } else { MeshLayout::Welded },
             uvs: rng.chance(0.3),
             caps: !compat && rng.chance(0.8),
+            join,
+            mitre_limit: if rng.chance(0.5) { rng.uniform(1.0, 11.0) } else { DEFAULT_MITRE_LIMIT },
+            ..SweepOptions::default()
         },
         tessellation,
         frames,
@@ -437,6 +445,10 @@ fn sweep(doc: &SwpDocument, k: usize, rng: &mut Rng) -> Result<(), Finding> {
     };
     let Ok(mesh) = doc.surface_mesh(k, &options) else { return Ok(()) };
     check::tri_mesh(&mesh, &format!("surface {k} swept with {options:?}"))?;
+    // the file's mesh: the same triangles, welded
+    if let Ok(swept) = doc.surface_poly(k, &options) {
+        check::poly_mesh(&swept.mesh, &format!("welded surface {k} swept with {options:?}"))?;
+    }
     write_and_read(&mesh, rng)
 }
 

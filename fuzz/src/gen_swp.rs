@@ -478,7 +478,15 @@ impl Doc<'_> {
                     let mut group = vec![w.clone()];
                     if matches!(
                         w.as_str(),
-                        "scale" | "twist" | "tolerance" | "angle-tolerance" | "layout" | "frames" | "align"
+                        "scale"
+                            | "twist"
+                            | "tolerance"
+                            | "angle-tolerance"
+                            | "layout"
+                            | "frames"
+                            | "align"
+                            | "join"
+                            | "mitre-limit"
                     ) && let Some(v) = it.next()
                     {
                         group.push(v);
@@ -536,6 +544,14 @@ impl Doc<'_> {
             if self.rng.chance(0.2) {
                 words.push("align".into());
                 words.push((*self.rng.pick(&["origin", "centre", "center", "start"])).into());
+            }
+            if self.rng.chance(0.2) {
+                words.push("join".into());
+                words.push((*self.rng.pick(&["mitre", "miter", "round", "bevel"])).into());
+            }
+            if self.rng.chance(0.1) {
+                words.push("mitre-limit".into());
+                words.push((*self.rng.pick(&["1", "2.5", "4", "100"])).into());
             }
         }
         if self.mistake() && !words.is_empty() {

@@ -7,9 +7,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, anyhow, bail};
 use clap::ValueEnum;
 use splinekit::TriMesh;
-use splinekit::sweep::{MeshLayout, SweepOptions};
+use splinekit::mesh::PolyMesh;
+use splinekit::sweep::{DEFAULT_MITRE_LIMIT, Join, MeshLayout, SweepOptions};
 use splinekit_io::SwpDocument;
-use splinekit_io::mesh::{MeshFormat, RebuildError, RebuildOptions, SplineHeader};
+use splinekit_io::mesh::{MeshFormat, RebuildError, RebuildOptions, SplineHeader, stage_poly};
 use splinekit_io::surface::{
     DEFAULT_MAX_TRIANGLES, ProfileAlign, SurfaceError, SurfaceFrames, SurfaceOptions, SurfaceTessellation,
 };
@@ -89,9 +90,24 @@ pub struct SweepArgs {
     #[arg(long, value_enum, value_name = "POINT")]
     pub align: Option<Align>,
 
-    /// Add arc-length texture coordinates (welded seams are then split for the UV jump)
+    /// How the walls of a gcyl meet at a sharp corner of its path (SWP only) [default: mitre]
+    #[arg(long, value_enum, value_name = "JOIN")]
+    pub join: Option<JoinArg>,
+
+    /// The longest mitre, as a multiple of the profile's offset from the path, before a mitre
+    /// join becomes a bevel (SWP only) [default: 4]
+    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    pub mitre_limit: Option<f64>,
+
+    /// Add arc-length texture coordinates (per face corner: the UV seam stays one vertex in
+    /// OBJ and PLY)
     #[arg(long)]
     pub uvs: bool,
+
+    /// Write a vertex for each side of a sharp edge or UV seam (one normal and UV per vertex,
+    /// as glb always does), instead of one vertex with per-corner normals and UVs
+    #[arg(long)]
+    pub split_seams: bool,
 
     /// Leave open generalized cylinders open (by default a closed profile swept along an
     /// open curve gets flat end caps; --compat never adds them, nor does an OBJ rebuild)
@@ -124,6 +140,18 @@ pub enum Align {
     Start,
 }
 
+/// Joins at path corners.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum JoinArg {
+    /// The walls extended to meet in the plane that halves the corner
+    #[value(alias = "miter")]
+    Mitre,
+    /// The outer side rounded by an arc about the corner
+    Round,
+    /// The outer side cut flat
+    Bevel,
+}
+
 /// Frame methods.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Frames {
@@ -145,11 +173,23 @@ fn options(args: &SweepArgs) -> anyhow::Result<SurfaceOptions> {
         (None, Some(a)) => anyhow::bail!("--angle-tolerance must be a positive number of degrees, got {a}"),
         (None, None) => SurfaceTessellation::FileSteps,
     };
+    let mitre_limit = match args.mitre_limit {
+        Some(r) if r >= 1.0 && r.is_finite() => r,
+        Some(r) => anyhow::bail!("--mitre-limit must be a number of at least 1, got {r}"),
+        None => DEFAULT_MITRE_LIMIT,
+    };
     Ok(SurfaceOptions {
         sweep: SweepOptions {
             layout: if args.compat { MeshLayout::Compat } else { MeshLayout::Welded },
             uvs: args.uvs,
             caps: !args.compat && !args.no_caps,
+            join: match args.join {
+                Some(JoinArg::Round) => Join::Round,
+                Some(JoinArg::Bevel) => Join::Bevel,
+                Some(JoinArg::Mitre) | None => Join::Mitre,
+            },
+            mitre_limit,
+            ..SweepOptions::default()
         },
         tessellation,
         frames: match args.frames.unwrap_or(Frames::Sequential) {
@@ -195,7 +235,10 @@ pub fn counts(doc: &SwpDocument, k: usize) -> anyhow::Result<[(u64, u64); 2]> {
         if let Some(s) = doc.surfaces.get_mut(k) {
             s.settings.caps = if caps { own_caps } else { None };
         }
-        let opts = SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps }, ..SurfaceOptions::default() };
+        let opts = SurfaceOptions {
+            sweep: SweepOptions { layout, uvs: false, caps, ..SweepOptions::default() },
+            ..SurfaceOptions::default()
+        };
         // counted from the samples: nothing the size of the mesh is built
         let counts = doc.surface_counts(k, &opts)?;
         *slot = (counts.vertices, counts.triangles);
@@ -221,6 +264,12 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
         }
         if args.align.is_some() {
             own.align = None;
+        }
+        if args.join.is_some() {
+            own.join = None;
+        }
+        if args.mitre_limit.is_some() {
+            own.mitre_limit = None;
         }
         if args.compat {
             own.layout = None;
@@ -276,7 +325,7 @@ fn sweep_surfaces(
     let mut meshes = Vec::with_capacity(doc.surfaces.len());
     for k in 0..doc.surfaces.len() {
         step(k, format!("sweeping {}", doc.surfaces[k].display_name(k)));
-        let mesh = doc.surface_mesh(k, opts).map_err(|e| {
+        let swept = doc.surface_poly(k, opts).map_err(|e| {
             let hint = match e {
                 SurfaceError::TooLarge { .. } => {
                     "; use a coarser --tolerance or --angle-tolerance, or raise --max-triangles"
@@ -285,7 +334,25 @@ fn sweep_surfaces(
             };
             anyhow!("{}: {e}{hint}", args.file.display())
         })?;
-        meshes.push(mesh);
+        for corner in &swept.unfit_corners {
+            let p = corner.position;
+            let warning = format!(
+                "warning: {}: surface {}: the profile does not fit inside the turn of {:.1}° at ({}, {}, {}): the \
+                 joint there may fold over or cut into the walls (a smaller profile, or a path with more room \
+                 before and after the corner, avoids it)",
+                args.file.display(),
+                doc.surfaces[k].display_name(k),
+                corner.angle.to_degrees(),
+                p.x,
+                p.y,
+                p.z,
+            );
+            match bar {
+                Some(bar) => bar.suspend(|| eprintln!("{warning}")),
+                None => eprintln!("{warning}"),
+            }
+        }
+        meshes.push(swept.mesh);
     }
     // every file is written to its temporary name before any is renamed into place: an error
     // on the last leaves none of them
@@ -300,23 +367,49 @@ fn sweep_surfaces(
         let path: PathBuf = args.output.join(format!("{stem}.{}", args.format.extension()));
         step(meshes.len() + k, format!("writing {}", path.display()));
         // the errors name the path
-        let file = if args.annotated {
+        let (file, vertices) = if args.annotated {
             let header = doc.annotated_header(k).map_err(|e| anyhow!("{}: {e}", args.file.display()))?;
-            splinekit_io::mesh::stage_annotated_obj(&header, mesh, &path)?
+            (splinekit_io::mesh::stage_annotated_obj(&header, &mesh.to_tri_mesh(), &path)?, mesh.num_vertices())
+        } else if per_vertex(mesh) {
+            // one normal and UV a vertex (the course's layout): the triangle mesh writers
+            let tri = mesh.to_tri_mesh();
+            (splinekit_io::mesh::stage(&tri, &path, args.format)?, tri.num_vertices())
         } else {
-            splinekit_io::mesh::stage(mesh, &path, args.format)?
+            let (file, saved) = stage_poly(mesh, &path, args.format, args.split_seams)?;
+            if saved.normals_left_out {
+                let note = format!(
+                    "note: {}: PLY holds one normal a vertex, and this mesh has sharp edges: written without \
+                     normals; write .obj, or use --split-seams, to keep them",
+                    path.display()
+                );
+                match bar {
+                    Some(bar) => bar.suspend(|| eprintln!("{note}")),
+                    None => eprintln!("{note}"),
+                }
+            }
+            (file, saved.vertices)
         };
-        staged.push((file, mesh, path));
+        staged.push((file, vertices, mesh.num_faces(), path));
     }
-    for (file, mesh, path) in staged {
+    for (file, vertices, triangles, path) in staged {
         file.commit()?;
         // the report goes to standard output, above the bar
+        let line =
+            |out: &mut dyn Write| writeln!(out, "{}: {vertices} vertices, {triangles} triangles", path.display());
         match bar {
-            Some(bar) => bar.suspend(|| report(mesh, &path, out))?,
-            None => report(mesh, &path, out)?,
+            Some(bar) => bar.suspend(|| line(out))?,
+            None => line(out)?,
         }
     }
     Ok(())
+}
+
+/// Whether every vertex of `mesh` has one normal and one UV (each attribute's indices are
+/// the corners' vertices).
+fn per_vertex(mesh: &PolyMesh) -> bool {
+    let same = |indices: &[u32], len: usize| indices == mesh.face_vertices.as_slice() && len == mesh.num_vertices();
+    mesh.normals.as_ref().is_none_or(|a| same(&a.indices, a.values.len()))
+        && mesh.uvs.as_ref().is_none_or(|a| same(&a.indices, a.values.len()))
 }
 
 /// Saves `mesh` to `path` in the chosen format and reports it.

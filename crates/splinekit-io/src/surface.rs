@@ -5,9 +5,10 @@
 //! tangent), and handed to [`splinekit::sweep`].
 //!
 //! In the welded layout, sharp corners of a piecewise curve (a join whose two tangents differ
-//! by more than [`CREASE_ANGLE`]) are sampled twice, once with each tangent, so the surface
-//! gets a crease with sharp normals there; the compat layout keeps the course program's one
-//! sample per point.
+//! by more than [`CREASE_ANGLE`]) are sampled twice, once with each tangent: a corner of a
+//! profile becomes a crease with sharp normals, a corner of a path a joint
+//! ([`SweepOptions::join`], see [`splinekit::sweep::welded`]); the compat layout keeps the
+//! course program's one sample per point.
 //!
 //! # Scale and twist curves
 //!
@@ -35,7 +36,7 @@ use glam::{DVec2, DVec3};
 use splinekit::flatten::{self, Tessellation};
 use splinekit::frame::{self, CurveSample, Frame, FrameMethod, FrameOptions, Side, StartNormal};
 use splinekit::sweep::surface::{Lathe, LatheOptions, RevolveOptions, UvMode};
-use splinekit::sweep::{self, MeshCounts, MeshLayout, Profile, SweepOptions, SweepPath};
+use splinekit::sweep::{self, MeshCounts, MeshLayout, Profile, SweepOptions, SweepPath, SweptMesh};
 use splinekit::{AnyCurve, CubicBezier, ParamCurve, PiecewiseCubic, TriMesh};
 
 use crate::mesh::rebuild::{Built, revolve_spline_z};
@@ -163,6 +164,12 @@ impl SurfaceOptions {
         if let Some(align) = settings.align {
             o.align = align;
         }
+        if let Some(join) = settings.join {
+            o.sweep.join = join;
+        }
+        if let Some(limit) = settings.mitre_limit {
+            o.sweep.mitre_limit = limit;
+        }
         o
     }
 }
@@ -279,7 +286,18 @@ impl SwpDocument {
         self.surface(index, options)
     }
 
-    /// The vertex and triangle counts of [`Self::surface_mesh`]`(index, options)`, found from
+    /// Surface `index` as a file holds it: [`Self::surface_mesh`]'s surface with every point
+    /// one vertex in the welded layout (creases, seams, joints and caps shared, normals and
+    /// UVs face-varying: see [`sweep::generalized_cylinder_poly`]), and the path corners whose
+    /// joints may fold because the profile does not fit inside the turn.
+    ///
+    /// # Errors
+    /// As [`Self::surface_mesh`].
+    pub fn surface_poly(&self, index: usize, options: &SurfaceOptions) -> Result<SweptMesh, SurfaceError> {
+        self.surface(index, options)
+    }
+
+    /// The vertex and triangle counts of [`Self::surface_poly`]`(index, options)`, found from
     /// the curves' samples and the slices without building the mesh: the time and memory
     /// this takes grow with the samples, not with the mesh (a revolution in a million slices
     /// is counted as fast as in ten).
@@ -370,7 +388,14 @@ impl SwpDocument {
                     }
                 }
                 let path = SweepPath { positions: samples.iter().map(|s| s.position).collect(), frames, scales };
-                B::cylinder(&prof, &path, options.sweep).map_err(sweep_err)
+                // round joints in arcs as fine as the tessellation
+                let reach = prof.points.iter().fold(0.0, |r: f64, p| r.max(p.length()));
+                let round_step = match options.tessellation {
+                    SurfaceTessellation::FileSteps => options.sweep.round_step,
+                    SurfaceTessellation::Angle(a) => a,
+                    SurfaceTessellation::Distance(d) => slice_angle(reach, d),
+                };
+                B::cylinder(&prof, &path, SweepOptions { round_step, ..options.sweep }).map_err(sweep_err)
             }
             SwpSurfaceKind::RevolutionZ { profile, epsilon, slice_tolerance, scale } => {
                 let spline = spline_2d(&curve(profile)?, &self.curves[profile].display_name(profile), &surface_name)?;

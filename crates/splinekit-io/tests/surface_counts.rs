@@ -1,4 +1,5 @@
-//! `SwpDocument::surface_counts` gives the counts of the mesh `surface_mesh` builds, for every
+//! `SwpDocument::surface_counts` gives the counts of the mesh `surface_poly` builds (the
+//! file's), and `surface_mesh` (for drawing) has its triangles, for every
 //! surface of every bundled SWP file and of every kind, in both layouts, with and without
 //! caps, UVs, and each way of tessellating.
 
@@ -28,7 +29,7 @@ fn option_sets() -> Vec<SurfaceOptions> {
                 [SurfaceTessellation::FileSteps, SurfaceTessellation::Distance(0.01), SurfaceTessellation::Angle(0.2)]
             {
                 sets.push(SurfaceOptions {
-                    sweep: SweepOptions { layout, uvs, caps },
+                    sweep: SweepOptions { layout, uvs, caps, ..SweepOptions::default() },
                     tessellation,
                     frames: SurfaceFrames::RotationMinimizing,
                     ..SurfaceOptions::default()
@@ -65,12 +66,17 @@ lathe ball 32 48 r z
         for (k, surface) in doc.surfaces.iter().enumerate() {
             kinds.insert(format!("{:?}", surface.kind).split([' ', '{']).next().unwrap().to_owned());
             for options in option_sets() {
-                let built = doc
-                    .surface_mesh(k, &options)
-                    .map(|m| MeshCounts { vertices: m.num_vertices() as u64, triangles: m.num_triangles() as u64 });
+                let built = doc.surface_poly(k, &options).map(|m| MeshCounts {
+                    vertices: m.mesh.num_vertices() as u64,
+                    triangles: m.mesh.num_faces() as u64,
+                });
                 let counted = doc.surface_counts(k, &options);
                 match (&counted, &built) {
-                    (Ok(c), Ok(b)) => assert_eq!(c, b, "{} surface {k} {options:?}", file.display()),
+                    (Ok(c), Ok(b)) => {
+                        assert_eq!(c, b, "{} surface {k} {options:?}", file.display());
+                        let drawn = doc.surface_mesh(k, &options).unwrap();
+                        assert_eq!(drawn.num_triangles() as u64, c.triangles, "{}", file.display());
+                    }
                     (Err(c), Err(b)) => assert_eq!(c.to_string(), b.to_string()),
                     _ => panic!("{} surface {k} {options:?}: {counted:?} but built {built:?}", file.display()),
                 }

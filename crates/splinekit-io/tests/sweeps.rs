@@ -14,7 +14,10 @@ mod common;
 use common::{DATA_FILES, load};
 
 fn opts(layout: MeshLayout) -> SurfaceOptions {
-    SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps: false }, ..SurfaceOptions::default() }
+    SurfaceOptions {
+        sweep: SweepOptions { layout, uvs: false, caps: false, ..SweepOptions::default() },
+        ..SurfaceOptions::default()
+    }
 }
 
 fn compat(doc: &SwpDocument, k: usize) -> TriMesh {
@@ -230,7 +233,7 @@ fn open_sweep_with_caps_encloses_a_prism() {
         SwpDocument::parse("circ p 30 0.5\nbez3 s 10 4 [0 0 0] [0 0 1] [0 0 2] [0 0 3]\ngcyl tube p s\n", "t.swp")
             .unwrap();
     let o = SurfaceOptions {
-        sweep: SweepOptions { layout: MeshLayout::Welded, uvs: false, caps: true },
+        sweep: SweepOptions { layout: MeshLayout::Welded, uvs: false, caps: true, ..SweepOptions::default() },
         ..SurfaceOptions::default()
     };
     let m = doc.surface_mesh(0, &o).unwrap();
@@ -257,7 +260,7 @@ fn caps_of_a_creased_profile_have_no_zero_area_triangles() {
     )
     .unwrap();
     let o = SurfaceOptions {
-        sweep: SweepOptions { layout: MeshLayout::Welded, uvs: false, caps: true },
+        sweep: SweepOptions { layout: MeshLayout::Welded, uvs: false, caps: true, ..SweepOptions::default() },
         ..SurfaceOptions::default()
     };
     let m = doc.surface_mesh(0, &o).unwrap();
@@ -354,7 +357,7 @@ fn the_triangle_limit_is_checked_before_the_mesh_is_built() {
     let text = "circ ring 12 1\nbez3 path 3 4 [0 0 0] [0 0 1] [0 0 2] [0 0 3]\ngcyl tube ring path\n";
     let doc = SwpDocument::parse(text, "tube.swp").unwrap();
     let capped = SurfaceOptions {
-        sweep: SweepOptions { layout: MeshLayout::Welded, uvs: false, caps: true },
+        sweep: SweepOptions { layout: MeshLayout::Welded, uvs: false, caps: true, ..SweepOptions::default() },
         ..opts(MeshLayout::Welded)
     };
     let m = doc.surface_mesh(0, &capped).unwrap();

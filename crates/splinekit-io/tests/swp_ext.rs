@@ -27,7 +27,10 @@ const EXT_FILES: [&str; 4] =
 const GEOM_EQ: f64 = 1e-9;
 
 fn opts(layout: MeshLayout, caps: bool) -> SurfaceOptions {
-    SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps }, ..SurfaceOptions::default() }
+    SurfaceOptions {
+        sweep: SweepOptions { layout, uvs: false, caps, ..SweepOptions::default() },
+        ..SurfaceOptions::default()
+    }
 }
 
 fn mesh(doc: &SwpDocument, k: usize, layout: MeshLayout) -> TriMesh {

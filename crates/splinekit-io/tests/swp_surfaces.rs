@@ -206,7 +206,7 @@ fn what_cannot_be_revolved_says_why() {
     // layouts and caps do not change a revolution about +z
     let doc = parse(&format!("{BSP}zrev a p\n"));
     let compat = SurfaceOptions {
-        sweep: SweepOptions { layout: MeshLayout::Compat, uvs: false, caps: false },
+        sweep: SweepOptions { layout: MeshLayout::Compat, uvs: false, caps: false, ..SweepOptions::default() },
         ..SurfaceOptions::default()
     };
     assert_eq!(doc.surface_mesh(0, &compat).unwrap(), doc.surface_mesh(0, &SurfaceOptions::default()).unwrap());
@@ -299,8 +299,10 @@ fn sweep_tool_files_open_as_xsweep_documents_and_write_back() {
         let doc = header.to_document("tube").unwrap();
         assert!(matches!(doc.surfaces[0].kind, SwpSurfaceKind::ToolSweep { profile: 0, path: 1, .. }));
         for layout in [MeshLayout::Welded, MeshLayout::Compat] {
-            let options =
-                SurfaceOptions { sweep: SweepOptions { layout, uvs: false, caps: false }, ..SurfaceOptions::default() };
+            let options = SurfaceOptions {
+                sweep: SweepOptions { layout, uvs: false, caps: false, ..SweepOptions::default() },
+                ..SurfaceOptions::default()
+            };
             let rebuilt = header.rebuild(&RebuildOptions::DEFAULT.with_layout(layout)).unwrap();
             assert_eq!(doc.surface_mesh(0, &options).unwrap(), rebuilt, "{}", path.display());
         }

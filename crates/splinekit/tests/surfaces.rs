@@ -436,7 +436,7 @@ proptest! {
 fn sweeps_too_large_for_32_bit_indices_are_refused_before_any_allocation() {
     use splinekit::frame::Frame;
     use splinekit::sweep::{MeshLayout, Profile, SweepError, SweepOptions, SweepPath, generalized_cylinder, revolve};
-    let options = SweepOptions { layout: MeshLayout::Compat, uvs: false, caps: false };
+    let options = SweepOptions { layout: MeshLayout::Compat, uvs: false, caps: false, ..SweepOptions::default() };
     // 3 points × (2³¹ + 1) copies (one more with UVs is counted): past u32::MAX
     let profile = Profile {
         points: vec![DVec2::new(1.0, 0.0), DVec2::new(1.0, 1.0), DVec2::new(1.0, 2.0)],

@@ -1,5 +1,6 @@
 //! The counting functions of the sweeps (`revolve_counts`, `generalized_cylinder_counts`,
-//! `revolve_z_counts`, `Lathe::counts`) give the counts of the mesh the builder makes, on
+//! `revolve_z_counts`, `Lathe::counts`) give the counts of the mesh the builder makes (the
+//! file's polygon mesh for the first two), on
 //! random profiles and paths with the cases that change them: points on the axis, repeated
 //! points (creases), closed loops, one step, UVs, caps and both layouts.
 
@@ -9,11 +10,17 @@ use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 use splinekit::TriMesh;
 use splinekit::frame::Frame;
+use splinekit::mesh::PolyMesh;
 use splinekit::sweep::surface::{Lathe, LatheOptions, RevolveOptions, UvMode, revolve_z, revolve_z_counts};
 use splinekit::sweep::{
-    MeshCounts, MeshLayout, Profile, SweepOptions, SweepPath, generalized_cylinder, generalized_cylinder_counts,
-    revolve, revolve_counts,
+    MeshCounts, MeshLayout, Profile, SweepOptions, SweepPath, generalized_cylinder_counts, generalized_cylinder_poly,
+    revolve_counts, revolve_poly,
 };
+
+/// The counts of a file's mesh: its vertices and faces.
+fn poly_counts(mesh: &PolyMesh) -> MeshCounts {
+    MeshCounts { vertices: mesh.num_vertices() as u64, triangles: mesh.num_faces() as u64 }
+}
 
 fn counts_of(mesh: &TriMesh) -> MeshCounts {
     MeshCounts { vertices: mesh.num_vertices() as u64, triangles: mesh.num_triangles() as u64 }
@@ -87,6 +94,7 @@ fn sweep_options() -> impl Strategy<Value = SweepOptions> {
         layout: if welded { MeshLayout::Welded } else { MeshLayout::Compat },
         uvs,
         caps,
+        ..SweepOptions::default()
     })
 }
 
@@ -99,13 +107,13 @@ proptest! {
 
     #[test]
     fn revolve_counts_are_the_meshes(profile in profile(), steps in 1usize..7, options in sweep_options()) {
-        let built = revolve(&profile, steps, options).map(|m| counts_of(&m));
+        let built = revolve_poly(&profile, steps, options).map(|m| poly_counts(&m));
         prop_assert_eq!(revolve_counts(&profile, steps, options), built);
     }
 
     #[test]
     fn cylinder_counts_are_the_meshes(profile in profile(), path in path(), options in sweep_options()) {
-        let built = generalized_cylinder(&profile, &path, options).map(|m| counts_of(&m));
+        let built = generalized_cylinder_poly(&profile, &path, options).map(|m| poly_counts(&m.mesh));
         prop_assert_eq!(generalized_cylinder_counts(&profile, &path, options), built);
     }
 

@@ -353,6 +353,39 @@ pub fn save_poly_creased(
     format: MeshFormat,
     split_seams: bool,
 ) -> Result<SavedPoly, MeshIoError> {
+    let (staged, saved) = stage_poly_creased(mesh, creases, path, format, split_seams)?;
+    staged.commit()?;
+    Ok(saved)
+}
+
+/// Writes `mesh` like [`save_poly`] to a temporary file next to `path` without renaming it
+/// (as [`stage`]): commit the [`atomic::Staged`] file to put it in place.
+///
+/// # Errors
+///
+/// As [`save`].
+pub fn stage_poly(
+    mesh: &PolyMesh,
+    path: impl AsRef<Path>,
+    format: MeshFormat,
+    split_seams: bool,
+) -> Result<(atomic::Staged, SavedPoly), MeshIoError> {
+    stage_poly_creased(mesh, &Creases::default(), path, format, split_seams)
+}
+
+/// Writes `mesh` like [`save_poly_creased`] to a temporary file next to `path` without
+/// renaming it (as [`stage`]): commit the [`atomic::Staged`] file to put it in place.
+///
+/// # Errors
+///
+/// As [`save`].
+pub fn stage_poly_creased(
+    mesh: &PolyMesh,
+    creases: &Creases,
+    path: impl AsRef<Path>,
+    format: MeshFormat,
+    split_seams: bool,
+) -> Result<(atomic::Staged, SavedPoly), MeshIoError> {
     let path = path.as_ref();
     let split = match format {
         MeshFormat::Glb => Some(mesh.to_tri_mesh_with_seams()),
@@ -361,11 +394,11 @@ pub fn save_poly_creased(
         MeshFormat::Obj | MeshFormat::Ply => None,
     };
     if let Some(tri) = split {
-        save(&tri, path, format)?;
-        return Ok(SavedPoly { vertices: tri.num_vertices(), normals_left_out: false });
+        let staged = stage(&tri, path, format)?;
+        return Ok((staged, SavedPoly { vertices: tri.num_vertices(), normals_left_out: false }));
     }
     // the writers validate before writing a byte; on error the temporary file goes away
-    let normals_left_out = atomic::write_file(path, |w| {
+    let (staged, normals_left_out) = atomic::stage_file(path, |w| {
         if format == MeshFormat::Ply {
             return write_ply_poly(mesh, w).map_err(|e| e.with_origin(path));
         }
@@ -373,7 +406,7 @@ pub fn save_poly_creased(
         write_creases(creases, w).map_err(|e| MeshIoError::from(e).with_origin(path))?;
         Ok(false)
     })?;
-    Ok(SavedPoly { vertices: mesh.num_vertices(), normals_left_out })
+    Ok((staged, SavedPoly { vertices: mesh.num_vertices(), normals_left_out }))
 }
 
 /// Validates the mesh for writing.

@@ -70,11 +70,12 @@
 use glam::{DVec2, DVec3};
 use splinekit::flatten::{Tessellation, flatten_count, flatten_params};
 use splinekit::frame::Frame;
+use splinekit::mesh::PolyMesh;
 use splinekit::sweep::surface::{
     Lathe, LatheOptions, RevolveOptions, SurfaceError, UvMode, revolve_z, revolve_z_counts,
 };
 use splinekit::sweep::{
-    self, MeshCounts, MeshLayout, Profile, SweepError, SweepOptions, SweepPath, generalized_cylinder,
+    self, MeshCounts, MeshLayout, Profile, SweepError, SweepOptions, SweepPath, SweptMesh, generalized_cylinder,
     generalized_cylinder_counts, revolve_counts,
 };
 use splinekit::{AnyCurve, BSpline, CatmullRom, ParamCurve, PiecewiseCubic, SplineError, TriMesh};
@@ -111,6 +112,22 @@ impl Built for TriMesh {
     }
     fn lathe(lathe: &Lathe, options: &LatheOptions) -> Result<Self, SurfaceError> {
         lathe.to_mesh(options)
+    }
+}
+
+impl Built for SweptMesh {
+    fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result<Self, SweepError> {
+        Ok(SweptMesh { mesh: sweep::revolve_poly(profile, steps, options)?, unfit_corners: Vec::new() })
+    }
+    fn cylinder(profile: &Profile, path: &SweepPath, options: SweepOptions) -> Result<Self, SweepError> {
+        sweep::generalized_cylinder_poly(profile, path, options)
+    }
+    fn revolve_z(points: &[DVec2], normals: Option<&[DVec2]>, options: &RevolveOptions) -> Result<Self, SurfaceError> {
+        let mesh = revolve_z(points, normals, options)?;
+        Ok(SweptMesh { mesh: PolyMesh::from(&mesh), unfit_corners: Vec::new() })
+    }
+    fn lathe(lathe: &Lathe, options: &LatheOptions) -> Result<Self, SurfaceError> {
+        Ok(SweptMesh { mesh: PolyMesh::from(&lathe.to_mesh(options)?), unfit_corners: Vec::new() })
     }
 }
 
@@ -362,7 +379,7 @@ impl SweepHeader {
             frames,
             scales: Vec::new(),
         };
-        let sweep = SweepOptions { layout: options.layout, uvs: options.uvs, caps: false };
+        let sweep = SweepOptions { layout: options.layout, uvs: options.uvs, caps: false, ..SweepOptions::default() };
         B::cylinder(&profile, &path, sweep).map_err(RebuildError::Sweep)
     }
 }

@@ -481,6 +481,12 @@ pub struct SwpSurfaceSettings {
     /// `align origin`, `align centre` (or `center`) or `align start`: which point of the
     /// profile rides on the path (`gcyl`).
     pub align: Option<crate::surface::ProfileAlign>,
+    /// `join mitre`, `join round` or `join bevel`: how the walls meet at a sharp corner of
+    /// the path (`gcyl`).
+    pub join: Option<splinekit::sweep::Join>,
+    /// `mitre-limit R` (R ≥ 1): the longest mitre, as a multiple of the profile's offset,
+    /// before a mitre join falls back to a bevel (`gcyl`).
+    pub mitre_limit: Option<f64>,
 }
 
 impl SwpSurfaceSettings {
@@ -516,13 +522,15 @@ pub enum SwpFrames {
 }
 
 /// The setting words and the surface keywords each applies to.
-pub(crate) const SETTING_WORDS: [(&str, &[&str]); 6] = [
+pub(crate) const SETTING_WORDS: [(&str, &[&str]); 8] = [
     ("tolerance", &["srev", "gcyl", "zrev", "lathe"]),
     ("angle-tolerance", &["srev", "gcyl", "zrev", "lathe"]),
     ("layout", &["srev", "gcyl", "xsweep"]),
     ("frames", &["gcyl"]),
     ("caps", &["gcyl"]),
     ("align", &["gcyl"]),
+    ("join", &["gcyl"]),
+    ("mitre-limit", &["gcyl"]),
 ];
 
 impl SwpSurface {

@@ -8,7 +8,7 @@ use splinekit::{MAX_BEZIER_POINTS, MAX_NURBS_DEGREE, MAX_NURBS_POINTS, Tcb};
 use super::error::{SwpError, SwpErrorKind};
 use super::lexer::{Token, TokenKind, tokenize};
 use super::validate::SwpCurveRole;
-use splinekit::sweep::MeshLayout;
+use splinekit::sweep::{Join, MeshLayout};
 
 use crate::surface::ProfileAlign;
 
@@ -134,7 +134,7 @@ fn label(keyword: &str, noun: &str, name: Option<&str>, index: usize) -> String 
 
 /// The first token of each group of surface settings read so far (tessellation, layout,
 /// frames, caps).
-type Seen<'a> = [Option<Token<'a>>; 5];
+type Seen<'a> = [Option<Token<'a>>; 7];
 
 /// What a name refers to.
 #[derive(Debug, Clone, Copy)]
@@ -890,7 +890,8 @@ impl<'a> Parser<'a> {
     /// Reads one setting of the surface `label` (whose keyword is `keyword`) if the next
     /// token is a setting word: `tolerance D`, `angle-tolerance DEGREES`, `layout
     /// welded|compat`, `frames sequential|rmf|frenet|zup`, `caps` or `no-caps`, `align
-    /// origin|centre|center|start`. Returns whether it read
+    /// origin|centre|center|start`, `join mitre|miter|round|bevel`, `mitre-limit R`. Returns
+    /// whether it read
     /// one. A setting given twice (or both tolerances), or one that does not apply to the
     /// kind, is an error.
     fn setting(
@@ -912,10 +913,13 @@ impl<'a> Parser<'a> {
             "layout" => 1,
             "frames" => 2,
             "align" => 4,
+            "join" => 5,
+            "mitre-limit" => 6,
             _ => 3,
         };
         if let Some(first) = seen[group] {
-            let groups = ["tolerance or angle-tolerance", "layout", "frames", "caps or no-caps", "align"];
+            let groups =
+                ["tolerance or angle-tolerance", "layout", "frames", "caps or no-caps", "align", "join", "mitre-limit"];
             return Err(self.bad_option(token, already(label, first, groups[group])));
         }
         seen[group] = Some(token);
@@ -949,6 +953,14 @@ impl<'a> Parser<'a> {
                 let k = choice(&["origin", "centre", "center", "start"], "align")?;
                 settings.align =
                     Some([ProfileAlign::Origin, ProfileAlign::Centre, ProfileAlign::Centre, ProfileAlign::Start][k]);
+            }
+            "join" => {
+                let k = choice(&["mitre", "miter", "round", "bevel"], "join")?;
+                settings.join = Some([Join::Mitre, Join::Mitre, Join::Round, Join::Bevel][k]);
+            }
+            "mitre-limit" => {
+                let r = self.value("a mitre limit (a number ≥ 1)", label, |v| v >= 1.0)?;
+                settings.mitre_limit = Some(r);
             }
             "caps" => settings.caps = Some(true),
             _ => settings.caps = Some(false),

@@ -382,6 +382,11 @@ pub enum SwpInvalidKind {
         /// Its value.
         value: f64,
     },
+    /// A surface's `mitre-limit` is not a number ≥ 1.
+    MitreLimit {
+        /// Its value.
+        value: f64,
+    },
     /// The slices of a lathe are not in `3..=MAX_STEPS`.
     Slices {
         /// The slices.
@@ -524,6 +529,7 @@ impl fmt::Display for SwpInvalidKind {
                 write!(f, "its angle-tolerance must be more than 0 and at most 180 degrees; it is {value}")
             }
             Self::Tolerance { word, value } => write!(f, "its {word} must be a number more than 0; it is {value}"),
+            Self::MitreLimit { value } => write!(f, "its mitre-limit must be a number of at least 1; it is {value}"),
             Self::Slices { found } => {
                 write!(f, "the number of slices must be from 3 to {MAX_STEPS}; this one has {found}")
             }
@@ -866,6 +872,8 @@ fn check_surface(curves: &[SwpCurve], surface: &SwpSurface) -> Result<(), SwpInv
         ("frames", settings.frames.is_some()),
         ("caps", settings.caps.is_some()),
         ("align", settings.align.is_some()),
+        ("join", settings.join.is_some()),
+        ("mitre-limit", settings.mitre_limit.is_some()),
     ];
     for (word, is_given) in given {
         let applies = SETTING_WORDS.iter().any(|(w, kinds)| *w == word && kinds.contains(&keyword));
@@ -881,6 +889,9 @@ fn check_surface(curves: &[SwpCurve], surface: &SwpSurface) -> Result<(), SwpInv
             return Err(SwpInvalidKind::Tolerance { word: "angle-tolerance", value });
         }
         _ => {}
+    }
+    if let Some(value) = settings.mitre_limit.filter(|v| !(*v >= 1.0 && v.is_finite())) {
+        return Err(SwpInvalidKind::MitreLimit { value });
     }
     let references = surface.kind.references().into_iter().map(|(role, curve)| (role, Some(curve)));
     for (role, index) in references {

@@ -5,7 +5,7 @@ use std::collections::HashSet;
 use std::fmt::Write as _;
 
 use glam::DVec3;
-use splinekit::sweep::MeshLayout;
+use splinekit::sweep::{Join, MeshLayout};
 
 use super::validate::name_problem;
 use super::{
@@ -159,6 +159,15 @@ fn write_settings(out: &mut String, settings: &SwpSurfaceSettings) {
         Some(ProfileAlign::Centre) => out.push_str(" align centre"),
         Some(ProfileAlign::Start) => out.push_str(" align start"),
         None => {}
+    }
+    match settings.join {
+        Some(Join::Mitre) => out.push_str(" join mitre"),
+        Some(Join::Round) => out.push_str(" join round"),
+        Some(Join::Bevel) => out.push_str(" join bevel"),
+        None => {}
+    }
+    if let Some(r) = settings.mitre_limit {
+        let _ = write!(out, " mitre-limit {r}");
     }
 }
 

@@ -184,16 +184,16 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
 }
 
 /// Raw draws of surface settings: which tessellation (none, distance, angle) with a distance
-/// and an angle, then layout (compat?), frames (which of four), caps and align (which of
-/// three).
-type RawSettings = ((u8, f64, f64), Option<bool>, Option<u8>, Option<bool>, Option<u8>);
+/// and an angle, then layout (compat?), frames (which of four), caps, align (which of
+/// three), join (which of three) and mitre limit.
+type RawSettings = ((u8, f64, f64), Option<bool>, Option<u8>, Option<bool>, Option<u8>, Option<u8>, Option<f64>);
 
 /// Valid settings for a surface of `kind` from raw draws: only those that apply to it.
 fn settings_for(
     kind: SwpSurfaceKind,
-    ((t, distance, degrees), layout, frames, caps, align): RawSettings,
+    ((t, distance, degrees), layout, frames, caps, align, join, mitre_limit): RawSettings,
 ) -> SwpSurfaceSettings {
-    use splinekit::sweep::MeshLayout;
+    use splinekit::sweep::{Join, MeshLayout};
     use splinekit_io::surface::ProfileAlign;
     use splinekit_io::swp::{SwpFrames, SwpTessellation};
     let gcyl = matches!(kind, SwpSurfaceKind::GeneralizedCylinder { .. });
@@ -214,6 +214,8 @@ fn settings_for(
         align: align
             .filter(|_| gcyl)
             .map(|k| [ProfileAlign::Origin, ProfileAlign::Centre, ProfileAlign::Start][usize::from(k % 3)]),
+        join: join.filter(|_| gcyl).map(|k| [Join::Mitre, Join::Round, Join::Bevel][usize::from(k % 3)]),
+        mitre_limit: mitre_limit.filter(|_| gcyl),
     }
 }
 
@@ -230,6 +232,8 @@ fn document() -> impl Strategy<Value = SwpDocument> {
         prop::option::of(0u8..4),
         prop::option::of(any::<bool>()),
         prop::option::of(0u8..3),
+        prop::option::of(0u8..3),
+        prop::option::of(prop_oneof![Just(1.0), 1.0f64..20.0]),
     );
     let surface =
         ((0u8..5, extension), 1..=MAX_STEPS, any::<Index>(), any::<Index>(), prop::option::of("[a-z]{1,5}"), settings);

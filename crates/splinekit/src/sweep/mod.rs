@@ -5,9 +5,12 @@
 //! - [`MeshLayout::Compat`]: the course program's vertex layout and counts:
 //!   one vertex per (copy, profile point), seams of generalized cylinders duplicated, poles
 //!   of revolutions repeated in every copy.
-//! - [`MeshLayout::Welded`] (the default): seams and poles shared, zero-area triangles left
-//!   out, so a closed sweep is a closed 2-manifold. With UVs requested, seam vertices are
-//!   kept twice (same position, `u` = 0 and 1) so texture coordinates can jump.
+//! - [`MeshLayout::Welded`] (the default): every point of the surface one vertex (seams,
+//!   poles, creases, cap rims and joints at path corners shared), zero-area triangles left
+//!   out, normals and UVs per face corner, so a closed sweep is a closed 2-manifold
+//!   ([`generalized_cylinder_poly`], [`revolve_poly`]). The meshes for drawing
+//!   ([`generalized_cylinder`], [`revolve`]) have a vertex per side where normals or UVs
+//!   differ (a crease, a UV seam where `u` jumps from 1 to 0).
 //!
 //! # Orientation
 //! Triangles are counter-clockwise seen from outside, and vertex normals point outside,
@@ -19,11 +22,20 @@
 //! surface.
 
 pub mod surface;
+pub mod welded;
 
 use glam::{DVec2, DVec3};
 
+pub use self::welded::{CornerFit, Join};
 use crate::frame::Frame;
-use crate::mesh::TriMesh;
+use crate::mesh::{FaceVarying, PolyMesh, TriMesh};
+
+/// The default of [`SweepOptions::mitre_limit`]: SVG's default `stroke-miterlimit`, a mitre
+/// at most 4 times the profile's offset (corners of up to about 151°).
+pub const DEFAULT_MITRE_LIMIT: f64 = 4.0;
+
+/// The default of [`SweepOptions::round_step`]: 10° per step of a round joint's arc.
+pub const DEFAULT_ROUND_STEP: f64 = std::f64::consts::PI / 18.0;
 
 /// How seams and poles are laid out; see the module docs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -44,17 +56,32 @@ pub struct SweepOptions {
     /// both normalized to `[0, 1]`.
     pub uvs: bool,
     /// Close an open generalized cylinder whose profile is a closed loop with flat end caps
-    /// (their own vertices, so the rim is a sharp edge). Ignored by revolutions. On by
+    /// (on the end copies' vertices, with normals of their own, so the rim is a sharp edge).
+    /// Ignored by revolutions. On by
     /// default, as `splinekit sweep` does: a closed profile swept along an open path then
     /// encloses a solid.
     pub caps: bool,
+    /// How the walls meet at a sharp corner of the path (welded layout; see [`welded`]).
+    pub join: Join,
+    /// The longest mitre, as a multiple of the profile's offset from the path, before a
+    /// [`Join::Mitre`] falls back to a bevel (`1/cos(α/2)` at a corner of angle `α`).
+    pub mitre_limit: f64,
+    /// The largest angle (radians) of one step of a [`Join::Round`] arc.
+    pub round_step: f64,
 }
 
 impl Default for SweepOptions {
-    /// The welded layout with caps and without UVs: what `splinekit sweep`, `render`,
+    /// The welded layout with caps and mitre joins, without UVs: what `splinekit sweep`, `render`,
     /// `gallery` and the editor all sweep with unless told otherwise.
     fn default() -> Self {
-        Self { layout: MeshLayout::Welded, uvs: false, caps: true }
+        Self {
+            layout: MeshLayout::Welded,
+            uvs: false,
+            caps: true,
+            join: Join::Mitre,
+            mitre_limit: DEFAULT_MITRE_LIMIT,
+            round_step: DEFAULT_ROUND_STEP,
+        }
     }
 }
 
@@ -293,27 +320,78 @@ pub fn revolve(profile: &Profile, steps: usize, options: SweepOptions) -> Result
     Ok(mesh)
 }
 
-/// The vertex and triangle counts of [`revolve`]`(profile, steps, options)`, from the profile
-/// alone: the work is linear in the profile's length, whatever `steps` is.
+/// [`revolve`]'s surface with every point one vertex (welded layout): a crease of the
+/// profile, the closing point of a closed profile and the UV seam are shared, and the
+/// normals and UVs are face-varying. In the compat layout, the same mesh as [`revolve`].
+///
+/// # Errors
+/// As [`revolve`].
+pub fn revolve_poly(profile: &Profile, steps: usize, options: SweepOptions) -> Result<PolyMesh, SweepError> {
+    let split = revolve(profile, steps, options)?;
+    if options.layout == MeshLayout::Compat {
+        return Ok(PolyMesh::from(&split));
+    }
+    let RevolveLayout { on_axis, copies, .. } = RevolveLayout::new(profile, steps, options)?;
+    let slots = welded::Slots::new(profile);
+    let (p, np) = (profile.points.len(), slots.first_slot.len());
+    // the split vertices in the order `revolve` makes them: copy by copy, a pole once
+    let mut pid = Vec::with_capacity(split.positions.len());
+    let mut pole_seen = vec![false; p];
+    for j in 0..copies {
+        for i in 0..p {
+            if on_axis[i] {
+                if pole_seen[i] {
+                    continue;
+                }
+                pole_seen[i] = true;
+                pid.push((steps * np + slots.point[i]) as u32);
+            } else {
+                pid.push(((j % steps) * np + slots.point[i]) as u32);
+            }
+        }
+    }
+    let mut positions = vec![DVec3::ZERO; (steps + 1) * np];
+    for (v, &id) in pid.iter().enumerate() {
+        positions[id as usize] = split.positions[v];
+    }
+    Ok(weld(&split, &pid, &positions))
+}
+
+/// The vertex and triangle counts of [`revolve_poly`]`(profile, steps, options)` (the file's
+/// mesh), from the profile alone: the work is linear in the profile's length, whatever `steps` is.
 ///
 /// # Errors
 /// As [`revolve`].
 pub fn revolve_counts(profile: &Profile, steps: usize, options: SweepOptions) -> Result<MeshCounts, SweepError> {
     let RevolveLayout { on_axis, twin, copies, welded } = RevolveLayout::new(profile, steps, options)?;
     let p = on_axis.len();
-    let poles = on_axis.iter().filter(|&&a| a).count();
-    // a pole is one vertex; every other point has one per copy
-    let vertices = (copies * (p - poles) + poles) as u64;
-    // welded with one copy and no UV copy: every quad collapses onto itself
-    let collapsed = welded && !options.uvs && steps == 1;
-    let per_turn: u64 = if collapsed {
-        0
-    } else {
-        (0..p - 1)
-            .filter(|&i| !twin[i])
-            .map(|i| if welded { u64::from(!on_axis[i]) + u64::from(!on_axis[i + 1]) } else { 2 })
-            .sum()
+    // welded with one copy: every quad collapses onto itself (in the file, the UV copy is
+    // the first one again)
+    let collapsed = welded && steps == 1;
+    let strip_triangles = |i: usize| -> u64 {
+        if collapsed || twin[i] {
+            0
+        } else if welded {
+            u64::from(!on_axis[i]) + u64::from(!on_axis[i + 1])
+        } else {
+            2
+        }
     };
+    let vertices = if welded {
+        // the distinct profile points a triangle uses: once per copy (no UV copy), a pole once
+        let slots = welded::Slots::new(profile);
+        let mut used = vec![false; slots.first_slot.len()];
+        for i in (0..p - 1).filter(|&i| strip_triangles(i) > 0) {
+            used[slots.point[i]] = true;
+            used[slots.point[i + 1]] = true;
+        }
+        (0..used.len()).filter(|&d| used[d]).map(|d| if on_axis[slots.first_slot[d]] { 1 } else { steps as u64 }).sum()
+    } else {
+        let poles = on_axis.iter().filter(|&&a| a).count();
+        // a pole is one vertex; every other point has one per copy
+        (copies * (p - poles) + poles) as u64
+    };
+    let per_turn: u64 = (0..p - 1).map(strip_triangles).sum();
     Ok(MeshCounts { vertices, triangles: per_turn * steps as u64 })
 }
 
@@ -348,16 +426,138 @@ impl RevolveLayout {
 /// point, `vertex = N·p.x + B·p.y + V`, `normal = −(N·n.x + B·n.y)` with the sweep frame
 /// `(T, N, B)` at `V` and the profile normal `n`.
 ///
+/// This is the mesh a renderer draws: normals and UVs are per vertex, so a vertex where they
+/// differ (a crease, a cap's rim, a UV seam, a joint) is repeated once per side at the same
+/// position. [`generalized_cylinder_poly`] gives the same surface with those vertices
+/// shared, as files get it.
+///
 /// Compat layout: vertex `k·P + i` for profile point `i` of copy `k`, triangles
-/// `(a, a+1, a+P)` and `(a+1, a+P+1, a+P)`, seams duplicated. Welded layout: a closed profile
-/// (first point = last) and a closed sweep share their seam vertices.
+/// `(a, a+1, a+P)` and `(a+1, a+P+1, a+P)`, seams duplicated. Welded layout: built as the
+/// [`welded`] module describes (joints at the path's sharp corners, walls cut at them, caps
+/// on the end copies' points).
 ///
 /// # Errors
 /// Fewer than two points in either curve, mismatched arrays, non-finite input, more vertices
 /// than 32-bit indices can address.
 pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepOptions) -> Result<TriMesh, SweepError> {
+    if options.layout == MeshLayout::Welded {
+        return Ok(generalized_cylinder_poly(profile, path, options)?.mesh.to_tri_mesh_with_seams());
+    }
+    compat_cylinder(profile, path, options)
+}
+
+/// A sweep as a file holds it: a [`PolyMesh`] of triangles whose vertices are the distinct
+/// points of the surface, with face-varying normals (and UVs) that keep its sharp edges sharp.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweptMesh {
+    /// The mesh.
+    pub mesh: PolyMesh,
+    /// Corners of the path whose joints may fold over or intersect themselves (the profile
+    /// does not fit inside the turn; see [`welded`]).
+    pub unfit_corners: Vec<CornerFit>,
+}
+
+/// [`generalized_cylinder`]'s surface with every point one vertex (welded layout): walls,
+/// creases, joints and caps share their vertices, and the normals and UVs are face-varying.
+/// A closed profile swept along a closed path, or capped, is one closed, consistently
+/// oriented 2-manifold. In the compat layout, the same mesh as [`generalized_cylinder`].
+///
+/// # Errors
+/// As [`generalized_cylinder`].
+pub fn generalized_cylinder_poly(
+    profile: &Profile,
+    path: &SweepPath,
+    options: SweepOptions,
+) -> Result<SweptMesh, SweepError> {
+    if options.layout == MeshLayout::Compat {
+        let mesh = compat_cylinder(profile, path, options)?;
+        return Ok(SweptMesh { mesh: PolyMesh::from(&mesh), unfit_corners: Vec::new() });
+    }
+    CylinderLayout::new(profile, path, options)?;
+    let built = welded::build(profile, path, options)?;
+    Ok(SweptMesh { mesh: weld(&built.split, &built.pid, &built.positions), unfit_corners: built.unfit })
+}
+
+/// The polygon mesh of a split mesh whose vertex `v` is at the position with id `pid[v]` in
+/// `positions`: a vertex per position a triangle uses (in order of id), and the split
+/// vertices' normals and UVs, the ones triangles use, as face-varying attributes (in order of
+/// first use; split vertices at one position with the same UV and normals within `1e-9` share
+/// one value). Triangles with a repeated position are left out.
+fn weld(split: &TriMesh, pid: &[u32], positions: &[DVec3]) -> PolyMesh {
+    let twin = attribute_twins(split, pid, |_| true);
+    let split =
+        &TriMesh { triangles: split.triangles.iter().map(|t| t.map(|v| twin[v as usize])).collect(), ..split.clone() };
+    let mut used = vec![false; positions.len()];
+    let triangles: Vec<[u32; 3]> = split
+        .triangles
+        .iter()
+        .filter(|t| {
+            let [a, b, c] = t.map(|v| pid[v as usize]);
+            a != b && b != c && a != c
+        })
+        .copied()
+        .collect();
+    for t in &triangles {
+        t.iter().for_each(|&v| used[pid[v as usize] as usize] = true);
+    }
+    let mut new_id = vec![u32::MAX; positions.len()];
+    let mut kept = Vec::new();
+    for (id, p) in positions.iter().enumerate().filter(|&(id, _)| used[id]) {
+        new_id[id] = kept.len() as u32;
+        kept.push(*p);
+    }
+    let corners: Vec<u32> = triangles.iter().flatten().copied().collect();
+    let mut mesh = PolyMesh::from_triangles(kept, &[]);
+    mesh.face_vertices = corners.iter().map(|&v| new_id[pid[v as usize] as usize]).collect();
+    mesh.face_offsets = (0..=triangles.len()).map(|f| (3 * f) as u32).collect();
+    // the attributes: one value per split vertex used, numbered in order of first use
+    let mut value_id = vec![u32::MAX; split.positions.len()];
+    let mut order = Vec::new();
+    let indices: Vec<u32> = corners
+        .iter()
+        .map(|&v| {
+            if value_id[v as usize] == u32::MAX {
+                value_id[v as usize] = order.len() as u32;
+                order.push(v as usize);
+            }
+            value_id[v as usize]
+        })
+        .collect();
+    if !split.normals.is_empty() {
+        mesh.normals =
+            Some(FaceVarying { values: order.iter().map(|&v| split.normals[v]).collect(), indices: indices.clone() });
+    }
+    if !split.uvs.is_empty() {
+        mesh.uvs = Some(FaceVarying { values: order.iter().map(|&v| split.uvs[v]).collect(), indices });
+    }
+    mesh
+}
+
+/// Each split vertex's first twin: the first vertex at the same position id with the same UV,
+/// the same `smooth` (whether its normal is known yet) and, if known, a normal within `1e-9`.
+fn attribute_twins(split: &TriMesh, pid: &[u32], smooth: impl Fn(usize) -> bool) -> Vec<u32> {
+    let mut twin: Vec<u32> = (0..split.positions.len() as u32).collect();
+    let mut at: std::collections::HashMap<u32, Vec<u32>> = std::collections::HashMap::new();
+    for v in 0..split.positions.len() {
+        let seen = at.entry(pid[v]).or_default();
+        let same = |w: &u32| {
+            let w = *w as usize;
+            let normals = split.normals.get(w).zip(split.normals.get(v));
+            smooth(w) == smooth(v)
+                && (!smooth(v) || normals.is_none_or(|(a, b)| a.dot(*b) > 1.0 - 1e-9))
+                && split.uvs.get(w) == split.uvs.get(v)
+        };
+        match seen.iter().find(|w| same(w)) {
+            Some(&w) => twin[v] = w,
+            None => seen.push(v as u32),
+        }
+    }
+    twin
+}
+
+/// The course layout of [`generalized_cylinder`].
+fn compat_cylinder(profile: &Profile, path: &SweepPath, options: SweepOptions) -> Result<TriMesh, SweepError> {
     let CylinderLayout { p, s, wrap_p, wrap_s, twin, cap_ring } = CylinderLayout::new(profile, path, options)?;
-    let welded = options.layout == MeshLayout::Welded;
     let vs = profile.normalized_lengths();
     let us = normalized_lengths(path.positions.iter().zip(path.positions.iter().skip(1)).map(|(a, b)| a.distance(*b)));
 
@@ -381,7 +581,7 @@ pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepO
     let quads_p = if wrap_p { p } else { p - 1 };
     for k in 0..quads_s {
         for i in (0..quads_p).filter(|&i| !twin[i]) {
-            push_quad(&mut mesh, [id(k, i), id(k, i + 1), id(k + 1, i), id(k + 1, i + 1)], welded);
+            push_quad(&mut mesh, [id(k, i), id(k, i + 1), id(k + 1, i), id(k + 1, i + 1)], false);
         }
     }
     // outward: away from the sweep curve, per copy (vertex v belongs to copy v / p)
@@ -398,8 +598,10 @@ pub fn generalized_cylinder(profile: &Profile, path: &SweepPath, options: SweepO
     Ok(mesh)
 }
 
-/// The vertex and triangle counts of [`generalized_cylinder`]`(profile, path, options)`,
-/// without building it: the work is linear in the lengths of the profile and the path.
+/// The vertex and triangle counts of [`generalized_cylinder_poly`]`(profile, path, options)`
+/// (the file's mesh), without building it: the work is linear in the lengths of the profile
+/// and the path, except for a welded sweep along a path with sharp corners, whose joints are
+/// built to be counted.
 ///
 /// # Errors
 /// As [`generalized_cylinder`].
@@ -409,6 +611,29 @@ pub fn generalized_cylinder_counts(
     options: SweepOptions,
 ) -> Result<MeshCounts, SweepError> {
     let CylinderLayout { p, s, wrap_p, wrap_s, twin, cap_ring } = CylinderLayout::new(profile, path, options)?;
+    if options.layout == MeshLayout::Welded {
+        let n = path.positions.len();
+        let size = extent(path.positions.iter().copied()).max(1e-300);
+        let repeats = (1..n).any(|k| path.positions[k - 1].distance(path.positions[k]) <= 1e-12 * size);
+        let pinched = path.scales.iter().any(|s| s.x == 0.0 || s.y == 0.0);
+        let seam_corner = path.is_closed() && path.frames[0].t.dot(path.frames[n - 1].t) < 1.0 - 1e-12;
+        if repeats || pinched || seam_corner {
+            let m = generalized_cylinder_poly(profile, path, options)?.mesh;
+            return Ok(MeshCounts { vertices: m.num_vertices() as u64, triangles: m.num_faces() as u64 });
+        }
+        // a vertex per distinct profile point and path point; the closing copy of a
+        // closed path is the first one
+        let slots = welded::Slots::new(profile);
+        let rings = if path.is_closed() { n - 1 } else { n };
+        let strips = slots.strips.len() as u64;
+        // (a profile of one distinct point makes no triangle, and has no vertex in the file)
+        let used = if strips == 0 { 0 } else { slots.first_slot.len() };
+        let mut counts = MeshCounts { vertices: (used * rings) as u64, triangles: 2 * strips * (n as u64 - 1) };
+        if cap_ring.is_some() {
+            counts.triangles += 2 * slots.first_slot.len().saturating_sub(2) as u64;
+        }
+        return Ok(counts);
+    }
     let quads_s = if wrap_s { s } else { s - 1 };
     let quads_p = if wrap_p { p } else { p - 1 };
     // no quad has a repeated corner: p, s ≥ 2, and a wrapped curve has at least 2 distinct samples
@@ -634,13 +859,18 @@ fn push_quad(mesh: &mut TriMesh, [a, b, c, d]: [u32; 4], welded: bool) {
 /// and a flip of the faces negates every term exactly (swapping two corners negates the cross
 /// product bit for bit), so it is the same sum, negated, as after the flip.
 fn orient(mesh: &mut TriMesh, outward: impl Fn(DVec3, usize) -> DVec3) {
+    orient_where(mesh, outward, |_| true);
+}
+
+/// [`orient`], with the vertex normals' agreement summed over the vertices `counted` says.
+fn orient_where(mesh: &mut TriMesh, outward: impl Fn(DVec3, usize) -> DVec3, counted: impl Fn(usize) -> bool) {
     let mut flux = 0.0;
     let mut agreement = 0.0;
     for (i, t) in mesh.triangles.iter().enumerate() {
         let face = mesh.face_normal(i);
         let out: DVec3 = t.iter().map(|&v| outward(mesh.positions[v as usize], v as usize)).sum();
         flux += face.dot(out);
-        for &v in t {
+        for &v in t.iter().filter(|&&v| counted(v as usize)) {
             agreement += face.dot(mesh.normals[v as usize]);
         }
     }
