@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use splinekit::flatten::{self, Tessellation};
 use splinekit::frame::{self, FrameMethod, FrameOptions, Side, StartNormal};
-use splinekit::{AnyCurve, ArclenIndex, ParamCurve, resample_every};
+use splinekit::{AnyCurve, ArclenIndex, ArclenTable, ParamCurve, TableMethod, resample_every};
 use splinekit_io::{MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpGeometry};
 
 use crate::convert::{array_out, points, points_out, scalar_or_array, value_error, values};
@@ -327,6 +327,29 @@ impl Curve {
         let index = py.detach(|| ArclenIndex::new(&self.curve, accuracy));
         check_index(py, &index, accuracy)?;
         Ok(index.length())
+    }
+
+    /// The u–s arc-length table ``(u, s)`` with ``samples`` rows per segment (``m·samples + 1``
+    /// rows, ``u = k + i/samples``): ``"chord"`` sums straight-line distances between samples
+    /// (a lower bound), ``"gauss3"`` integrates the speed with 3-point Gauss–Legendre per
+    /// interval (as ``splinekit arclen --method chord|gauss3``).
+    #[pyo3(signature = (samples=5, method="chord"))]
+    fn arclen_table<'py>(&self, py: Python<'py>, samples: usize, method: &str) -> PyResult<Bound<'py, PyTuple>> {
+        let method = match method {
+            "chord" => TableMethod::Chord,
+            "gauss3" => TableMethod::Gauss3,
+            _ => return Err(PyValueError::new_err(format!("unknown method {method:?}; expected chord or gauss3"))),
+        };
+        let rows = samples.checked_mul(self.curve.num_segments()).and_then(|r| r.checked_add(1));
+        if samples == 0 || rows.is_none_or(|r| r > MAX_RESAMPLE_POINTS) {
+            return Err(PyValueError::new_err(format!(
+                "samples must be 1 or more, and give at most {MAX_RESAMPLE_POINTS} table rows, got {samples}"
+            )));
+        }
+        let table = py.detach(|| ArclenTable::new(&self.curve, method, samples));
+        let (u, s): (Vec<f64>, Vec<f64>) = table.iter_rows().unzip();
+        let n = u.len();
+        PyTuple::new(py, [array_out(py, u, Some(&[n]), &[])?, array_out(py, s, Some(&[n]), &[])?])
     }
 
     /// The parameter ``u`` where the arc length from the start reaches ``s`` (a number or an
