@@ -12,7 +12,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 PYTHON="${PYTHON:-python3}"
 PROFILE="${PROFILE:-dev}"
-VENV="target/python-venv"
+VENV="${VENV:-target/python-venv}"
 
 start=$(date +%s)
 if [ ! -x "$VENV/bin/python" ]; then
