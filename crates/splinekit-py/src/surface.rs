@@ -103,6 +103,17 @@ fn tessellation(tolerance: Option<f64>) -> PyResult<Option<SwpTessellation>> {
 }
 
 /// Sweeps a 2D ``profile`` along ``path`` (a generalized cylinder): ``(vertices, faces)``.
+///
+/// Each profile point ``(x, y)`` goes to ``V + x·N + y·B`` in the path's frame at ``V``.
+/// ``scale``: a 2D Curve whose point ``(sx, sy)`` scales the profile's x and y, a number, or a
+/// pair; ``twist``: a 2D Curve whose x is an angle in degrees, or a number of degrees turned
+/// evenly from start to end (both read along the path by normalized arc length).
+/// ``frames``: ``"rmf"``, ``"sequential"``, ``"frenet"`` or ``"zup"``. ``caps``: close an open
+/// sweep of a closed profile with flat caps. ``tolerance``: every curve within this distance
+/// of its polyline (default: each curve's ``steps``). ``align``: which point of the profile
+/// rides on the path (``"origin"``, ``"centre"``, ``"start"``). ``normals``: also give the
+/// vertex normals ``(V, 3)``. Triangles are counter-clockwise seen from outside; a closed
+/// sweep's seam is welded. The mesh is what ``splinekit sweep`` makes of the same ``gcyl``.
 #[pyfunction]
 #[pyo3(signature = (profile, path, scale=None, twist=None, frames="rmf", caps=true, tolerance=None, *, align="origin", normals=false))]
 pub fn sweep<'py>(
@@ -160,6 +171,12 @@ pub fn sweep<'py>(
 }
 
 /// Turns a 2D ``profile`` about the y axis (an SWP ``srev``): ``(vertices, faces)``.
+///
+/// ``slices`` copies of the tessellated profile (each curve's ``steps``), copy ``j`` turned by
+/// ``2πj/slices`` about +y; with ``tolerance`` (a distance), the profile is flattened within
+/// it and the slices are as many as the tolerance needs. ``normals``: also give the vertex
+/// normals ``(V, 3)``. Outward normals and counter-clockwise triangles on either side of the
+/// axis; poles are single vertices.
 #[pyfunction]
 #[pyo3(signature = (profile, slices=32, tolerance=None, *, normals=false))]
 pub fn revolve<'py>(
