@@ -14,7 +14,8 @@
 //! Long calls release the GIL. Errors are `ValueError` with the library's messages, and
 //! `OSError` (with the error number, so `FileNotFoundError` and the like) for files.
 //!
-//! The crate is a `cdylib` with no Rust tests: its tests are the pytest suite in `tests/`,
+//! The crate is a `cdylib` (lib `splinekit_py`, so that its docs do not collide with the core
+//! crate's) with no Rust tests: its tests are the pytest suite in `tests/`,
 //! run by `scripts/test-python.sh` against the installed package.
 
 // pyo3's macros expand to unsafe FFI glue (the module's init function, method trampolines):
