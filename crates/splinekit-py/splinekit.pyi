@@ -164,6 +164,8 @@ def sweep(
     tolerance: Optional[float] = None,
     *,
     align: Literal["origin", "centre", "center", "start"] = "origin",
+    join: Literal["mitre", "miter", "round", "bevel"] = "mitre",
+    mitre_limit: float = 4.0,
     normals: bool = False,
 ) -> Tuple[Floats, ...]:
     """A 2D ``profile`` swept along ``path``: ``(vertices, faces)`` (and ``normals``)."""

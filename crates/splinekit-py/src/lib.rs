@@ -8,7 +8,7 @@
 //! (`splinekit-io`), called the way the command line calls them, so Python gets the same
 //! numbers bit for bit. Curves are kept as the SWP model describes them
 //! ([`splinekit_io::SwpCurve`]) and compiled by its `to_curve`; sweeps and revolutions are
-//! made by [`splinekit_io::SwpDocument::surface_mesh`] on a document built in memory;
+//! made by [`splinekit_io::SwpDocument::surface_poly`] on a document built in memory;
 //! subdivision goes through [`splinekit::subdiv::subdivide`].
 //!
 //! Long calls release the GIL. Errors are `ValueError` with the library's messages, and

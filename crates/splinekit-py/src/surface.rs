@@ -1,12 +1,13 @@
 //! `sweep` and `revolve`: an SWP document made in memory and swept by
-//! [`SwpDocument::surface_mesh`], the one entry point `splinekit sweep`, `render` and the editor
-//! use, so the meshes are theirs.
+//! [`SwpDocument::surface_poly`], the entry point `splinekit sweep` uses, so the meshes are
+//! the ones it writes.
 
 use glam::DVec3;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use splinekit::TriMesh;
+use splinekit::sweep::Join;
 use splinekit_io::surface::{ProfileAlign, SurfaceOptions};
 use splinekit_io::{
     SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry, SwpSurface, SwpSurfaceKind,
@@ -16,7 +17,9 @@ use splinekit_io::{
 use crate::convert::{points_out, value_error};
 use crate::curve::{Curve, positive, swp_curve};
 
-/// Surface `0` of `doc` as `(vertices, faces)`, with `normals` when asked.
+/// Surface `index` of `doc` as `(vertices, faces)`: the welded mesh `splinekit sweep` writes
+/// (every point of the surface one vertex). With `normals`, `(vertices, faces, normals)` of the
+/// mesh for drawing instead, a vertex for each side of a sharp edge, so each has one normal.
 pub fn mesh_tuple<'py>(
     py: Python<'py>,
     doc: &SwpDocument,
@@ -24,7 +27,16 @@ pub fn mesh_tuple<'py>(
     options: &SurfaceOptions,
     normals: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let mesh: TriMesh = py.detach(|| doc.surface_mesh(index, options)).map_err(value_error)?;
+    let swept = py.detach(|| doc.surface_poly(index, options)).map_err(value_error)?;
+    let mesh: TriMesh = if normals {
+        swept.mesh.to_tri_mesh_with_seams()
+    } else {
+        TriMesh {
+            positions: swept.mesh.positions,
+            triangles: swept.mesh.face_vertices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+            ..TriMesh::default()
+        }
+    };
     tri_mesh_tuple(py, &mesh, normals)
 }
 
@@ -111,11 +123,17 @@ fn tessellation(tolerance: Option<f64>) -> PyResult<Option<SwpTessellation>> {
 /// ``frames``: ``"rmf"``, ``"sequential"``, ``"frenet"`` or ``"zup"``. ``caps``: close an open
 /// sweep of a closed profile with flat caps. ``tolerance``: every curve within this distance
 /// of its polyline (default: each curve's ``steps``). ``align``: which point of the profile
-/// rides on the path (``"origin"``, ``"centre"``, ``"start"``). ``normals``: also give the
-/// vertex normals ``(V, 3)``. Triangles are counter-clockwise seen from outside; a closed
-/// sweep's seam is welded. The mesh is what ``splinekit sweep`` makes of the same ``gcyl``.
+/// rides on the path (``"origin"``, ``"centre"``, ``"start"``). ``join``: how the walls meet at
+/// a sharp corner of the path (``"mitre"``, ``"round"``, ``"bevel"``); ``mitre_limit``: the
+/// longest mitre, times the profile's offset, before a mitre becomes a bevel. ``normals``:
+/// also give the
+/// vertex normals ``(V, 3)`` (a vertex is then repeated on each side of a sharp edge, so each
+/// has one normal). Triangles are counter-clockwise seen from outside; every point of the
+/// surface is one vertex (seams, creases, caps and joints shared), so a closed or capped sweep
+/// of a closed profile is watertight. The mesh is what ``splinekit sweep`` writes of the same
+/// ``gcyl``.
 #[pyfunction]
-#[pyo3(signature = (profile, path, scale=None, twist=None, frames="rmf", caps=true, tolerance=None, *, align="origin", normals=false))]
+#[pyo3(signature = (profile, path, scale=None, twist=None, frames="rmf", caps=true, tolerance=None, *, align="origin", join="mitre", mitre_limit=4.0, normals=false))]
 pub fn sweep<'py>(
     py: Python<'py>,
     profile: &Bound<'py, Curve>,
@@ -126,9 +144,22 @@ pub fn sweep<'py>(
     caps: bool,
     tolerance: Option<f64>,
     align: &str,
+    join: &str,
+    mitre_limit: f64,
     normals: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
     require_2d(profile.get(), "profile")?;
+    let join = match join {
+        "mitre" | "miter" => Join::Mitre,
+        "round" => Join::Round,
+        "bevel" => Join::Bevel,
+        _ => {
+            return Err(PyValueError::new_err(format!("unknown join {join:?}; expected one of mitre, round, bevel")));
+        }
+    };
+    if !(mitre_limit >= 1.0 && mitre_limit.is_finite()) {
+        return Err(PyValueError::new_err(format!("mitre_limit must be a number of at least 1, got {mitre_limit}")));
+    }
     let frames = match frames {
         "rmf" => SwpFrames::RotationMinimizing,
         "sequential" => SwpFrames::Sequential,
@@ -163,6 +194,8 @@ pub fn sweep<'py>(
         frames: Some(frames),
         caps: Some(caps),
         align: Some(align),
+        join: Some(join),
+        mitre_limit: Some(mitre_limit),
     };
     let kind = SwpSurfaceKind::GeneralizedCylinder { profile: 0, sweep: 1, scale, twist };
     let surface = SwpSurface { name: Some("sweep".into()), kind, settings, pos: SourcePos::default() };

@@ -68,13 +68,24 @@ def test_trimesh_round_trip(tmp_path):
     mesh = trimesh.Trimesh(v, f, process=False)
     assert mesh.is_watertight and mesh.is_winding_consistent
     assert mesh.volume > 0  # outward normals
-    # an open path with a closed profile gets caps: a solid too
+    # an open path with a closed profile gets caps on the tube's own vertices: a solid too,
+    # as given (nothing merged)
     line = sk.Curve.bezier([[0, 0, 0], [0, 0, 1], [0, 1, 2], [0, 1, 3]])
     sv, sf = sk.sweep(sk.Curve.circle(0.2), line, caps=True)
-    closed = trimesh.Trimesh(sv, sf, process=True)
-    if not closed.is_watertight:
-        pytest.xfail("caps are not welded to the tube yet (the sweep's welding is in progress)")
+    closed = trimesh.Trimesh(sv, sf, process=False)
+    assert closed.is_watertight and closed.is_winding_consistent
     assert closed.volume > 0
+    # a square profile (creases) along an L (a mitred corner), capped
+    square = sk.Curve.bezier([[-0.2, -0.2], [0, -0.2], [0, -0.2], [0.2, -0.2], [0.2, 0], [0.2, 0], [0.2, 0.2],
+                              [0, 0.2], [0, 0.2], [-0.2, 0.2], [-0.2, 0], [-0.2, 0], [-0.2, -0.2]], steps=1)
+    el = sk.Curve.bezier([[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0], [3, 1, 0], [3, 2, 0], [3, 3, 0]], steps=2)
+    for join in ("mitre", "round", "bevel"):
+        lv, lf = sk.sweep(square, el, frames="sequential", join=join)
+        solid = trimesh.Trimesh(lv, lf, process=False)
+        assert solid.is_watertight and solid.is_winding_consistent and solid.volume > 0, join
+    # the mitred L: the square's area times the centre line's length
+    lv, lf = sk.sweep(square, el, frames="sequential")
+    assert abs(trimesh.Trimesh(lv, lf, process=False).volume - 0.16 * 6) < 1e-9
 
 
 def test_sweep_scale_twist_and_errors():
