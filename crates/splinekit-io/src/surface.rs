@@ -36,7 +36,7 @@ use glam::{DVec2, DVec3};
 use splinekit::flatten::{self, Tessellation};
 use splinekit::frame::{self, CurveSample, Frame, FrameMethod, FrameOptions, Side, StartNormal};
 use splinekit::sweep::surface::{Lathe, LatheOptions, RevolveOptions, UvMode};
-use splinekit::sweep::{self, MeshCounts, MeshLayout, Profile, SweepOptions, SweepPath, SweptMesh};
+use splinekit::sweep::{self, MeshCounts, MeshLayout, Profile, SweepOptions, SweepPath, SweptMesh, adaptive};
 use splinekit::{AnyCurve, CubicBezier, ParamCurve, PiecewiseCubic, TriMesh};
 
 use crate::mesh::rebuild::{Built, revolve_spline_z};
@@ -319,7 +319,9 @@ impl SwpDocument {
                 .map_err(|error| SurfaceError::Curve { curve: self.curves[i].display_name(i), error })
         };
         let limit = Limit { surface: &surface_name, max: options.max_triangles };
-        let profile_of = |i: usize| -> Result<Profile, SurfaceError> {
+        // a profile, sampled as `options` say or (adaptive revolutions) at the parameters a
+        // plan gives
+        let profile_at = |i: usize, params: Option<&[f64]>| -> Result<Profile, SurfaceError> {
             if self.curves[i].dim == 3 {
                 return Err(SurfaceError::ProfileNot2d {
                     curve: self.curves[i].display_name(i),
@@ -327,18 +329,31 @@ impl SwpDocument {
                 });
             }
             let c = curve(i)?;
-            let samples = sample_curve(&c, self.curves[i].steps, options, &limit)?;
+            let samples = match params {
+                Some(params) => samples_at(&c, params, options, &limit)?,
+                None => sample_curve(&c, self.curves[i].steps, options, &limit)?,
+            };
             let frames = frames_for(&samples, SurfaceFrames::Sequential);
             Ok(Profile {
                 points: samples.iter().map(|s| s.position.truncate()).collect(),
                 normals: frames.iter().map(|f| f.n.truncate().try_normalize().unwrap_or(DVec2::Y)).collect(),
             })
         };
+        let profile_of = |i: usize| profile_at(i, None);
         let sweep_err = |error| SurfaceError::Sweep { surface: surface_name.clone(), error };
         match surface.kind {
             SwpSurfaceKind::Revolution { steps, profile } => {
-                let prof = profile_of(profile)?;
-                let steps = revolution_steps(&prof, steps, options.tessellation);
+                let (prof, steps) = match options.tessellation {
+                    SurfaceTessellation::Distance(tolerance) if self.curves[profile].dim != 3 => {
+                        let plan = adaptive::revolution_plan(&curve(profile)?, tolerance, MAX_SLICES);
+                        (profile_at(profile, Some(&plan.params))?, plan.slices)
+                    }
+                    mode => {
+                        let prof = profile_of(profile)?;
+                        let steps = revolution_steps(&prof, steps, mode);
+                        (prof, steps)
+                    }
+                };
                 let p = prof.points.len();
                 // two triangles per profile segment and slice
                 limit.check(2 * steps as u64 * (p as u64).saturating_sub(1), || {
@@ -488,6 +503,9 @@ fn spline_2d(curve: &AnyCurve<DVec3>, name: &str, surface: &str) -> Result<Piece
         .map_err(|error| SurfaceError::Curve { curve: name.to_owned(), error })
 }
 
+/// The most slices of an adaptive revolution.
+const MAX_SLICES: usize = crate::swp::MAX_STEPS as usize;
+
 /// The largest slice angle whose chords stay within `tolerance` of a circle of `radius`
 /// (a chord of angle θ strays r·(1 − cos(θ/2))); a full turn when any chord would do.
 fn slice_angle(radius: f64, tolerance: f64) -> f64 {
@@ -554,15 +572,26 @@ fn sample_curve(
         format!("one of its curves alone would have up to {bound} points")
     })?;
     let params = flatten::flatten_any(curve, mode);
+    samples_at(curve, &params, options, limit)
+}
+
+/// Samples `curve` at `params` as [`sample_curve`] does, after checking the two triangles a
+/// point makes at least.
+fn samples_at(
+    curve: &AnyCurve<DVec3>,
+    params: &[f64],
+    options: &SurfaceOptions,
+    limit: &Limit<'_>,
+) -> Result<Vec<CurveSample>, SurfaceError> {
     let n = params.len();
     limit.check(2 * (n as u64).saturating_sub(1), || {
         format!("at least that many: one of its curves alone has {n} points")
     })?;
     Ok(match curve {
         AnyCurve::Piecewise(pc) if options.sweep.layout == MeshLayout::Welded => {
-            frame::sample_with_corners(pc, &params, CREASE_ANGLE)
+            frame::sample_with_corners(pc, params, CREASE_ANGLE)
         }
-        _ => frame::sample(curve, &params),
+        _ => frame::sample(curve, params),
     })
 }
 

@@ -21,6 +21,7 @@
 //! faces; a profile on the x > 0 side, or traversed the other way, still gives an outward
 //! surface.
 
+pub mod adaptive;
 pub mod surface;
 pub mod welded;
 

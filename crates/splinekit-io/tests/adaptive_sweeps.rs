@@ -1,0 +1,95 @@
+//! Adaptive sweeps (`SurfaceTessellation::Distance(T)`, `splinekit sweep --tolerance T`):
+//! the mesh, triangle interiors included, stays within `T` of the exact swept surface
+//! (issue #42, "Adaptive sweeps that win").
+//!
+//! The reference is independent of the sweep code: the true distance from points of each
+//! triangle (a barycentric grid, edge midpoints and interior points included) to the exact
+//! surface of revolution, found in the point's meridian half-plane against the profile curve
+//! itself (see `deviation/mod.rs`; it can only over-estimate the distance).
+
+mod deviation;
+
+use deviation::Revolution;
+use glam::DVec3;
+use splinekit::TriMesh;
+use splinekit_io::surface::{SurfaceOptions, SurfaceTessellation};
+use splinekit_io::swp::SwpDocument;
+
+fn load(file: &str) -> SwpDocument {
+    let path = format!("{}/tests/data/swp/{file}", env!("CARGO_MANIFEST_DIR"));
+    SwpDocument::parse(&std::fs::read_to_string(&path).unwrap(), &path).unwrap()
+}
+
+fn adaptive(doc: &SwpDocument, tolerance: f64) -> TriMesh {
+    let o = SurfaceOptions { tessellation: SurfaceTessellation::Distance(tolerance), ..SurfaceOptions::default() };
+    doc.surface_mesh(0, &o).unwrap()
+}
+
+/// Asserts that every sampled triangle point of the adaptive sweep of surface 0 of `doc` is
+/// within `tolerance` of its exact surface of revolution.
+fn assert_within(name: &str, doc: &SwpDocument, tolerance: f64) -> TriMesh {
+    let curve = doc.curves[0].to_curve().unwrap();
+    let surface = Revolution::new(&curve, 0.0, 1.0, DVec3::Y);
+    let mesh = adaptive(doc, tolerance);
+    let (d, at) = deviation::deviation(&mesh, &surface, 4);
+    assert!(d <= tolerance, "{name} at T = {tolerance:e}: {d:e} at {at} ({} triangles)", mesh.num_triangles());
+    mesh
+}
+
+/// The uniform wineglass (the file's 8 steps a segment, 90 slices: 33 120 triangles) strays
+/// 1.4605e-3 from the exact surface at most, on the outer wall near (−1.135, 0.035, 0.040)
+/// (a diagonal of a triangle, where the profile's chord and the slices' chord add); measured
+/// with a 6th-order barycentric grid on every triangle and confirmed there by the proved
+/// nearest-point search:
+/// `cargo run --release -p splinekit-io --example sweep_adaptive` (first line).
+const UNIFORM_WINEGLASS_DEVIATION: f64 = 1.4605e-3;
+
+#[test]
+fn wineglass_stays_within_the_tolerance_on_triangle_interiors() {
+    let doc = load("srev/wineglass.swp");
+    let equal = assert_within("wineglass", &doc, UNIFORM_WINEGLASS_DEVIATION);
+    // fewer triangles than the uniform sweep of the same accuracy
+    assert!(equal.num_triangles() < 33_120, "{}", equal.num_triangles());
+    for t in [1e-2, 3e-3, 5e-4] {
+        assert_within("wineglass", &doc, t);
+    }
+}
+
+/// The course's adaptive figure: 18 540 triangles at the uniform sweep's accuracy.
+#[test]
+#[ignore = "not met yet: 22 040 triangles (the two errors are added at every chord; see the sweep::adaptive docs)"]
+fn wineglass_at_the_uniform_accuracy_takes_at_most_the_course_count() {
+    let doc = load("srev/wineglass.swp");
+    let n = adaptive(&doc, UNIFORM_WINEGLASS_DEVIATION).num_triangles();
+    assert!(n <= 18_540, "{n}");
+}
+
+#[test]
+fn simple_revolutions_stay_within_the_tolerance() {
+    let k = 0.552_284_75;
+    let cases = [
+        // a cylinder (straight profile: the slices alone), a sphere, a vase with a waist and
+        // a profile crossing nothing, a torus from a closed offset circle of Bézier arcs
+        ("cylinder", "bez2 p 4 4 [-1 0] [-1 0.5] [-1 1.5] [-1 2]\nsrev s 8 p\n".to_owned()),
+        ("sphere", format!("bez2 p 4 7 [0 -1] [-{k} -1] [-1 -{k}] [-1 0] [-1 {k}] [-{k} 1] [0 1]\nsrev s 8 p\n")),
+        (
+            "vase",
+            "bsp2 p 4 8 [0 0] [0 0] [-1 0] [-1.5 1] [-0.4 2] [-0.6 3] [-0.9 3.2] [-0.9 3.2]\nsrev s 8 p\n".to_owned(),
+        ),
+        (
+            "torus",
+            format!(
+                "bez2 p 4 13 [-2 -1] [-{a} -1] [-3 -{k}] [-3 0] [-3 {k}] [-{a} 1] [-2 1] [-{b} 1] [-1 {k}] [-1 0] \
+                 [-1 -{k}] [-{b} -1] [-2 -1]\nsrev s 8 p\n",
+                a = 2.0 + k,
+                b = 2.0 - k
+            ),
+        ),
+    ];
+    for (name, text) in &cases {
+        let doc = SwpDocument::parse(text, name).unwrap();
+        for t in [1e-1, 1e-2, 1e-3] {
+            assert_within(name, &doc, t);
+        }
+    }
+}
