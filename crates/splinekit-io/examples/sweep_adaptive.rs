@@ -15,8 +15,11 @@ use glam::DVec3;
 use splinekit::TriMesh;
 use splinekit::sweep::{MeshLayout, SweepOptions};
 use splinekit_io::surface::{SurfaceOptions, SurfaceTessellation};
-use splinekit_io::swp::SwpDocument;
+use splinekit_io::swp::{SwpDocument, SwpSurfaceKind};
 
+/// One row: a tolerance, the adaptive mesh and its measured deviation, and the uniform
+/// mesh (the file's steps, every curve's and the revolution's scaled by one factor) with the
+/// fewest steps whose measured deviation is within the tolerance.
 fn main() {
     let dir = std::env::args().nth(1).unwrap_or_else(|| "/work/shared/data/swp".to_owned());
     let load = |f: &str| {
@@ -28,20 +31,52 @@ fn main() {
         tessellation: t,
         ..SurfaceOptions::default()
     };
-    let doc = load("srev/wineglass.swp");
-    let curve = doc.curves[0].to_curve().unwrap();
-    let surface = deviation::Revolution::new(&curve, 0.0, 1.0, DVec3::Y);
-    let mesh = |t| doc.surface_mesh(0, &opts(t)).unwrap();
-    let uniform: TriMesh = mesh(SurfaceTessellation::FileSteps);
-    let (d, at) = deviation::deviation(&uniform, &surface, 6);
+    // (file, profile index, r0, sx, axis): the exact surface as a revolution of the profile
+    // (gentorus: a profile along a circle of radius 2.2 about +z, N toward the centre)
+    let files = [("srev/wineglass.swp", 0.0, 1.0, DVec3::Y), ("gcyl/gentorus.swp", 2.2, -1.0, DVec3::Z)];
     println!(
-        "wineglass uniform: {} triangles, deviation {d:.4e} at {at} (proved {:.4e})",
-        uniform.num_triangles(),
-        surface.exact(at, 1e-9)
+        "| file | T | adaptive triangles | adaptive deviation | uniform triangles (steps ×f) | uniform deviation |"
     );
-    for t in [d, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4] {
-        let m = mesh(SurfaceTessellation::Distance(t));
-        let (dm, _) = deviation::deviation(&m, &surface, 6);
-        println!("T {t:.4e}: {} triangles, deviation {dm:.4e}", m.num_triangles());
+    println!("|---|---|---|---|---|---|");
+    for (file, r0, sx, axis) in files {
+        let doc = load(file);
+        let curve = doc.curves[0].to_curve().unwrap();
+        let surface = deviation::Revolution::new(&curve, r0, sx, axis);
+        let measure = |m: &TriMesh| deviation::deviation(m, &surface, 6).0;
+        let uniform = |f: f64| {
+            let mut d = doc.clone();
+            for c in &mut d.curves {
+                c.steps = ((f64::from(c.steps) * f).round() as u32).max(1);
+            }
+            for sf in &mut d.surfaces {
+                if let SwpSurfaceKind::Revolution { steps, .. } = &mut sf.kind {
+                    *steps = ((f64::from(*steps) * f).round() as u32).max(3);
+                }
+            }
+            let m = d.surface_mesh(0, &opts(SurfaceTessellation::FileSteps)).unwrap();
+            let dev = measure(&m);
+            (m.num_triangles(), dev)
+        };
+        let (n1, d1) = uniform(1.0);
+        for t in [2.0 * d1, d1, 0.5 * d1, 0.25 * d1, 0.1 * d1] {
+            let m = doc.surface_mesh(0, &opts(SurfaceTessellation::Distance(t))).unwrap();
+            let dm = measure(&m);
+            // deviation ~ 1/f²: start there and step by 2 % until within t
+            let mut f = (d1 / t).sqrt();
+            let (mut nu, mut du) = uniform(f);
+            while du > t {
+                f *= 1.02;
+                (nu, du) = uniform(f);
+            }
+            while f > 0.05 {
+                let (n2, d2) = uniform(f / 1.02);
+                if d2 > t {
+                    break;
+                }
+                (f, nu, du) = (f / 1.02, n2, d2);
+            }
+            let _ = n1;
+            println!("| {file} | {t:.3e} | {} | {dm:.3e} | {nu} (×{f:.2}) | {du:.3e} |", m.num_triangles());
+        }
     }
 }
