@@ -27,7 +27,7 @@ fn main() {
         SwpDocument::parse(&std::fs::read_to_string(&path).expect("read"), &path).expect("parse")
     };
     let opts = |t: SurfaceTessellation| SurfaceOptions {
-        sweep: SweepOptions { layout: MeshLayout::Compat, uvs: false, caps: false },
+        sweep: SweepOptions { layout: MeshLayout::Compat, uvs: false, caps: false, ..SweepOptions::default() },
         tessellation: t,
         ..SurfaceOptions::default()
     };
