@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use eframe::egui;
 use splinekit::subdiv::Scheme;
+use splinekit::sweep::Join;
 use splinekit_io::surface::ProfileAlign;
 use splinekit_io::{SwpFrames, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation};
 use splinekit_render::{Curvature, SurfaceColour};
@@ -377,6 +378,14 @@ fn settings_controls(
         let r = r.on_hover_text("which point of the profile rides on the path");
         if a != current {
             settings.align = Some(a);
+            edited = Some(r);
+        }
+        const JOINS: [(Join, &str); 3] = [(Join::Mitre, "mitre"), (Join::Round, "round"), (Join::Bevel, "bevel")];
+        let current = settings.join.unwrap_or_default();
+        let (j, r) = menu(ui, &format!("{name} join"), &JOINS, current);
+        let r = r.on_hover_text("how the walls meet at a sharp corner of the path");
+        if j != current {
+            settings.join = Some(j);
             edited = Some(r);
         }
         let mut caps = settings.caps.unwrap_or(true);

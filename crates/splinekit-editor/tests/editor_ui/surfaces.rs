@@ -159,8 +159,9 @@ fn sweep_from_the_panel() {
     let _ = std::fs::remove_dir_all(dir);
 }
 
-/// A surface's own settings from the panel: a distance tolerance, rotation-minimizing frames
-/// and no caps give the mesh the same options give, are one undo step each, and are saved.
+/// A surface's own settings from the panel: a distance tolerance, rotation-minimizing frames,
+/// round joins and no caps give the mesh the same options give, are one undo step each, and
+/// are saved.
 #[test]
 fn surface_settings_from_the_panel() {
     let dir = tempfile_dir("settings");
@@ -177,11 +178,17 @@ fn surface_settings_from_the_panel() {
     h.run();
     h.get_by_label("rotation-minimizing").click();
     h.run();
+    h.get_by_label("tube join").click();
+    h.run();
+    h.get_by_label("round").click();
+    h.run();
     h.get_by_label("tube caps").click();
     h.run();
-    let by_hand =
-        SwpDocument::parse(&format!("{curves}gcyl tube ring path tolerance 0.001 frames rmf no-caps\n"), "h.swp")
-            .unwrap();
+    let by_hand = SwpDocument::parse(
+        &format!("{curves}gcyl tube ring path tolerance 0.001 frames rmf join round no-caps\n"),
+        "h.swp",
+    )
+    .unwrap();
     assert_eq!(h.state().doc.swp.surfaces[0].settings, by_hand.surfaces[0].settings);
     let expected = by_hand.surface_mesh(0, &Default::default()).unwrap().num_triangles();
     assert_eq!(h.state_mut().surface_triangles(), expected);
@@ -192,7 +199,8 @@ fn surface_settings_from_the_panel() {
     h.key_press_modifiers(Modifiers::COMMAND, egui::Key::Y);
     h.run();
     assert!(h.state_mut().save_swp(&path), "{}", h.state().status);
-    assert!(std::fs::read_to_string(&path).unwrap().contains("gcyl tube ring path tolerance 0.001 frames rmf no-caps"));
+    let saved = std::fs::read_to_string(&path).unwrap();
+    assert!(saved.contains("gcyl tube ring path tolerance 0.001 frames rmf no-caps join round"), "{saved}");
     let _ = std::fs::remove_dir_all(dir);
 }
 
