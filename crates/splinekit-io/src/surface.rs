@@ -345,7 +345,15 @@ impl SwpDocument {
             SwpSurfaceKind::Revolution { steps, profile } => {
                 let (prof, steps) = match options.tessellation {
                     SurfaceTessellation::Distance(tolerance) if self.curves[profile].dim != 3 => {
-                        let plan = adaptive::revolution_plan(&curve(profile)?, tolerance, MAX_SLICES);
+                        let c = curve(profile)?;
+                        // the plan flattens the profile to no less than a share of the
+                        // tolerance: bounded before it starts
+                        let finest = Tessellation::Distance { tolerance: tolerance * adaptive::MIN_SHARE };
+                        let bound = flatten::flatten_count(&c, finest);
+                        limit.check(2u64.saturating_mul(bound.saturating_sub(1)), || {
+                            format!("its profile alone could have up to {bound} points")
+                        })?;
+                        let plan = adaptive::revolution_plan(&c, tolerance, MAX_SLICES);
                         (profile_at(profile, Some(&plan.params))?, plan.slices)
                     }
                     mode => {

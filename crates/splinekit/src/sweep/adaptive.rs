@@ -60,6 +60,12 @@ use crate::flatten::{self, Tessellation};
 /// its own distance from the axis.
 pub const MAX_SPLIT_DEPTH: u32 = 4;
 
+/// The smallest share of the tolerance a piece of the profile is flattened to: slices that
+/// leave a piece less count as leaving it none (so the profile never has more points than a
+/// flattening to this share of the tolerance gives, which callers bound beforehand with
+/// [`flatten::flatten_count`]).
+pub const MIN_SHARE: f64 = 1.0 / 16.0;
+
 /// What [`revolution_plan`] chose.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RevolutionPlan {
@@ -108,7 +114,7 @@ fn plan_piece(
     let (xmin, xmax) = x_range(piece);
     let radial = radial_term(xmin, xmax, slices);
     let eps = tolerance - radial;
-    let whole = if eps > 0.0 {
+    let whole = if eps >= MIN_SHARE * tolerance {
         scratch.clear();
         flatten::flatten_cubic_distance(piece, eps, scratch);
         Some(scratch.len())
@@ -166,7 +172,7 @@ impl Pieces<'_> {
             }
             Pieces::Whole { curve, xmin, xmax } => {
                 let eps = tolerance - radial_term(*xmin, *xmax, slices);
-                if eps <= 0.0 {
+                if eps < MIN_SHARE * tolerance {
                     return None;
                 }
                 let mode = Tessellation::Distance { tolerance: eps };
@@ -236,10 +242,10 @@ pub fn revolution_plan(profile: &AnyCurve<DVec3>, tolerance: f64, max_slices: us
     RevolutionPlan { params, slices, bound: tolerance }
 }
 
-/// `max_slices` slices leave some piece no tolerance: flatten to a thousandth of the
+/// `max_slices` slices leave some piece no tolerance: flatten to [`MIN_SHARE`] of the
 /// tolerance and report the bound reached.
 fn fallback(pieces: &Pieces<'_>, tolerance: f64, slices: usize) -> RevolutionPlan {
-    let eps = tolerance * 1e-3;
+    let eps = tolerance * MIN_SHARE;
     let (curve_params, radial) = match pieces {
         Pieces::Cubics(segments) => {
             let mut params = vec![0.0];

@@ -534,6 +534,9 @@ fn weld(split: &TriMesh, pid: &[u32], positions: &[DVec3]) -> PolyMesh {
     mesh
 }
 
+/// How many earlier vertices at one position [`attribute_twins`] compares a vertex with.
+const TWIN_CANDIDATES: usize = 8;
+
 /// Each split vertex's first twin: the first vertex at the same position id with the same UV,
 /// the same `smooth` (whether its normal is known yet) and, if known, a normal within `1e-9`.
 fn attribute_twins(split: &TriMesh, pid: &[u32], smooth: impl Fn(usize) -> bool) -> Vec<u32> {
@@ -548,7 +551,10 @@ fn attribute_twins(split: &TriMesh, pid: &[u32], smooth: impl Fn(usize) -> bool)
                 && (!smooth(v) || normals.is_none_or(|(a, b)| a.dot(*b) > 1.0 - 1e-9))
                 && split.uvs.get(w) == split.uvs.get(v)
         };
-        match seen.iter().find(|w| same(w)) {
+        // a point has a few sides (a crease, a seam, a cap's rim); a point many copies share
+        // (a pole where the path stays put) keeps its first few as candidates, so the search
+        // stays linear
+        match seen.iter().take(TWIN_CANDIDATES).find(|w| same(w)) {
             Some(&w) => twin[v] = w,
             None => seen.push(v as u32),
         }
