@@ -39,6 +39,47 @@
 //! The bound is tight: on a bulge (the chord inside the profile, which the shrinking of the
 //! slices moves further inside) the two errors add at the midpoint of a triangle's diagonal.
 //!
+//! # Signs: where the two errors cancel
+//!
+//! The lemma adds the chord's sagitta and the slices' shrinking everywhere; they add only
+//! where the shrinking moves the mesh further from the profile. Take one chord `[q₀, q₃]`
+//! (length `L`, unit direction `t̂`, normal `n̂ = t̂⊥`) whose piece of the profile, the
+//! sub-cubic `q₀ p₁ p₂ q₃`, is a graph over it (every control leg runs forward along `t̂`, so
+//! every tangent does) and does not cross the axis. Write `ê_r` for the direction away from
+//! the axis in the meridian half-plane, `a = ê_r·n̂`, `b = ê_r·t̂`, `δ = k·max(|x₀|, |x₃|)`.
+//! The piece's height over the chord, `h(s) = 3(1−s)²s·h₁ + 3(1−s)s²·h₂` (`hⱼ` the heights of
+//! `pⱼ`), has its exact range `[h₋, h₊]` from the roots of a quadratic.
+//!
+//! *Mesh to surface.* By the lemma a point `P` of the chord's triangles is, in its meridian
+//! half-plane, `c − d·ê_r` with `c` on the chord (at `λ ∈ [0, L]` along it) and `0 ≤ d ≤ δ`:
+//! at `λ − d·b` along the chord and `−d·a` across it. While `λ − d·b ∈ [0, L]`, the profile
+//! point over it is at a height in `[h₋, h₊]`, so the distance is at most
+//! `main = max |h + d·a|` over `h ∈ {h₋, h₊}`, `d ∈ {0, δ}` (the expression is convex in both).
+//! A bulge away from the axis (`h ≥ 0` with `a > 0`) gives `h₊ + δ·a`, the lemma's sum when
+//! `a = 1`; one toward the axis gives `max(h₊, δ·|a|)`; a flat part (`a ≈ 0`) about `h₊`.
+//!
+//! *Surface to mesh.* The mesh's section by the meridian half-plane of a surface point
+//! `C` (at `λ` along the chord, height `h`) is the chord scaled toward the axis by a factor
+//! `g ∈ [cos(θ/2), 1]`: the points `c(μ) − (1−g)·|x(μ)|·ê_r`. The one at `λ` along the chord
+//! (it exists while `λ` is within the section's span) is `|h + d·a|` from `C` with `d ≤ δ`:
+//! the same `main`.
+//!
+//! *Past the chord's ends* (within `τ = δ·|b|` of a vertex, the shift along the chord) the
+//! other side's profile and mesh take over: the neighbouring chords and their sub-cubics'
+//! legs run within an angle `ψ` of `t̂` (checked, `ψ < π/4`, plus `k` for the tilt that
+//! scaling by `g` gives a chord, and the neighbours longer than `2τ`), so both stay within
+//! `τ·tan ψ` of the line through the vertex, and the distance is at most
+//! `end = δ·(|a| + 2·|b|·tan ψ)`. At the profile's ends, or when a check fails, the lemma's
+//! own `εᵢ + δ` stands in (with `εᵢ` the tolerance the piece was flattened to).
+//!
+//! So **the two-sided distance is at most `max over chords of max(main, end)`**, each term
+//! computed from the chord as built. [`revolution_plan`] flattens each piece to
+//! `T − k·R·w` with `w` the largest `max(0, ê_r·n̂)` over its control legs (`n̂` toward the
+//! side it bulges to; `w = 1` for an S-shaped piece), checks every plan chord by chord, and
+//! keeps it only when that bound is within `T`; otherwise the lemma's plan (`w = 1`). On the
+//! wineglass this only helps the stem, the foot and the rim's top: its walls bulge away from
+//! the axis, where the sum is reached.
+//!
 //! **The choice.** Every piece of the profile (a cubic segment, or half of one, down to
 //! [`MAX_SPLIT_DEPTH`] halvings when that saves points) is flattened to its own tolerance
 //! `εᵢ = T − k·Rᵢ`, with `Rᵢ` the largest `|x|` of its control points (the convex hull holds
@@ -51,7 +92,7 @@
 //!
 //! Cost: about `(T/R)^-½` slices and `(T/size)^-½` profile points, so triangles grow as `1/T`.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use crate::curve::{AnyCurve, CubicBezier, ParamCurve};
 use crate::flatten::{self, Tessellation};
@@ -74,8 +115,17 @@ pub struct RevolutionPlan {
     /// Slices around the axis.
     pub slices: usize,
     /// The proved bound of the distance between the mesh and the exact surface (see the
-    /// [module docs](self)); at most the tolerance asked for.
+    /// [module docs](self)): the sign-aware bound measured on the chosen chords, or the
+    /// tolerance when the lemma's plan was chosen; at most the tolerance asked for.
     pub bound: f64,
+}
+
+/// Profile samples as planned: the parameters, and the tolerance each chord's piece was
+/// flattened to (`eps[i]` for the chord ending at `params[i + 1]`).
+#[derive(Default)]
+struct Samples {
+    params: Vec<f64>,
+    eps: Vec<f64>,
 }
 
 /// The pieces of a profile that get a tolerance each.
@@ -106,13 +156,13 @@ fn plan_piece(
     piece: &CubicBezier<DVec3>,
     (base, t0, t1): (f64, f64, f64),
     depth: u32,
-    tolerance: f64,
-    slices: usize,
+    (tolerance, slices, signed): (f64, usize, bool),
     scratch: &mut Vec<f64>,
-    mut out: Option<&mut Vec<f64>>,
+    mut out: Option<&mut Samples>,
 ) -> Option<(usize, f64)> {
+    let knobs = (tolerance, slices, signed);
     let (xmin, xmax) = x_range(piece);
-    let radial = radial_term(xmin, xmax, slices);
+    let radial = radial_term(xmin, xmax, slices) * if signed { outward_weight(piece) } else { 1.0 };
     let eps = tolerance - radial;
     let whole = if eps >= MIN_SHARE * tolerance {
         scratch.clear();
@@ -126,8 +176,8 @@ fn plan_piece(
     let split = if try_split {
         let (l, r) = piece.split(0.5);
         let tm = 0.5 * (t0 + t1);
-        let a = plan_piece(&l, (base, t0, tm), depth + 1, tolerance, slices, scratch, None);
-        let b = plan_piece(&r, (base, tm, t1), depth + 1, tolerance, slices, scratch, None);
+        let a = plan_piece(&l, (base, t0, tm), depth + 1, knobs, scratch, None);
+        let b = plan_piece(&r, (base, tm, t1), depth + 1, knobs, scratch, None);
         a.zip(b).map(|(a, b)| (a.0 + b.0, a.1.max(b.1), l, r, tm))
     } else {
         None
@@ -138,13 +188,14 @@ fn plan_piece(
                 scratch.clear();
                 flatten::flatten_cubic_distance(piece, eps, scratch);
                 let h = t1 - t0;
-                out.extend(scratch.iter().map(|&t| if t >= 1.0 { base + t1 } else { base + t0 + h * t }));
+                out.params.extend(scratch.iter().map(|&t| if t >= 1.0 { base + t1 } else { base + t0 + h * t }));
+                out.eps.extend(scratch.iter().map(|_| eps));
             }
             Some((n, tolerance))
         }
         (_, Some((_, _, l, r, tm))) => {
-            let a = plan_piece(&l, (base, t0, tm), depth + 1, tolerance, slices, scratch, out.as_deref_mut())?;
-            let b = plan_piece(&r, (base, tm, t1), depth + 1, tolerance, slices, scratch, out)?;
+            let a = plan_piece(&l, (base, t0, tm), depth + 1, knobs, scratch, out.as_deref_mut())?;
+            let b = plan_piece(&r, (base, tm, t1), depth + 1, knobs, scratch, out)?;
             Some((a.0 + b.0, a.1.max(b.1)))
         }
         _ => None,
@@ -154,18 +205,25 @@ fn plan_piece(
 impl Pieces<'_> {
     /// The profile's points (and parameters into `out`) at `slices`, or `None` when the
     /// slices leave some piece no tolerance.
-    fn plan(&self, tolerance: f64, slices: usize, mut out: Option<&mut Vec<f64>>) -> Option<usize> {
+    fn plan(&self, tolerance: f64, slices: usize, signed: bool, mut out: Option<&mut Samples>) -> Option<usize> {
         let mut scratch = Vec::new();
         match self {
             Pieces::Cubics(segments) => {
                 if let Some(out) = out.as_deref_mut() {
-                    out.clear();
-                    out.push(0.0);
+                    out.params.clear();
+                    out.eps.clear();
+                    out.params.push(0.0);
                 }
                 let mut points = 1;
                 for (k, seg) in segments.iter().enumerate() {
-                    let (n, _) =
-                        plan_piece(seg, (k as f64, 0.0, 1.0), 0, tolerance, slices, &mut scratch, out.as_deref_mut())?;
+                    let (n, _) = plan_piece(
+                        seg,
+                        (k as f64, 0.0, 1.0),
+                        0,
+                        (tolerance, slices, signed),
+                        &mut scratch,
+                        out.as_deref_mut(),
+                    )?;
                     points += n;
                 }
                 Some(points)
@@ -178,8 +236,9 @@ impl Pieces<'_> {
                 let mode = Tessellation::Distance { tolerance: eps };
                 match out {
                     Some(out) => {
-                        *out = flatten::flatten_any(curve, mode);
-                        Some(out.len())
+                        out.params = flatten::flatten_any(curve, mode);
+                        out.eps = vec![eps; out.params.len().saturating_sub(1)];
+                        Some(out.params.len())
                     }
                     None => usize::try_from(flatten::flatten_count(curve, mode)).ok(),
                 }
@@ -205,13 +264,40 @@ pub fn revolution_plan(profile: &AnyCurve<DVec3>, tolerance: f64, max_slices: us
             Pieces::Whole { curve: other, xmin: b.min.x, xmax: b.max.x }
         }
     };
-    let triangles = |n: usize| pieces.plan(tolerance, n, None).map(|p| 2 * (p as u64 - 1).max(1) * n as u64);
+    let unsigned = best_plan(&pieces, tolerance, max_slices, false);
+    let signed = match pieces {
+        Pieces::Cubics(_) => best_plan(&pieces, tolerance, max_slices, true),
+        Pieces::Whole { .. } => None,
+    };
+    match (signed, unsigned) {
+        (Some(s), Some(u)) if 2 * (s.params.len() - 1) * s.slices <= 2 * (u.params.len() - 1) * u.slices => s,
+        (_, Some(u)) => u,
+        (Some(s), None) => s,
+        (None, None) => fallback(&pieces, tolerance, max_slices),
+    }
+}
+
+/// The plan with the fewest triangles whose bound is within `tolerance`: with `signed`, the
+/// pieces get the sign-aware tolerances and every plan is checked chord by chord
+/// ([`chord_bound`]); without, the pieces get `T − k·R` and the lemma's bound holds as built.
+fn best_plan(pieces: &Pieces<'_>, tolerance: f64, max_slices: usize, signed: bool) -> Option<RevolutionPlan> {
+    let mut samples = Samples::default();
+    let mut triangles = |n: usize| {
+        if signed {
+            pieces.plan(tolerance, n, true, Some(&mut samples))?;
+            let Pieces::Cubics(segments) = pieces else { return None };
+            let bound = chord_bounds(segments, &samples, n);
+            (bound <= tolerance).then(|| 2 * (samples.params.len() as u64 - 1).max(1) * n as u64)
+        } else {
+            pieces.plan(tolerance, n, false, None).map(|p| 2 * (p as u64 - 1).max(1) * n as u64)
+        }
+    };
     // the fewest slices that leave every piece some tolerance (bisection: feasibility only
-    // grows with n)
+    // grows with n, for the signed plans nearly so)
     let first = if triangles(3).is_some() {
         3
     } else if triangles(max_slices).is_none() {
-        return fallback(&pieces, tolerance, max_slices);
+        return None;
     } else {
         let (mut lo, mut hi) = (3, max_slices);
         while hi - lo > 1 {
@@ -236,10 +322,17 @@ pub fn revolution_plan(profile: &AnyCurve<DVec3>, tolerance: f64, max_slices: us
             best = best.min((t, n));
         }
     }
+    if best.0 == u64::MAX {
+        return None;
+    }
     let slices = best.1;
-    let mut params = Vec::new();
-    pieces.plan(tolerance, slices, Some(&mut params));
-    RevolutionPlan { params, slices, bound: tolerance }
+    let mut samples = Samples::default();
+    pieces.plan(tolerance, slices, signed, Some(&mut samples));
+    let bound = match pieces {
+        Pieces::Cubics(segments) if signed => chord_bounds(segments, &samples, slices),
+        _ => tolerance,
+    };
+    Some(RevolutionPlan { params: samples.params, slices, bound })
 }
 
 /// `max_slices` slices leave some piece no tolerance: flatten to [`MIN_SHARE`] of the
@@ -265,4 +358,135 @@ fn fallback(pieces: &Pieces<'_>, tolerance: f64, slices: usize) -> RevolutionPla
         }
     };
     RevolutionPlan { params: curve_params, slices, bound: eps + radial }
+}
+
+/// The share of the slices' term `k·R` a piece's flattening tolerance gives up: the largest
+/// `max(0, ê_r·n̂)` over the directions of its control legs, `n̂` the normal toward the side
+/// its inner control points bulge to and `ê_r` the direction away from the axis (1 when it
+/// bulges both ways). A guess for the plan; [`chord_bound`] checks what was built.
+fn outward_weight(c: &CubicBezier<DVec3>) -> f64 {
+    let (q0, q3) = (c.p0.truncate(), c.p3.truncate());
+    let chord = q3 - q0;
+    let side = |p: DVec3| chord.perp_dot(p.truncate() - q0);
+    let (h1, h2) = (side(c.p1), side(c.p2));
+    if h1 * h2 < 0.0 {
+        return 1.0;
+    }
+    let sigma = if h1 + h2 >= 0.0 { 1.0 } else { -1.0 };
+    let xs = c.p0.x + c.p1.x + c.p2.x + c.p3.x;
+    let er = if xs < 0.0 { -1.0 } else { 1.0 };
+    let mut w: f64 = 0.0;
+    for d in [c.p1 - c.p0, c.p2 - c.p1, c.p3 - c.p2, c.p3 - c.p0] {
+        let d = d.truncate();
+        if let Some(t) = d.try_normalize() {
+            // the left normal of t is t.perp(); the bulge side is sigma·perp
+            w = w.max(er * sigma * t.perp().x);
+        }
+    }
+    w.clamp(0.0, 1.0)
+}
+
+/// One chord's piece of the profile in the meridian plane: the sub-cubic between two
+/// consecutive samples, in 2D.
+struct Chord {
+    p: [DVec2; 4],
+}
+
+/// The largest of [`chord_bound`] over the chords of the profile sampled at `params`.
+fn chord_bounds(segments: &[CubicBezier<DVec3>], samples: &Samples, slices: usize) -> f64 {
+    let params = &samples.params;
+    let last = segments.len().saturating_sub(1);
+    let chords: Vec<Chord> = params
+        .windows(2)
+        .map(|w| {
+            let k = (w[0].floor() as usize).min(last);
+            let sub = segments[k].subsegment(w[0] - k as f64, w[1] - k as f64);
+            Chord { p: [sub.p0, sub.p1, sub.p2, sub.p3].map(DVec3::truncate) }
+        })
+        .collect();
+    let k = 1.0 - (std::f64::consts::PI / slices as f64).cos();
+    (0..chords.len())
+        .map(|i| {
+            let prev = i.checked_sub(1).map(|j| &chords[j]);
+            chord_bound(&chords[i], prev, chords.get(i + 1), k, samples.eps[i])
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The sign-aware bound of the mesh of one chord (see the [module docs](self), "Signs"), or
+/// infinity where its conditions fail.
+fn chord_bound(c: &Chord, prev: Option<&Chord>, next: Option<&Chord>, k: f64, eps: f64) -> f64 {
+    let [q0, p1, p2, q3] = c.p;
+    let len = (q3 - q0).length();
+    let crosses = (q0.x < 0.0 && q3.x > 0.0) || (q0.x > 0.0 && q3.x < 0.0);
+    let delta = k * q0.x.abs().max(q3.x.abs());
+    // the lemma's bound, from the tolerance the piece was flattened to
+    let lemma = eps + delta;
+    if crosses || len <= 0.0 {
+        return if crosses { f64::INFINITY } else { lemma };
+    }
+    let t = (q3 - q0) / len;
+    let n = t.perp();
+    // a graph over the chord: every control leg runs forward
+    let legs = [p1 - q0, p2 - p1, q3 - p2];
+    if legs.iter().any(|d| d.dot(t) <= 0.0 && d.length_squared() > 0.0) {
+        return lemma;
+    }
+    // the exact range of the height h(s) = 3(1−s)²s·h1 + 3(1−s)s²·h2 over the chord
+    let (h1, h2) = ((p1 - q0).dot(n), (p2 - q0).dot(n));
+    let h = |s: f64| 3.0 * (1.0 - s) * s * ((1.0 - s) * h1 + s * h2);
+    // h′(s)/3 = h1·(1 − 4s + 3s²) + h2·(2s − 3s²) = A·s² + B·s + C
+    let (qa, qb, qc) = (3.0 * h1 - 3.0 * h2, 2.0 * h2 - 4.0 * h1, h1);
+    let (mut lo, mut hi) = (0.0f64, 0.0f64);
+    let mut visit = |s: f64| {
+        if (0.0..=1.0).contains(&s) {
+            lo = lo.min(h(s));
+            hi = hi.max(h(s));
+        }
+    };
+    if qa.abs() < 1e-300 {
+        if qb != 0.0 {
+            visit(-qc / qb);
+        }
+    } else {
+        let disc = qb * qb - 4.0 * qa * qc;
+        if disc >= 0.0 {
+            let r = disc.sqrt();
+            visit((-qb + r) / (2.0 * qa));
+            visit((-qb - r) / (2.0 * qa));
+        }
+    }
+    // rounding of the height polynomial, relative to the chord
+    let slack = 1e-12 * len;
+    let (lo, hi) = (lo - slack, hi + slack);
+    let er = if q0.x + q3.x < 0.0 { -1.0 } else { 1.0 };
+    let (a, b) = (er * n.x, er * t.x);
+    let main = [lo, hi, lo + delta * a, hi + delta * a].into_iter().map(f64::abs).fold(0.0, f64::max);
+    let old = lo.abs().max(hi.abs()) + delta;
+    // past the ends: the neighbours' legs and chords within ψ of the chord (plus the tilt of
+    // the shrunk chords, at most k)
+    if delta * b.abs() == 0.0 {
+        return main;
+    }
+    let (Some(prev), Some(next)) = (prev, next) else { return main.max(old) };
+    let mut sin_psi: f64 = 0.0;
+    let mut forward = true;
+    for ch in [c, prev, next] {
+        let dirs = [ch.p[1] - ch.p[0], ch.p[2] - ch.p[1], ch.p[3] - ch.p[2], ch.p[3] - ch.p[0]];
+        for d in dirs {
+            if let Some(d) = d.try_normalize() {
+                forward &= d.dot(t) > 0.0;
+                sin_psi = sin_psi.max(t.perp_dot(d).abs());
+            }
+        }
+    }
+    // the neighbours reach past the shift along the chord
+    let reach = 2.0 * delta * b.abs();
+    let long = (prev.p[3] - prev.p[0]).length() > reach && (next.p[3] - next.p[0]).length() > reach;
+    let psi = sin_psi.asin() + k;
+    if !forward || !long || psi >= std::f64::consts::FRAC_PI_4 {
+        return old;
+    }
+    let end = delta * (a.abs() + 2.0 * b.abs() * psi.tan());
+    main.max(end.min(old))
 }
