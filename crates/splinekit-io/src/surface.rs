@@ -354,7 +354,9 @@ impl SwpDocument {
                             format!("its profile alone could have up to {bound} points")
                         })?;
                         let plan = adaptive::revolution_plan(&c, tolerance, MAX_SLICES);
-                        (profile_at(profile, Some(&plan.params))?, plan.slices)
+                        let mut prof = profile_at(profile, Some(&plan.params))?;
+                        prof.points.iter_mut().for_each(|p| p.x *= plan.ring_scale);
+                        (prof, plan.slices)
                     }
                     mode => {
                         let prof = profile_of(profile)?;
