@@ -8,8 +8,8 @@
 //! (`splinekit-io`), called the way the command line calls them, so Python gets the same
 //! numbers bit for bit. Curves are kept as the SWP model describes them
 //! ([`splinekit_io::SwpCurve`]) and compiled by its `to_curve`; sweeps and revolutions are
-//! made by [`splinekit_io::SwpDocument::surface_poly`] on a document built in memory;
-//! subdivision goes through [`splinekit::subdiv::subdivide`].
+//! made by [`::splinekit_io::SwpDocument::surface_poly`] on a document built in memory;
+//! subdivision goes through [`::splinekit::subdiv::subdivide`].
 //!
 //! Long calls release the GIL. Errors are `ValueError` with the library's messages, and
 //! `OSError` (with the error number, so `FileNotFoundError` and the like) for files.

@@ -1,4 +1,4 @@
-//! `subdivide` and `limit_normals`: [`splinekit::subdiv::subdivide`], the one entry point of
+//! `subdivide` and `limit_normals`: [`::splinekit::subdiv::subdivide`], the one entry point of
 //! every scheme (as `splinekit subdivide` calls it).
 
 use pyo3::exceptions::PyValueError;

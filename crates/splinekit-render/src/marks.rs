@@ -29,8 +29,11 @@ pub const FRAME_LENGTH: f64 = 0.12;
 /// Most markers drawn on one curve (the spacing is raised to stay below).
 pub const MAX_MARKERS: usize = 5000;
 
-/// Relative accuracy of the arc lengths that place markers.
-const MARKER_ACCURACY: f64 = 1e-9;
+/// Accuracy of the arc lengths that place markers, relative to the size of the curve's
+/// bounding box: a millionth of it is far below a pixel of any picture (and a curve of wild control points, such as a Bézier
+/// of degree 20 hundreds of units wide, places its 5000 markers in a fraction of the time a
+/// billionth takes).
+const MARKER_ACCURACY: f64 = 1e-6;
 
 /// Curve tessellation tolerance, as a fraction of the scene's radius ...
 const CURVE_TOLERANCE: f64 = 1e-4;
@@ -320,7 +323,10 @@ fn frame_arrows(c: &AnyCurve<DVec3>, length: f64, marks: &mut Vec<Mark>) {
 /// Points every `spacing` of arc length from the start (the spacing raised so that there are
 /// at most [`MAX_MARKERS`]).
 fn markers(c: &AnyCurve<DVec3>, spacing: f64) -> Vec<DVec3> {
-    let index = ArclenIndex::new(c, MARKER_ACCURACY);
+    let b = c.bounding_box();
+    let size = (b.max - b.min).length();
+    let accuracy = if size > 0.0 && size.is_finite() { MARKER_ACCURACY * size } else { MARKER_ACCURACY };
+    let index = ArclenIndex::new(c, accuracy);
     let length = index.length();
     if !(length > 0.0) || !length.is_finite() {
         return vec![c.eval(c.domain().0)];

@@ -25,7 +25,7 @@
 //! The distance from `P` to the exact surface is the distance, in the meridian half-plane,
 //! from `(ρ, ȳ)` to `Γ` folded onto `x ≥ 0` (rotation about the axis is an isometry, and
 //! folding is 1-Lipschitz). Hence, if the profile polyline is within `ε` of `Γ` (two-sided
-//! Hausdorff, [`flatten`](crate::flatten)), every mesh point is within `ε + k·R` of the exact
+//! Hausdorff, [`flatten`]), every mesh point is within `ε + k·R` of the exact
 //! surface, `R` the largest `|x|` of the chord (a bound of `|x̄|`). The other way, a surface
 //! point `rot(φ′, C)` has a chord point `c` within `ε` of `C`, and the trapezoid of that chord
 //! contains the chord `[rot(φ, c), rot(φ + θ, c)]` of the circle of `c`, within `k·|c.x|` of
@@ -300,7 +300,10 @@ pub fn revolution_plan(profile: &AnyCurve<DVec3>, tolerance: f64, max_slices: us
         }
     };
     let mut best = best_plan(&pieces, tolerance, max_slices, None);
-    if let Pieces::Cubics(_) = pieces {
+    // the inflated plans check every chord of every candidate: worth it for the profiles of
+    // modelling (a few hundred points), not for a profile of many thousands
+    let small = best.as_ref().is_none_or(|b| b.params.len() <= INFLATE_MAX_POINTS);
+    if let (Pieces::Cubics(_), true) = (&pieces, small) {
         for c in INFLATIONS {
             if let Some(p) = best_plan(&pieces, tolerance, max_slices, Some(c)) {
                 let count = |p: &RevolutionPlan| (p.params.len() - 1) * p.slices;
@@ -399,6 +402,10 @@ fn fallback(pieces: &Pieces<'_>, tolerance: f64, slices: usize) -> RevolutionPla
 /// The inflations tried: the share `c` of the slices' shrinking `k` moved outside the
 /// surface by scaling the rings (see [`ring_scale`]); 0 keeps every vertex on the surface.
 const INFLATIONS: [f64; 5] = [0.0, 0.25, 0.4, 0.5, 0.6];
+
+/// Profiles whose plain plan has more points than this keep it (the inflated plans' chord
+/// checks would take seconds).
+const INFLATE_MAX_POINTS: usize = 2048;
 
 /// The radius factor of the vertex rings for the inflation `c`: `1/(1 − c·k)`.
 fn ring_scale(slices: usize, c: f64) -> f64 {
