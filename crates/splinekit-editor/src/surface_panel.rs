@@ -365,29 +365,15 @@ fn settings_controls(
             (SwpFrames::Frenet, "Frenet"),
             (SwpFrames::ZUp, "Z-up"),
         ];
-        let current = settings.frames.unwrap_or(SwpFrames::Sequential);
-        let (f, r) = menu(ui, &format!("{name} frames"), &FRAMES, current);
-        if f != current {
-            settings.frames = Some(f);
-            edited = Some(r);
-        }
+        let frames = setting_menu(ui, &format!("{name} frames"), &FRAMES, &mut settings.frames, None);
         const ALIGN: [(ProfileAlign, &str); 3] =
             [(ProfileAlign::Origin, "origin"), (ProfileAlign::Centre, "centre"), (ProfileAlign::Start, "start")];
-        let current = settings.align.unwrap_or_default();
-        let (a, r) = menu(ui, &format!("{name} align"), &ALIGN, current);
-        let r = r.on_hover_text("which point of the profile rides on the path");
-        if a != current {
-            settings.align = Some(a);
-            edited = Some(r);
-        }
+        let hint = Some("which point of the profile rides on the path");
+        let align = setting_menu(ui, &format!("{name} align"), &ALIGN, &mut settings.align, hint);
         const JOINS: [(Join, &str); 3] = [(Join::Mitre, "mitre"), (Join::Round, "round"), (Join::Bevel, "bevel")];
-        let current = settings.join.unwrap_or_default();
-        let (j, r) = menu(ui, &format!("{name} join"), &JOINS, current);
-        let r = r.on_hover_text("how the walls meet at a sharp corner of the path");
-        if j != current {
-            settings.join = Some(j);
-            edited = Some(r);
-        }
+        let hint = Some("how the walls meet at a sharp corner of the path");
+        let join = setting_menu(ui, &format!("{name} join"), &JOINS, &mut settings.join, hint);
+        edited = join.or(align).or(frames).or(edited);
         let mut caps = settings.caps.unwrap_or(true);
         let r = ui
             .checkbox(&mut caps, format!("{name} caps"))
@@ -477,6 +463,27 @@ fn optional_curve_choice(
 
 /// A menu labelled `label` of `choices` (value, text) showing `current`; returns the value
 /// chosen (`current` if none) and the menu's response.
+/// [`menu`] for a surface setting (`None`: the default, `T::default()`): sets it to the choice
+/// made, and returns the response when it changed.
+fn setting_menu<T: Copy + PartialEq + Default>(
+    ui: &mut egui::Ui,
+    label: &str,
+    choices: &[(T, &str)],
+    setting: &mut Option<T>,
+    hint: Option<&str>,
+) -> Option<egui::Response> {
+    let current = setting.unwrap_or_default();
+    let (chosen, r) = menu(ui, label, choices, current);
+    let r = match hint {
+        Some(hint) => r.on_hover_text(hint),
+        None => r,
+    };
+    (chosen != current).then(|| {
+        *setting = Some(chosen);
+        r
+    })
+}
+
 fn menu<T: Copy + PartialEq>(ui: &mut egui::Ui, label: &str, choices: &[(T, &str)], current: T) -> (T, egui::Response) {
     let mut chosen = current;
     let text = choices.iter().find(|(v, _)| *v == current).map_or("", |(_, t)| t);

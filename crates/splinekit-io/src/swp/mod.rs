@@ -509,9 +509,10 @@ pub enum SwpTessellation {
 }
 
 /// The frames a `gcyl` carries its profile with (see [`SwpSurfaceSettings`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum SwpFrames {
-    /// `frames sequential`: the course program's frames.
+    /// `frames sequential`: the course program's frames (the default).
+    #[default]
     Sequential,
     /// `frames rmf`: rotation-minimizing frames.
     RotationMinimizing,

@@ -355,6 +355,12 @@ pub fn revolve_poly(profile: &Profile, steps: usize, options: SweepOptions) -> R
     for (v, &id) in pid.iter().enumerate() {
         positions[id as usize] = split.positions[v];
     }
+    // one value where the sides agree (the UV seam's copy without UVs, a smooth closed profile)
+    let twin = attribute_twins(&split, &pid, |_| true);
+    let mut split = split;
+    for t in &mut split.triangles {
+        *t = t.map(|v| twin[v as usize]);
+    }
     Ok(weld(&split, &pid, &positions))
 }
 
@@ -482,12 +488,9 @@ pub fn generalized_cylinder_poly(
 /// The polygon mesh of a split mesh whose vertex `v` is at the position with id `pid[v]` in
 /// `positions`: a vertex per position a triangle uses (in order of id), and the split
 /// vertices' normals and UVs, the ones triangles use, as face-varying attributes (in order of
-/// first use; split vertices at one position with the same UV and normals within `1e-9` share
-/// one value). Triangles with a repeated position are left out.
+/// first use: the callers point the triangles at one split vertex where the sides agree, see
+/// [`attribute_twins`]). Triangles with a repeated position are left out.
 fn weld(split: &TriMesh, pid: &[u32], positions: &[DVec3]) -> PolyMesh {
-    let twin = attribute_twins(split, pid, |_| true);
-    let split =
-        &TriMesh { triangles: split.triangles.iter().map(|t| t.map(|v| twin[v as usize])).collect(), ..split.clone() };
     let mut used = vec![false; positions.len()];
     let triangles: Vec<[u32; 3]> = split
         .triangles

@@ -191,16 +191,17 @@ pub(super) fn build(profile: &Profile, path: &SweepPath, options: SweepOptions) 
         }
     }
     if seam_corner {
+        let inner_joints = b.joints.len();
         b.joint(path.frames[n - 1], path.frames[0].t, path.positions[n - 1], scale(n - 1), 1.0, n - 1);
         // the joint's last ring also starts the path (u = 0), and the walls after the seam
         // are cut from there
         let mut first = b.rings[b.rings.len() - 1].clone();
         first.u = 0.0;
         b.rings.insert(0, first);
-        let count = b.joints.len();
+        // (a U-turn at the seam has no mitre plane and is no joint site to cut from)
         for (i, j) in b.joints.iter_mut().enumerate() {
             j.first += 1;
-            j.last = if i + 1 == count { 0 } else { j.last + 1 };
+            j.last = if i == inner_joints { 0 } else { j.last + 1 };
         }
     }
     b.cut_walls(closed, size);
