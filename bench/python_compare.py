@@ -7,6 +7,8 @@
 
     python bench/python_compare.py          # peers that are not installed are skipped
 
+The peers: `pip install trimesh scipy open3d-cpu` (open3d also needs Debian's libusb-1.0-0).
+
 Prints the median of 5 runs (3 for the slow ones) and the ratio to splinekit.
 """
 
@@ -60,6 +62,13 @@ def loop_subdivision():
 
         mesh = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(v), o3d.utility.Vector3iVector(f.astype(np.int32)))
         rows.append(("open3d subdivide_loop", median_time(lambda: mesh.subdivide_loop(1), 3)))
+        # the same mesh: counts, and the vertices (open3d numbers them as splinekit does not,
+        # so compare the sorted coordinates)
+        theirs, (mv, mf) = mesh.subdivide_loop(1), sk.subdivide(v, f, 1)
+        tv = np.asarray(theirs.vertices)
+        assert (len(tv), len(theirs.triangles)) == (len(mv), len(mf)), (len(tv), len(mv))
+        gap = np.abs(np.sort(tv, axis=0) - np.sort(mv, axis=0)).max()
+        print(f"open3d vs splinekit: {len(mv)} vertices, {len(mf)} triangles each; sorted coordinates differ by {gap:.1e}")
     except ImportError:
         print("(open3d not installed)")
     report(f"Loop subdivision, 1 level of {len(f)} triangles", rows)

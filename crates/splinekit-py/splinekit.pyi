@@ -41,6 +41,20 @@ class Curve:
     def hermite(points: ArrayLike, tangents: ArrayLike, closed: bool = False, *, steps: int = 20) -> Curve:
         """Cubic Hermite spline through ``points`` with ``tangents`` (``dP/du``)."""
     @staticmethod
+    def kochanek_bartels(
+        points: ArrayLike,
+        tension: Union[None, float, ArrayLike] = None,
+        continuity: Union[None, float, ArrayLike] = None,
+        bias: Union[None, float, ArrayLike] = None,
+        closed: bool = False,
+        *,
+        steps: int = 20,
+    ) -> Curve:
+        """Kochanek–Bartels (TCB) spline: ``tension``, ``continuity``, ``bias`` in [−1, 1], per key or one for all."""
+    @staticmethod
+    def bessel_overhauser(points: ArrayLike, closed: bool = False, *, steps: int = 20) -> Curve:
+        """Bessel–Overhauser spline: tangents of chord-length parabolas through each key and its neighbours."""
+    @staticmethod
     def bezier_n(points: ArrayLike, *, steps: int = 20) -> Curve:
         """One Bézier curve of degree ``n − 1`` (2 to 64 points)."""
     @staticmethod
@@ -166,6 +180,7 @@ def sweep(
     align: Literal["origin", "centre", "center", "start"] = "origin",
     join: Literal["mitre", "miter", "round", "bevel"] = "mitre",
     mitre_limit: float = 4.0,
+    scale_mode: Literal["multiply", "override"] = "multiply",
     normals: bool = False,
 ) -> Tuple[Floats, ...]:
     """A 2D ``profile`` swept along ``path``: ``(vertices, faces)`` (and ``normals``)."""

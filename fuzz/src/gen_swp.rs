@@ -487,6 +487,7 @@ impl Doc<'_> {
                             | "align"
                             | "join"
                             | "mitre-limit"
+                            | "scale-mode"
                     ) && let Some(v) = it.next()
                     {
                         group.push(v);

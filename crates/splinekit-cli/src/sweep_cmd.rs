@@ -12,7 +12,7 @@ use splinekit::sweep::{DEFAULT_MITRE_LIMIT, Join, MeshLayout, SweepOptions};
 use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildError, RebuildOptions, SplineHeader, stage_poly};
 use splinekit_io::surface::{
-    DEFAULT_MAX_TRIANGLES, ProfileAlign, SurfaceError, SurfaceFrames, SurfaceOptions, SurfaceTessellation,
+    DEFAULT_MAX_TRIANGLES, ProfileAlign, ScaleMode, SurfaceError, SurfaceFrames, SurfaceOptions, SurfaceTessellation,
 };
 
 use crate::select;
@@ -82,13 +82,18 @@ pub struct SweepArgs {
     #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     pub angle_tolerance: Option<f64>,
 
-    /// Frames along sweep curves (SWP only) [default: sequential]
+    /// Frames along sweep curves (SWP only) [default: auto]
     #[arg(long, value_enum, value_name = "METHOD")]
     pub frames: Option<Frames>,
 
     /// Which point of each gcyl's profile rides on the path (SWP only) [default: origin]
     #[arg(long, value_enum, value_name = "POINT")]
     pub align: Option<Align>,
+
+    /// Whether a gcyl's scale curve multiplies its profile as drawn or gives its size (its
+    /// farthest point from the path sx along N and sy along B) (SWP only) [default: multiply]
+    #[arg(long, value_enum, value_name = "MODE")]
+    pub scale_mode: Option<ScaleModeArg>,
 
     /// How the walls of a gcyl meet at a sharp corner of its path (SWP only) [default: mitre]
     #[arg(long, value_enum, value_name = "JOIN")]
@@ -140,6 +145,15 @@ pub enum Align {
     Start,
 }
 
+/// What a scale curve does to a profile.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ScaleModeArg {
+    /// The scale multiplies the profile as drawn
+    Multiply,
+    /// The scale is the profile's size: the profile is first resized to reach 1 along each axis
+    Override,
+}
+
 /// Joins at path corners.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum JoinArg {
@@ -155,6 +169,9 @@ pub enum JoinArg {
 /// Frame methods.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Frames {
+    /// Rotation-minimizing along a path that leaves the xy plane, the course's sequential
+    /// frames along one in it (the same frames there); sequential with --compat
+    Auto,
     /// The course program's sequential frames (B₀ = +z), with the closed-curve fix
     Sequential,
     /// Rotation-minimizing frames (double reflection)
@@ -192,7 +209,8 @@ fn options(args: &SweepArgs) -> anyhow::Result<SurfaceOptions> {
             ..SweepOptions::default()
         },
         tessellation,
-        frames: match args.frames.unwrap_or(Frames::Sequential) {
+        frames: match args.frames.unwrap_or(Frames::Auto) {
+            Frames::Auto => SurfaceFrames::Auto,
             Frames::Sequential => SurfaceFrames::Sequential,
             Frames::Rmf => SurfaceFrames::RotationMinimizing,
             Frames::Frenet => SurfaceFrames::Frenet,
@@ -202,6 +220,10 @@ fn options(args: &SweepArgs) -> anyhow::Result<SurfaceOptions> {
             Some(Align::Centre) => ProfileAlign::Centre,
             Some(Align::Start) => ProfileAlign::Start,
             Some(Align::Origin) | None => ProfileAlign::Origin,
+        },
+        scale_mode: match args.scale_mode {
+            Some(ScaleModeArg::Override) => ScaleMode::Override,
+            Some(ScaleModeArg::Multiply) | None => ScaleMode::Multiply,
         },
         max_triangles: Some(args.max_triangles),
     })
@@ -264,6 +286,9 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
         }
         if args.align.is_some() {
             own.align = None;
+        }
+        if args.scale_mode.is_some() {
+            own.scale_mode = None;
         }
         if args.join.is_some() {
             own.join = None;

@@ -336,6 +336,38 @@ fn frames_and_align_flags() {
     assert!(run.stderr.contains("possible values: origin, centre, start"), "{}", run.stderr);
 }
 
+/// #42: `--scale-mode` replaces the file's own `scale-mode`; `--frames auto` is the default.
+#[test]
+fn scale_mode_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, setting: &str| {
+        let file = dir.path().join(name);
+        let text = format!(
+            "circ c 12 2\nbez2 s 1 4 [0.5 0.5] [0.4 0.4] [0.3 0.3] [0.2 0.2]\n\
+             bez3 l 8 4 [0 0 0] [1 0 0.5] [2 0 0] [3 0 0.5]\ngcyl tube c l scale s{setting}\n"
+        );
+        fs::write(&file, text).unwrap();
+        file.to_str().unwrap().to_owned()
+    };
+    let (plain, over) = (write("plain.swp", ""), write("over.swp", " scale-mode override"));
+    let read = |file: &str, flags: &[&str]| {
+        let out = dir.path().join(format!("{}{}", file.len(), flags.join("_")));
+        let mut args = vec!["sweep", file, "-o", out.to_str().unwrap()];
+        args.extend_from_slice(flags);
+        splinekit(&args).ok();
+        fs::read_to_string(out.join("tube.obj")).unwrap()
+    };
+    let multiplied = read(&plain, &[]);
+    let overridden = read(&over, &[]);
+    assert_ne!(multiplied, overridden);
+    assert_eq!(read(&plain, &["--scale-mode", "override"]), overridden);
+    assert_eq!(read(&over, &["--scale-mode", "multiply"]), multiplied);
+    assert_eq!(read(&plain, &["--frames", "auto"]), multiplied);
+    let run = splinekit(&["sweep", &plain, "-o", dir.path().join("x").to_str().unwrap(), "--scale-mode", "add"]);
+    assert_eq!(run.code, Some(2));
+    assert!(run.stderr.contains("possible values: multiply, override"), "{}", run.stderr);
+}
+
 /// The connected components of a triangle list (by shared vertex indices, nothing merged).
 fn components(vertices: usize, triangles: &[[u32; 3]]) -> usize {
     let mut parent: Vec<usize> = (0..vertices).collect();

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use eframe::egui;
 use splinekit::subdiv::Scheme;
 use splinekit::sweep::Join;
-use splinekit_io::surface::ProfileAlign;
+use splinekit_io::surface::{ProfileAlign, ScaleMode};
 use splinekit_io::{SwpFrames, SwpSurfaceKind, SwpSurfaceSettings, SwpTessellation};
 use splinekit_render::{Curvature, SurfaceColour};
 
@@ -359,13 +359,15 @@ fn settings_controls(
         edited = layout_control(ui, name, settings).or(edited);
     }
     if keyword == "gcyl" {
-        const FRAMES: [(SwpFrames, &str); 4] = [
+        const FRAMES: [(SwpFrames, &str); 5] = [
+            (SwpFrames::Auto, "auto"),
             (SwpFrames::Sequential, "sequential"),
             (SwpFrames::RotationMinimizing, "rotation-minimizing"),
             (SwpFrames::Frenet, "Frenet"),
             (SwpFrames::ZUp, "Z-up"),
         ];
-        let frames = setting_menu(ui, &format!("{name} frames"), &FRAMES, &mut settings.frames, None);
+        let hint = Some("auto: rotation-minimizing along a path that leaves the xy plane, sequential along one in it");
+        let frames = setting_menu(ui, &format!("{name} frames"), &FRAMES, &mut settings.frames, hint);
         const ALIGN: [(ProfileAlign, &str); 3] =
             [(ProfileAlign::Origin, "origin"), (ProfileAlign::Centre, "centre"), (ProfileAlign::Start, "start")];
         let hint = Some("which point of the profile rides on the path");
@@ -373,7 +375,11 @@ fn settings_controls(
         const JOINS: [(Join, &str); 3] = [(Join::Mitre, "mitre"), (Join::Round, "round"), (Join::Bevel, "bevel")];
         let hint = Some("how the walls meet at a sharp corner of the path");
         let join = setting_menu(ui, &format!("{name} join"), &JOINS, &mut settings.join, hint);
-        edited = join.or(align).or(frames).or(edited);
+        const SCALE_MODES: [(ScaleMode, &str); 2] =
+            [(ScaleMode::Multiply, "multiply"), (ScaleMode::Override, "override")];
+        let hint = Some("multiply: the scale curve scales the profile as drawn; override: it gives the profile's size");
+        let scale_mode = setting_menu(ui, &format!("{name} scale mode"), &SCALE_MODES, &mut settings.scale_mode, hint);
+        edited = scale_mode.or(join).or(align).or(frames).or(edited);
         let mut caps = settings.caps.unwrap_or(true);
         let r = ui
             .checkbox(&mut caps, format!("{name} caps"))

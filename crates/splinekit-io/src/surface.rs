@@ -1,8 +1,9 @@
 //! Sweeping the surfaces of an SWP document into meshes ([`SwpDocument::surface_mesh`]).
 //!
-//! Each curve is tessellated ([`Tessellation`]), given frames (the sequential method of the
-//! course software by default, with the closed-curve fix when its ends meet in position and
-//! tangent), and handed to [`splinekit::sweep`].
+//! Each curve is tessellated ([`Tessellation`]), given frames (by default rotation-minimizing
+//! along a path that leaves the plane `z = const`, the course software's sequential method
+//! along one in it, where the two agree; with the closed-curve fix when the ends meet in
+//! position and tangent; see [`SurfaceFrames::Auto`]), and handed to [`splinekit::sweep`].
 //!
 //! In the welded layout, sharp corners of a piecewise curve (a join whose two tangents differ
 //! by more than [`CREASE_ANGLE`]) are sampled twice, once with each tangent: a corner of a
@@ -67,9 +68,15 @@ pub enum SurfaceTessellation {
 /// Which frames carry the profile along a sweep curve.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SurfaceFrames {
+    /// Rotation-minimizing frames (minimum twist) for a path that leaves the plane `z = const`;
+    /// the course program's sequential frames for a path in such a plane, where the two methods
+    /// give the same frames (N in the plane, left of travel; B = +z) and the sequential ones
+    /// reproduce the course's vertices bit for bit. The compat layout always uses the
+    /// sequential frames (the course program's vertices).
+    #[default]
+    Auto,
     /// The course program's sequential method (`Nᵢ = normalize(Bᵢ₋₁ × Tᵢ)`, `Bᵢ = Tᵢ × Nᵢ`,
     /// from `B = +z`), with the closed-curve fix.
-    #[default]
     Sequential,
     /// Rotation-minimizing frames (double reflection), closed-curve correction by arc length.
     RotationMinimizing,
@@ -108,6 +115,37 @@ impl ProfileAlign {
     }
 }
 
+/// What a `gcyl`'s scale curve does to its profile.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ScaleMode {
+    /// The scale `(sx, sy)` multiplies the profile as drawn: `(1, 1)` leaves it as it is.
+    #[default]
+    Multiply,
+    /// The scale `(sx, sy)` is the profile's size: the profile (measured from the point that
+    /// rides on the path, see [`ProfileAlign`]) is first resized so that its largest `|x|` and
+    /// its largest `|y|` are 1, then multiplied, so its farthest point from the path lies `sx`
+    /// away along N and `sy` along B however large it was drawn. A profile with no extent
+    /// along an axis (a segment on the other axis) keeps its zero there. Without a scale
+    /// curve the profile is left as drawn.
+    Override,
+}
+
+impl ScaleMode {
+    /// The factors this mode applies to a profile's `points` (already relative to the point
+    /// that rides on the path) before the scale curve's: `(1, 1)` for [`Self::Multiply`].
+    #[must_use]
+    pub fn unit_factors(self, points: &[DVec2]) -> DVec2 {
+        match self {
+            Self::Multiply => DVec2::ONE,
+            Self::Override => {
+                let reach = points.iter().fold(DVec2::ZERO, |r, p| r.max(p.abs()));
+                let unit = |r: f64| if r > 0.0 && r.is_finite() { 1.0 / r } else { 1.0 };
+                DVec2::new(unit(reach.x), unit(reach.y))
+            }
+        }
+    }
+}
+
 /// The default of [`SurfaceOptions::max_triangles`] and [`crate::mesh::RebuildOptions`]:
 /// a mesh of this size takes a few gigabytes in memory and as OBJ text.
 pub const DEFAULT_MAX_TRIANGLES: usize = 50_000_000;
@@ -115,7 +153,7 @@ pub const DEFAULT_MAX_TRIANGLES: usize = 50_000_000;
 /// Options for [`SwpDocument::surface_mesh`]; the default is what `splinekit sweep` does
 /// without options, and what `render`, `gallery` and the editor sweep with: the course
 /// program's file steps, the welded layout with end caps on open sweeps of closed profiles,
-/// sequential frames and at most [`DEFAULT_MAX_TRIANGLES`] triangles.
+/// [`SurfaceFrames::Auto`] frames and at most [`DEFAULT_MAX_TRIANGLES`] triangles.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceOptions {
     /// Vertex layout and UVs.
@@ -126,6 +164,8 @@ pub struct SurfaceOptions {
     pub frames: SurfaceFrames,
     /// Which point of a `gcyl`'s profile rides on the path.
     pub align: ProfileAlign,
+    /// Whether a `gcyl`'s scale curve multiplies its profile or gives its size.
+    pub scale_mode: ScaleMode,
     /// The most triangles a mesh may have (`None`: as many as 32-bit indices allow). Checked
     /// from the sample counts before the mesh is built (each curve's as soon as it is
     /// tessellated), so a tolerance far too fine for the size of a surface, or absurd steps in
@@ -152,6 +192,7 @@ impl SurfaceOptions {
             }
         }
         match settings.frames {
+            Some(SwpFrames::Auto) => o.frames = SurfaceFrames::Auto,
             Some(SwpFrames::Sequential) => o.frames = SurfaceFrames::Sequential,
             Some(SwpFrames::RotationMinimizing) => o.frames = SurfaceFrames::RotationMinimizing,
             Some(SwpFrames::Frenet) => o.frames = SurfaceFrames::Frenet,
@@ -170,6 +211,9 @@ impl SurfaceOptions {
         if let Some(limit) = settings.mitre_limit {
             o.sweep.mitre_limit = limit;
         }
+        if let Some(mode) = settings.scale_mode {
+            o.scale_mode = mode;
+        }
         o
     }
 }
@@ -181,6 +225,7 @@ impl Default for SurfaceOptions {
             tessellation: SurfaceTessellation::default(),
             frames: SurfaceFrames::default(),
             align: ProfileAlign::default(),
+            scale_mode: ScaleMode::default(),
             max_triangles: Some(DEFAULT_MAX_TRIANGLES),
         }
     }
@@ -383,7 +428,7 @@ impl SwpDocument {
                 limit.check(2 * (p as u64).saturating_sub(1) * (s as u64).saturating_sub(1) + caps, || {
                     format!("a {p}-point profile swept along {s} points")
                 })?;
-                let mut frames = frames_for(&samples, options.frames);
+                let mut frames = frames_for(&samples, path_frames(options, &samples));
                 // a scale or twist curve: 2D, read at the samples' normalized arc length
                 let shape = |i: Option<usize>, role: SwpClause| -> Result<Option<AnyCurve<DVec3>>, SurfaceError> {
                     let Some(i) = i else { return Ok(None) };
@@ -397,6 +442,13 @@ impl SwpDocument {
                     curve(i).map(Some)
                 };
                 let (scale, twist) = (shape(scale, SwpClause::Scale)?, shape(twist, SwpClause::Twist)?);
+                if scale.is_some() {
+                    // the profile at unit size for an overriding scale (normals as the
+                    // inverse transpose carries them)
+                    let f = options.scale_mode.unit_factors(&prof.points);
+                    prof.points.iter_mut().for_each(|p| *p *= f);
+                    prof.normals.iter_mut().for_each(|n| *n = (*n / f).try_normalize().unwrap_or(*n));
+                }
                 let mut scales = Vec::new();
                 if scale.is_some() || twist.is_some() {
                     let sigma = normalized_arclen(&c, &samples);
@@ -413,8 +465,13 @@ impl SwpDocument {
                     }
                 }
                 let path = SweepPath { positions: samples.iter().map(|s| s.position).collect(), frames, scales };
-                // round joints in arcs as fine as the tessellation
-                let reach = prof.points.iter().fold(0.0, |r: f64, p| r.max(p.length()));
+                // round joints in arcs as fine as the tessellation, at the profile's largest size
+                let largest = if path.scales.is_empty() {
+                    1.0
+                } else {
+                    path.scales.iter().fold(0.0, |m: f64, s| m.max(s.abs().max_element()))
+                };
+                let reach = prof.points.iter().fold(0.0, |r: f64, p| r.max(p.length())) * largest;
                 let round_step = match options.tessellation {
                     SurfaceTessellation::FileSteps => options.sweep.round_step,
                     SurfaceTessellation::Angle(a) => a,
@@ -630,9 +687,31 @@ fn normalized_arclen(curve: &AnyCurve<DVec3>, samples: &[CurveSample]) -> Vec<f6
     s
 }
 
+/// The frames [`SurfaceFrames::Auto`] stands for along a path with these samples (any
+/// other choice as it is).
+fn path_frames(options: &SurfaceOptions, samples: &[CurveSample]) -> SurfaceFrames {
+    if options.frames != SurfaceFrames::Auto {
+        return options.frames;
+    }
+    if options.sweep.layout == MeshLayout::Compat || in_z_plane(samples) {
+        SurfaceFrames::Sequential
+    } else {
+        SurfaceFrames::RotationMinimizing
+    }
+}
+
+/// Whether every sample lies in one plane `z = const` (to 1e-12 of the samples' extent).
+fn in_z_plane(samples: &[CurveSample]) -> bool {
+    let Some(first) = samples.first() else { return true };
+    let (lo, hi) =
+        samples.iter().fold((first.position, first.position), |(lo, hi), s| (lo.min(s.position), hi.max(s.position)));
+    let extent = (hi - lo).max_element();
+    hi.z - lo.z <= 1e-12 * extent
+}
+
 fn frames_for(samples: &[CurveSample], method: SurfaceFrames) -> Vec<Frame> {
     let method = match method {
-        SurfaceFrames::Sequential => FrameMethod::Sequential(Side::Left),
+        SurfaceFrames::Auto | SurfaceFrames::Sequential => FrameMethod::Sequential(Side::Left),
         SurfaceFrames::RotationMinimizing => FrameMethod::RotationMinimizing(StartNormal::Auto(Side::Left)),
         SurfaceFrames::Frenet => FrameMethod::Frenet,
         SurfaceFrames::ZUp => FrameMethod::FixedUp(DVec3::Z),

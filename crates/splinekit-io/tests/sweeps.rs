@@ -6,6 +6,7 @@ use splinekit::TriMesh;
 use splinekit::sweep::{MeshLayout, SweepOptions};
 use splinekit_io::SwpDocument;
 use splinekit_io::surface::{SurfaceFrames, SurfaceOptions, SurfaceTessellation};
+use splinekit_io::swp::SwpSurfaceKind;
 
 #[allow(dead_code)]
 #[path = "swp/common.rs"]
@@ -372,4 +373,48 @@ fn regression_38_zrev_counts_its_profile_before_making_it() {
     // an ordinary tolerance still sweeps
     let ordinary = SurfaceOptions { tessellation: SurfaceTessellation::Distance(1e-3), ..fine };
     assert!(doc.surface_mesh(0, &ordinary).unwrap().num_triangles() > 0);
+}
+
+/// The default frames: along a path in a plane `z = const` (tor, gentorus, florus, flircle)
+/// the course's sequential frames, which there agree with the rotation-minimizing ones, so
+/// the course's vertices come out bit for bit; along a 3D path (weird, weirder)
+/// rotation-minimizing frames; the compat layout keeps the course's frames everywhere.
+#[test]
+fn auto_frames_are_rotation_minimizing_off_the_plane_and_the_courses_in_it() {
+    let with = |doc: &SwpDocument, layout, frames| {
+        doc.surface_mesh(0, &SurfaceOptions { frames, ..opts(layout) }).unwrap().positions
+    };
+    let largest_gap = |a: &[DVec3], b: &[DVec3]| a.iter().zip(b).map(|(p, q)| p.distance(*q)).fold(0.0, f64::max);
+    for (file, planar) in [
+        ("gcyl/tor.swp", true),
+        ("gcyl/gentorus.swp", true),
+        ("gcyl/florus.swp", true),
+        ("gcyl/flircle.swp", true),
+        ("gcyl/weird.swp", false),
+        ("gcyl/weirder.swp", false),
+    ] {
+        let doc = load(file);
+        let SwpSurfaceKind::GeneralizedCylinder { sweep, .. } = doc.surfaces[0].kind else { panic!("{file}") };
+        // control points (none for a circle, which lies in the xy plane)
+        let z = doc.curves[sweep].geometry.points().iter().map(|p| p.z);
+        let (lo, hi) = z.fold((0.0, 0.0), |(lo, hi): (f64, f64), z| (lo.min(z), hi.max(z)));
+        assert_eq!(hi - lo < 1e-12, planar, "{file}: path z in [{lo}, {hi}]");
+        for layout in [MeshLayout::Welded, MeshLayout::Compat] {
+            let auto = with(&doc, layout, SurfaceFrames::Auto);
+            let sequential = with(&doc, layout, SurfaceFrames::Sequential);
+            let rmf = with(&doc, layout, SurfaceFrames::RotationMinimizing);
+            let gap = largest_gap(&sequential, &rmf);
+            if planar || layout == MeshLayout::Compat {
+                assert_eq!(auto, sequential, "{file} {layout:?}");
+            } else {
+                assert_eq!(auto, rmf, "{file} {layout:?}");
+            }
+            // the two methods agree in the plane, and drift apart along a 3D path
+            if planar {
+                assert!(gap < 1e-12, "{file} {layout:?}: {gap:e}");
+            } else {
+                assert!(gap > 1e-3, "{file} {layout:?}: {gap:e}");
+            }
+        }
+    }
 }

@@ -415,3 +415,52 @@ fn align_puts_the_chosen_point_of_the_profile_on_the_path() {
     let on_line = mesh.positions.iter().filter(|p| p.truncate().length() < 1e-9).count();
     assert_eq!(on_line, 5, "one vertex on the line per path sample");
 }
+
+/// #42: `scale-mode override` makes the scale curve the profile's size: circles of radius 0.25
+/// and 3 with the scale (0.7, 0.4) along a straight line both reach 0.7 along N and 0.4 along
+/// B, where `multiply` (the default) scales each as drawn; a segment with no width keeps its
+/// zero; without a scale curve the mode changes nothing; read and written back.
+#[test]
+fn scale_mode_override_gives_the_profile_its_size() {
+    let text = "circ small 24 0.25\ncirc large 24 3\nbez2 bar 1 4 [0 -2] [0 -1] [0 1] [0 2]\n\
+                bez2 s 1 4 [0.7 0.4] [0.7 0.4] [0.7 0.4] [0.7 0.4]\n\
+                bez3 line 6 4 [0 0 0] [1 0 0] [2 0 0] [3 0 0]\n\
+                gcyl sm small line scale s\ngcyl lm large line scale s scale-mode multiply\n\
+                gcyl so small line scale s scale-mode override\ngcyl lo large line scale s scale-mode override\n\
+                gcyl bo bar line scale s scale-mode override\n\
+                gcyl plain large line\ngcyl plain-o large line scale-mode override\n";
+    let doc = parse(text);
+    let written = doc.to_swp_string();
+    assert!(written.contains("gcyl lo large line scale s scale-mode override\n"), "{written}");
+    assert!(written.contains("gcyl lm large line scale s scale-mode multiply\n"), "{written}");
+    let back = parse(&written);
+    for (a, b) in doc.surfaces.iter().zip(&back.surfaces) {
+        assert_eq!((a.kind, a.settings), (b.kind, b.settings));
+    }
+    let options =
+        SurfaceOptions { sweep: SweepOptions { caps: false, ..SweepOptions::default() }, ..SurfaceOptions::default() };
+    // along +x in the xy plane N is +y (left of travel) and B is +z: the largest |y| and |z|
+    let reach = |k: usize| {
+        let mesh = doc.surface_mesh(k, &options).unwrap();
+        mesh.positions.iter().fold(DVec2::ZERO, |m, p| m.max(DVec2::new(p.y.abs(), p.z.abs())))
+    };
+    let close = |a: DVec2, b: DVec2| (a - b).length() < 1e-12;
+    assert!(close(reach(0), DVec2::new(0.7, 0.4) * 0.25), "{}", reach(0));
+    assert!(close(reach(1), DVec2::new(0.7, 0.4) * 3.0), "{}", reach(1));
+    for k in [2, 3] {
+        assert!(close(reach(k), DVec2::new(0.7, 0.4)), "surface {k}: {}", reach(k));
+    }
+    assert!(close(reach(4), DVec2::new(0.0, 0.4)), "{}", reach(4));
+    let (small, large) = (doc.surface_mesh(2, &options).unwrap(), doc.surface_mesh(3, &options).unwrap());
+    let gap = small.positions.iter().zip(&large.positions).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+    assert!(gap < 1e-12, "override: the two circles differ by {gap:e}");
+    assert_eq!(doc.surface_mesh(5, &options).unwrap(), doc.surface_mesh(6, &options).unwrap());
+    // errors name the word and what was expected
+    let head = "circ c 10 1\nbez3 l 1 4 [0 0 0] [0 0 1] [0 0 2] [0 0 3]\n";
+    let err = parse_err(&format!("{head}gcyl g c l scale-mode sideways\n"));
+    assert!(err.contains("3:23") && err.contains("expected multiply or override for the scale mode"), "{err}");
+    let err = parse_err(&format!("{head}gcyl g c l scale-mode override scale-mode multiply\n"));
+    assert!(err.contains("at most one of scale-mode"), "{err}");
+    let err = parse_err("bez2 p 1 4 [-1 0] [-1 1] [-1 2] [-1 3]\nsrev g 10 p scale-mode override\n");
+    assert!(err.contains("scale-mode applies to gcyl only"), "{err}");
+}

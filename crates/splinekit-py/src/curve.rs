@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use splinekit::flatten::{self, Tessellation};
 use splinekit::frame::{self, FrameMethod, FrameOptions, Side, StartNormal};
-use splinekit::{AnyCurve, ArclenIndex, ArclenTable, ParamCurve, TableMethod, resample_every};
+use splinekit::{AnyCurve, ArclenIndex, ArclenTable, ParamCurve, TableMethod, Tcb, resample_every};
 use splinekit_io::{MAX_STEPS, SourcePos, SwpCurve, SwpCurveKind, SwpGeometry};
 
 use crate::convert::{array_out, points, points_out, scalar_or_array, value_error, values};
@@ -161,6 +161,55 @@ impl Curve {
         }
         let geometry = SwpGeometry::Hermite { points: pts, tangents };
         Self::new(swp_curve(SwpCurveKind::Hermite, dim, steps, closed, geometry)?)
+    }
+
+    /// A Kochanek–Bartels (TCB) spline through the keys, as ``catmull_rom`` (open: ``n ≥ 4``
+    /// keys, the first and last only steer the ends, ``n − 3`` segments; closed: ``n ≥ 3``,
+    /// ``n`` segments) with each key's tangents shaped by its ``tension``, ``continuity`` and
+    /// ``bias`` (each from −1 to 1; a number for every key or an array of ``n``). All zero is
+    /// the uniform Catmull-Rom spline.
+    #[staticmethod]
+    #[pyo3(signature = (points, tension=None, continuity=None, bias=None, closed=false, *, steps=DEFAULT_STEPS))]
+    fn kochanek_bartels(
+        points: &Bound<'_, PyAny>,
+        tension: Option<&Bound<'_, PyAny>>,
+        continuity: Option<&Bound<'_, PyAny>>,
+        bias: Option<&Bound<'_, PyAny>>,
+        closed: bool,
+        steps: u32,
+    ) -> PyResult<Self> {
+        let (pts, dim) = self::points(points, "points")?;
+        let n = pts.len();
+        let per_key = |obj: Option<&Bound<'_, PyAny>>, what: &str| -> PyResult<Vec<f64>> {
+            let Some(obj) = obj.filter(|o| !o.is_none()) else { return Ok(vec![0.0; n]) };
+            let (vals, shape) = values(obj, what)?;
+            let vals = match shape {
+                None => vec![vals[0]; n],
+                Some(shape) if shape == [n] => vals,
+                Some(shape) => {
+                    return Err(PyValueError::new_err(format!(
+                        "{what} must be a number or an array of one value per key ({n}), got shape {shape:?}"
+                    )));
+                }
+            };
+            if let Some(bad) = vals.iter().find(|v| !(-1.0..=1.0).contains(*v)) {
+                return Err(PyValueError::new_err(format!("{what} must be between -1 and 1, got {bad}")));
+            }
+            Ok(vals)
+        };
+        let (t, c, b) = (per_key(tension, "tension")?, per_key(continuity, "continuity")?, per_key(bias, "bias")?);
+        let shape = (0..n).map(|i| Tcb::new(t[i], c[i], b[i])).collect();
+        let geometry = SwpGeometry::Tcb { points: pts, shape };
+        Self::new(swp_curve(SwpCurveKind::KochanekBartels, dim, steps, closed, geometry)?)
+    }
+
+    /// A Bessel–Overhauser spline through the points (each key's tangent from the parabola
+    /// through it and its neighbours, parametrized by chord length): ``n ≥ 4`` points, ``n − 3``
+    /// segments, the first and last only steer the ends (closed: ``n ≥ 3``, ``n`` segments).
+    #[staticmethod]
+    #[pyo3(signature = (points, closed=false, *, steps=DEFAULT_STEPS))]
+    fn bessel_overhauser(points: &Bound<'_, PyAny>, closed: bool, steps: u32) -> PyResult<Self> {
+        Self::of_points(SwpCurveKind::BesselOverhauser, points, closed, steps)
     }
 
     /// One Bézier curve of degree ``n − 1`` through its ``n`` control points (2 to 64);

@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use splinekit::TriMesh;
 use splinekit::sweep::Join;
-use splinekit_io::surface::{ProfileAlign, SurfaceOptions};
+use splinekit_io::surface::{ProfileAlign, ScaleMode, SurfaceOptions};
 use splinekit_io::{
     SourcePos, SwpCurve, SwpCurveKind, SwpDocument, SwpFrames, SwpGeometry, SwpSurface, SwpSurfaceKind,
     SwpSurfaceSettings, SwpTessellation,
@@ -118,7 +118,9 @@ fn tessellation(tolerance: Option<f64>) -> PyResult<Option<SwpTessellation>> {
 ///
 /// Each profile point ``(x, y)`` goes to ``V + x·N + y·B`` in the path's frame at ``V``.
 /// ``scale``: a 2D Curve whose point ``(sx, sy)`` scales the profile's x and y, a number, or a
-/// pair; ``twist``: a 2D Curve whose x is an angle in degrees, or a number of degrees turned
+/// pair; ``scale_mode``: ``"multiply"`` (the scale multiplies the profile as drawn) or
+/// ``"override"`` (the scale is the profile's size: its farthest point from the path lies
+/// ``sx`` away along N and ``sy`` along B); ``twist``: a 2D Curve whose x is an angle in degrees, or a number of degrees turned
 /// evenly from start to end (both read along the path by normalized arc length).
 /// ``frames``: ``"rmf"``, ``"sequential"``, ``"frenet"`` or ``"zup"``. ``caps``: close an open
 /// sweep of a closed profile with flat caps. ``tolerance``: every curve within this distance
@@ -133,7 +135,7 @@ fn tessellation(tolerance: Option<f64>) -> PyResult<Option<SwpTessellation>> {
 /// of a closed profile is watertight. The mesh is what ``splinekit sweep`` writes of the same
 /// ``gcyl``.
 #[pyfunction]
-#[pyo3(signature = (profile, path, scale=None, twist=None, frames="rmf", caps=true, tolerance=None, *, align="origin", join="mitre", mitre_limit=4.0, normals=false))]
+#[pyo3(signature = (profile, path, scale=None, twist=None, frames="rmf", caps=true, tolerance=None, *, align="origin", join="mitre", mitre_limit=4.0, scale_mode="multiply", normals=false))]
 pub fn sweep<'py>(
     py: Python<'py>,
     profile: &Bound<'py, Curve>,
@@ -146,9 +148,19 @@ pub fn sweep<'py>(
     align: &str,
     join: &str,
     mitre_limit: f64,
+    scale_mode: &str,
     normals: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
     require_2d(profile.get(), "profile")?;
+    let scale_mode = match scale_mode {
+        "multiply" => ScaleMode::Multiply,
+        "override" => ScaleMode::Override,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "unknown scale_mode {scale_mode:?}; expected one of multiply, override"
+            )));
+        }
+    };
     let join = match join {
         "mitre" | "miter" => Join::Mitre,
         "round" => Join::Round,
@@ -196,6 +208,7 @@ pub fn sweep<'py>(
         align: Some(align),
         join: Some(join),
         mitre_limit: Some(mitre_limit),
+        scale_mode: Some(scale_mode),
     };
     let kind = SwpSurfaceKind::GeneralizedCylinder { profile: 0, sweep: 1, scale, twist };
     let surface = SwpSurface { name: Some("sweep".into()), kind, settings, pos: SourcePos::default() };

@@ -209,3 +209,39 @@ def test_bezier_n_and_trefoil():
     np.testing.assert_allclose(c.evaluate(0.5), [2.0, 0.25])  # Bernstein weights 1, 4, 6, 4, 1 over 16
     k = sk.Curve.trefoil(1.0)
     assert k.closed and k.dim == 3 and k.arclen() > 0
+
+
+def test_kochanek_bartels_is_hermite_with_its_tangents():
+    pts = np.array([[0.0, 0.0], [1.0, 2.0], [3.0, 3.0], [4.0, 0.0], [6.0, 1.0], [7.0, 3.0]])
+    zero = sk.Curve.kochanek_bartels(pts)
+    assert zero.kind == "tcb2" and zero.num_segments == 3
+    u = np.linspace(0, 3, 61)
+    np.testing.assert_allclose(zero.evaluate(u), sk.Curve.catmull_rom(pts).evaluate(u), atol=1e-13)
+    # continuity 0: the tangent at key i is (1 − t)·((1 + b)·d0 + (1 − b)·d1)/2 on both sides
+    t = np.array([0.0, 0.5, -0.3, 0.8, 0.2, 0.0])
+    b = np.array([0.0, 0.4, -0.6, 0.1, 0.9, 0.0])
+    kb = sk.Curve.kochanek_bartels(pts, tension=t, bias=b)
+    d0, d1 = pts[1:-1] - pts[:-2], pts[2:] - pts[1:-1]
+    tangents = (1 - t[1:-1, None]) * ((1 + b[1:-1, None]) * d0 + (1 - b[1:-1, None]) * d1) / 2
+    her = sk.Curve.hermite(pts[1:-1], tangents)
+    np.testing.assert_allclose(kb.evaluate(u), her.evaluate(u), atol=1e-13)
+    with pytest.raises(ValueError, match="tension must be between -1 and 1"):
+        sk.Curve.kochanek_bartels(pts, tension=2.0)
+    with pytest.raises(ValueError, match="one value per key"):
+        sk.Curve.kochanek_bartels(pts, bias=[0.0, 1.0])
+
+
+def test_bessel_overhauser_on_equal_chords_is_catmull_rom():
+    # a regular hexagon: every chord the same length, so the chord-length parabolas' tangents
+    # are the uniform Catmull-Rom ones
+    a = np.arange(6) * np.pi / 3
+    hexagon = np.stack([np.cos(a), np.sin(a)], axis=1)
+    bo = sk.Curve.bessel_overhauser(hexagon, closed=True)
+    assert bo.kind == "bo2" and bo.num_segments == 6
+    u = np.linspace(0, 6, 121)
+    np.testing.assert_allclose(bo.evaluate(u), sk.Curve.catmull_rom(hexagon, closed=True).evaluate(u), atol=1e-13)
+    # uneven chords: not Catmull-Rom, but still through every key
+    pts = np.array([[0.0, 0.0, 0.0], [0.2, 0.1, 0.0], [3.0, 1.0, 1.0], [3.5, 3.0, 0.5], [6.0, 4.0, 0.0]])
+    bo = sk.Curve.bessel_overhauser(pts)
+    np.testing.assert_allclose(bo.evaluate(np.arange(3.0)), pts[1:-1], atol=1e-13)
+    assert np.abs(bo.evaluate(0.5) - sk.Curve.catmull_rom(pts).evaluate(0.5)).max() > 1e-3

@@ -105,6 +105,18 @@ def test_sweep_scale_twist_and_errors():
         sk.sweep(square, path, frames="nope")
     with pytest.raises(ValueError, match="tolerance must be a positive number"):
         sk.sweep(square, path, tolerance=-1.0)
+    # scale_mode="override": the scale is the profile's size, however large it was drawn
+    corners = [[-1, -1], [0, -1], [0, -1], [1, -1], [1, 0], [1, 0], [1, 1], [0, 1], [0, 1], [-1, 1], [-1, 0], [-1, 0]]
+    big = sk.Curve.bezier(5 * np.array(corners, dtype=float), closed=True, steps=1)
+    v3, _ = sk.sweep(square, path, scale=(0.5, 0.25), scale_mode="override", caps=False)
+    v4, _ = sk.sweep(big, path, scale=(0.5, 0.25), scale_mode="override", caps=False)
+    np.testing.assert_allclose(v3, v4, atol=1e-12)
+    # the corners (±1, ±1) go to (±0.5, ±0.25) about the path
+    np.testing.assert_allclose(np.hypot(v3[:, 0], v3[:, 1]).max(), np.hypot(0.5, 0.25), atol=1e-12)
+    v5, _ = sk.sweep(big, path, scale=(0.5, 0.25), caps=False)
+    np.testing.assert_allclose(np.hypot(v5[:, 0], v5[:, 1]).max(), 5 * np.hypot(0.5, 0.25), atol=1e-12)
+    with pytest.raises(ValueError, match="unknown scale_mode"):
+        sk.sweep(square, path, scale_mode="add")
 
 
 def icosahedron():

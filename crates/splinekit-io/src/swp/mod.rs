@@ -474,7 +474,7 @@ pub struct SwpSurfaceSettings {
     pub tessellation: Option<SwpTessellation>,
     /// `layout welded` or `layout compat` (`srev`, `gcyl`).
     pub layout: Option<MeshLayout>,
-    /// `frames sequential`, `frames rmf`, `frames frenet` or `frames zup` (`gcyl`).
+    /// `frames auto`, `frames sequential`, `frames rmf`, `frames frenet` or `frames zup` (`gcyl`).
     pub frames: Option<SwpFrames>,
     /// `caps` or `no-caps`: flat caps on an open sweep of a closed profile (`gcyl`).
     pub caps: Option<bool>,
@@ -487,6 +487,9 @@ pub struct SwpSurfaceSettings {
     /// `mitre-limit R` (R ≥ 1): the longest mitre, as a multiple of the profile's offset,
     /// before a mitre join falls back to a bevel (`gcyl`).
     pub mitre_limit: Option<f64>,
+    /// `scale-mode multiply` or `scale-mode override`: whether a scale curve multiplies the
+    /// profile as drawn or gives its size (`gcyl`).
+    pub scale_mode: Option<crate::surface::ScaleMode>,
 }
 
 impl SwpSurfaceSettings {
@@ -511,8 +514,12 @@ pub enum SwpTessellation {
 /// The frames a `gcyl` carries its profile with (see [`SwpSurfaceSettings`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum SwpFrames {
-    /// `frames sequential`: the course program's frames (the default).
+    /// `frames auto` (the default): rotation-minimizing along a path that leaves the plane
+    /// `z = const`, sequential along one in it (where the two agree), sequential in the compat
+    /// layout.
     #[default]
+    Auto,
+    /// `frames sequential`: the course program's frames.
     Sequential,
     /// `frames rmf`: rotation-minimizing frames.
     RotationMinimizing,
@@ -523,7 +530,7 @@ pub enum SwpFrames {
 }
 
 /// The setting words and the surface keywords each applies to.
-pub(crate) const SETTING_WORDS: [(&str, &[&str]); 8] = [
+pub(crate) const SETTING_WORDS: [(&str, &[&str]); 9] = [
     ("tolerance", &["srev", "gcyl", "zrev", "lathe"]),
     ("angle-tolerance", &["srev", "gcyl", "zrev", "lathe"]),
     ("layout", &["srev", "gcyl", "xsweep"]),
@@ -532,6 +539,7 @@ pub(crate) const SETTING_WORDS: [(&str, &[&str]); 8] = [
     ("align", &["gcyl"]),
     ("join", &["gcyl"]),
     ("mitre-limit", &["gcyl"]),
+    ("scale-mode", &["gcyl"]),
 ];
 
 impl SwpSurface {

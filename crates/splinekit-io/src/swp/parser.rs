@@ -10,7 +10,7 @@ use super::lexer::{Token, TokenKind, tokenize};
 use super::validate::SwpCurveRole;
 use splinekit::sweep::{Join, MeshLayout};
 
-use crate::surface::ProfileAlign;
+use crate::surface::{ProfileAlign, ScaleMode};
 
 use super::{
     DEFAULT_NURBS_DEGREE, DEFAULT_XSWEEP_EPSILON, DEFAULT_ZREV_EPSILON, DEFAULT_ZREV_SLICE_TOLERANCE, MAX_HELIX_TURNS,
@@ -134,7 +134,7 @@ fn label(keyword: &str, noun: &str, name: Option<&str>, index: usize) -> String 
 
 /// The first token of each group of surface settings read so far (tessellation, layout,
 /// frames, caps).
-type Seen<'a> = [Option<Token<'a>>; 7];
+type Seen<'a> = [Option<Token<'a>>; 8];
 
 /// What a name refers to.
 #[derive(Debug, Clone, Copy)]
@@ -915,11 +915,20 @@ impl<'a> Parser<'a> {
             "align" => 4,
             "join" => 5,
             "mitre-limit" => 6,
+            "scale-mode" => 7,
             _ => 3,
         };
         if let Some(first) = seen[group] {
-            let groups =
-                ["tolerance or angle-tolerance", "layout", "frames", "caps or no-caps", "align", "join", "mitre-limit"];
+            let groups = [
+                "tolerance or angle-tolerance",
+                "layout",
+                "frames",
+                "caps or no-caps",
+                "align",
+                "join",
+                "mitre-limit",
+                "scale-mode",
+            ];
             return Err(self.bad_option(token, already(label, first, groups[group])));
         }
         seen[group] = Some(token);
@@ -945,9 +954,16 @@ impl<'a> Parser<'a> {
                 settings.layout = Some([MeshLayout::Welded, MeshLayout::Compat][k]);
             }
             "frames" => {
-                let k = choice(&["sequential", "rmf", "frenet", "zup"], "frames")?;
-                settings.frames =
-                    Some([SwpFrames::Sequential, SwpFrames::RotationMinimizing, SwpFrames::Frenet, SwpFrames::ZUp][k]);
+                let k = choice(&["auto", "sequential", "rmf", "frenet", "zup"], "frames")?;
+                settings.frames = Some(
+                    [
+                        SwpFrames::Auto,
+                        SwpFrames::Sequential,
+                        SwpFrames::RotationMinimizing,
+                        SwpFrames::Frenet,
+                        SwpFrames::ZUp,
+                    ][k],
+                );
             }
             "align" => {
                 let k = choice(&["origin", "centre", "center", "start"], "align")?;
@@ -961,6 +977,10 @@ impl<'a> Parser<'a> {
             "mitre-limit" => {
                 let r = self.value("a mitre limit (a number ≥ 1)", label, |v| v >= 1.0)?;
                 settings.mitre_limit = Some(r);
+            }
+            "scale-mode" => {
+                let k = choice(&["multiply", "override"], "scale mode")?;
+                settings.scale_mode = Some([ScaleMode::Multiply, ScaleMode::Override][k]);
             }
             "caps" => settings.caps = Some(true),
             _ => settings.caps = Some(false),

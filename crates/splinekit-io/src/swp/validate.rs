@@ -874,6 +874,7 @@ fn check_surface(curves: &[SwpCurve], surface: &SwpSurface) -> Result<(), SwpInv
         ("align", settings.align.is_some()),
         ("join", settings.join.is_some()),
         ("mitre-limit", settings.mitre_limit.is_some()),
+        ("scale-mode", settings.scale_mode.is_some()),
     ];
     for (word, is_given) in given {
         let applies = SETTING_WORDS.iter().any(|(w, kinds)| *w == word && kinds.contains(&keyword));

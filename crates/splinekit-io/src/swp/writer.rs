@@ -1,6 +1,6 @@
 //! The SWP writer; see [`SwpDocument::to_swp_string`].
 
-use crate::surface::ProfileAlign;
+use crate::surface::{ProfileAlign, ScaleMode};
 use std::collections::HashSet;
 use std::fmt::Write as _;
 
@@ -143,6 +143,7 @@ fn write_settings(out: &mut String, settings: &SwpSurfaceSettings) {
         None => {}
     }
     match settings.frames {
+        Some(SwpFrames::Auto) => out.push_str(" frames auto"),
         Some(SwpFrames::Sequential) => out.push_str(" frames sequential"),
         Some(SwpFrames::RotationMinimizing) => out.push_str(" frames rmf"),
         Some(SwpFrames::Frenet) => out.push_str(" frames frenet"),
@@ -168,6 +169,11 @@ fn write_settings(out: &mut String, settings: &SwpSurfaceSettings) {
     }
     if let Some(r) = settings.mitre_limit {
         let _ = write!(out, " mitre-limit {r}");
+    }
+    match settings.scale_mode {
+        Some(ScaleMode::Multiply) => out.push_str(" scale-mode multiply"),
+        Some(ScaleMode::Override) => out.push_str(" scale-mode override"),
+        None => {}
     }
 }
 

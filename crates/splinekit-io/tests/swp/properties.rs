@@ -184,17 +184,18 @@ fn curve() -> impl Strategy<Value = SwpCurve> {
 }
 
 /// Raw draws of surface settings: which tessellation (none, distance, angle) with a distance
-/// and an angle, then layout (compat?), frames (which of four), caps, align (which of
+/// and an angle, then layout (compat?), frames (which of five), caps, align (which of
 /// three), join (which of three) and mitre limit.
-type RawSettings = ((u8, f64, f64), Option<bool>, Option<u8>, Option<bool>, Option<u8>, Option<u8>, Option<f64>);
+type RawSettings =
+    ((u8, f64, f64), Option<bool>, Option<u8>, Option<bool>, Option<u8>, Option<u8>, Option<f64>, Option<bool>);
 
 /// Valid settings for a surface of `kind` from raw draws: only those that apply to it.
 fn settings_for(
     kind: SwpSurfaceKind,
-    ((t, distance, degrees), layout, frames, caps, align, join, mitre_limit): RawSettings,
+    ((t, distance, degrees), layout, frames, caps, align, join, mitre_limit, override_scale): RawSettings,
 ) -> SwpSurfaceSettings {
     use splinekit::sweep::{Join, MeshLayout};
-    use splinekit_io::surface::ProfileAlign;
+    use splinekit_io::surface::{ProfileAlign, ScaleMode};
     use splinekit_io::swp::{SwpFrames, SwpTessellation};
     let gcyl = matches!(kind, SwpSurfaceKind::GeneralizedCylinder { .. });
     let laid_out = gcyl || matches!(kind, SwpSurfaceKind::Revolution { .. } | SwpSurfaceKind::ToolSweep { .. });
@@ -207,8 +208,8 @@ fn settings_for(
         },
         layout: layout.filter(|_| laid_out).map(|c| if c { MeshLayout::Compat } else { MeshLayout::Welded }),
         frames: frames.filter(|_| gcyl).map(|k| {
-            [SwpFrames::Sequential, SwpFrames::RotationMinimizing, SwpFrames::Frenet, SwpFrames::ZUp]
-                [usize::from(k % 4)]
+            [SwpFrames::Auto, SwpFrames::Sequential, SwpFrames::RotationMinimizing, SwpFrames::Frenet, SwpFrames::ZUp]
+                [usize::from(k % 5)]
         }),
         caps: caps.filter(|_| gcyl),
         align: align
@@ -216,6 +217,7 @@ fn settings_for(
             .map(|k| [ProfileAlign::Origin, ProfileAlign::Centre, ProfileAlign::Start][usize::from(k % 3)]),
         join: join.filter(|_| gcyl).map(|k| [Join::Mitre, Join::Round, Join::Bevel][usize::from(k % 3)]),
         mitre_limit: mitre_limit.filter(|_| gcyl),
+        scale_mode: override_scale.filter(|_| gcyl).map(|o| if o { ScaleMode::Override } else { ScaleMode::Multiply }),
     }
 }
 
@@ -229,11 +231,12 @@ fn document() -> impl Strategy<Value = SwpDocument> {
     let settings = (
         (0u8..3, positive(), 1e-3f64..=180.0),
         prop::option::of(any::<bool>()),
-        prop::option::of(0u8..4),
+        prop::option::of(0u8..5),
         prop::option::of(any::<bool>()),
         prop::option::of(0u8..3),
         prop::option::of(0u8..3),
         prop::option::of(prop_oneof![Just(1.0), 1.0f64..20.0]),
+        prop::option::of(any::<bool>()),
     );
     let surface =
         ((0u8..5, extension), 1..=MAX_STEPS, any::<Index>(), any::<Index>(), prop::option::of("[a-z]{1,5}"), settings);
