@@ -13,6 +13,7 @@ cd "$(dirname "$0")/.."
 PYTHON="${PYTHON:-python3}"
 PROFILE="${PROFILE:-dev}"
 VENV="${VENV:-target/python-venv}"
+case "$VENV" in /*) ;; *) VENV="$PWD/$VENV" ;; esac
 
 start=$(date +%s)
 if [ ! -x "$VENV/bin/python" ]; then
@@ -33,5 +34,5 @@ for p in release debug; do
 done
 # run from the tests' folder so that `import splinekit` finds the installed package
 cd crates/splinekit-py/tests
-"../../../$VENV/bin/python" -m pytest -q -p no:cacheprovider "$@" .
+"$VENV/bin/python" -m pytest -q -p no:cacheprovider "$@" .
 echo "== python tests in $(($(date +%s) - built)) s"
