@@ -59,7 +59,10 @@ pub enum SurfaceTessellation {
     #[default]
     FileSteps,
     /// Adaptive: every polyline within this distance of its curve, and revolutions cut into
-    /// enough slices that no chord strays further from the circle it approximates.
+    /// enough slices that no chord strays further from the circle it approximates. Surfaces
+    /// of revolution (`srev`) and generalized cylinders without scale or twist curves
+    /// (`gcyl`) are planned as a whole so that the mesh, triangle interiors included, stays
+    /// within this distance of the exact surface ([`splinekit::sweep::adaptive`]).
     Distance(f64),
     /// Adaptive by control-polygon angle (radians); revolutions use slices of at most this angle.
     Angle(f64),
@@ -419,9 +422,40 @@ impl SwpDocument {
             SwpSurfaceKind::GeneralizedCylinder { profile, sweep: path, scale, twist } => {
                 let mut prof = profile_of(profile)?;
                 let anchor = options.align.anchor(&prof.points);
-                prof.points.iter_mut().for_each(|p| *p -= anchor);
                 let c = curve(path)?;
-                let samples = sample_curve(&c, self.curves[path].steps, options, &limit)?;
+                let mut ring_scale = 1.0;
+                let mut samples = match options.tessellation {
+                    // adaptive: planned together so that the surface, not each curve, is
+                    // within the tolerance (without scale or twist curves, which the plan's
+                    // bound does not cover: those keep each curve flattened to it)
+                    SurfaceTessellation::Distance(tolerance) if scale.is_none() && twist.is_none() => {
+                        let pc = curve(profile)?;
+                        // the plan flattens the profile to no less than a share of the
+                        // tolerance: bounded before it starts
+                        let finest = Tessellation::Distance { tolerance: tolerance * adaptive::MIN_SHARE };
+                        let bound = flatten::flatten_count(&pc, finest);
+                        limit.check(2u64.saturating_mul(bound.saturating_sub(1)), || {
+                            format!("its profile alone could have up to {bound} points")
+                        })?;
+                        let frames = adaptive::CylinderFrames {
+                            options: frame_options(options.frames),
+                            corner_angle: (options.sweep.layout == MeshLayout::Welded).then_some(CREASE_ANGLE),
+                        };
+                        // every path point makes two triangles at least
+                        let max_path = options.max_triangles.map_or(adaptive::MAX_PATH_POINTS, |m| m / 2 + 2);
+                        let plan = adaptive::cylinder_plan(&pc, anchor, &c, &frames, tolerance, max_path);
+                        prof = profile_at(profile, Some(&plan.profile_params))?;
+                        ring_scale = plan.ring_scale;
+                        samples_at(&c, &plan.path_params, options, &limit)?
+                    }
+                    _ => sample_curve(&c, self.curves[path].steps, options, &limit)?,
+                };
+                prof.points.iter_mut().for_each(|p| *p -= anchor);
+                if ring_scale != 1.0 {
+                    // a circle's inflated rings: its radius and the profile's x scaled alike
+                    samples.iter_mut().for_each(|s| s.position *= ring_scale);
+                    prof.points.iter_mut().for_each(|p| p.x *= ring_scale);
+                }
                 let (p, s) = (prof.points.len(), samples.len());
                 // two triangles per quad, and the caps
                 let caps = if options.sweep.caps { 2 * (p as u64).saturating_sub(1) } else { 0 };
@@ -710,11 +744,16 @@ fn in_z_plane(samples: &[CurveSample]) -> bool {
 }
 
 fn frames_for(samples: &[CurveSample], method: SurfaceFrames) -> Vec<Frame> {
+    frame::frames_for_samples(samples, &frame_options(method))
+}
+
+/// The frame options of `method`.
+fn frame_options(method: SurfaceFrames) -> FrameOptions {
     let method = match method {
         SurfaceFrames::Auto | SurfaceFrames::Sequential => FrameMethod::Sequential(Side::Left),
         SurfaceFrames::RotationMinimizing => FrameMethod::RotationMinimizing(StartNormal::Auto(Side::Left)),
         SurfaceFrames::Frenet => FrameMethod::Frenet,
         SurfaceFrames::ZUp => FrameMethod::FixedUp(DVec3::Z),
     };
-    frame::frames_for_samples(samples, &FrameOptions::DEFAULT.with_method(method))
+    FrameOptions::DEFAULT.with_method(method)
 }

@@ -109,11 +109,90 @@
 //! (a circle, a NURBS…) is one piece with `R` from its bounding box.
 //!
 //! Cost: about `(T/R)^-½` slices and `(T/size)^-½` profile points, so triangles grow as `1/T`.
+//!
+//! # Generalized cylinders
+//!
+//! The exact surface is `S(u, v) = P(u) + N(u)·x(v) + B(u)·y(v)`: the profile `q = (x, y)`
+//! (less its anchor, see `ProfileAlign` in `splinekit-io`) carried along the path `P` by the
+//! frames `(T, N, B)`. The mesh joins profile points `qⱼ` (a polyline within `ε` of the
+//! profile, [`flatten`]) at path points `Pᵢ` with the frames `Fᵢ` the sweep computes there.
+//! The exact frames are, for a path in a plane `z = const`, `N` the left normal and `B = +z`
+//! (what the sequential, rotation-minimizing and Z-up methods give there, at every sample,
+//! to rounding); off the plane, continuous rotation-minimizing frames from the same first
+//! frame, with the closed-curve correction spread by arc length.
+//!
+//! **Decomposition.** Take a triangle of the quad between path points `P₀, P₁` (frames `F₀,
+//! F₁`) and profile points `qⱼ, qⱼ₊₁`, and a point `M` of it; `α` the weight of its corners at
+//! `P₁`, `c₀`, `c₁` the weighted means of the profile points of its corners at either end
+//! (both on the chord `[qⱼ, qⱼ₊₁]`), `c = (1−α)·c₀ + α·c₁` (on the chord too). Then exactly
+//!
+//! `M = (1−α)·(P₀ + F₀c) + α·(P₁ + F₁c) + α(1−α)·(F₁ − F₀)(c₁ − c₀)`,
+//!
+//! and with `q(v*)` the profile point nearest to `c` (`|c − q(v*)| ≤ ε`) and `γ_c(u) = P(u) +
+//! F(u)c` the curve one profile point sweeps, the distance from `M` to the surface is at most
+//!
+//! 1. `ε`, the profile's flattening: `|γ_c(u) − S(u, v*)| = |c − q(v*)|` (frames are
+//!    isometries);
+//! 2. the chord deviation of `γ_c` over the interval, taken as **`d + r·(1 − cos(ψ/2))`**:
+//!    `d` the path chord's own deviation (two-sided Hausdorff, computed exactly from the
+//!    height polynomial of the sub-cubic over its chord when it is a graph over it, else from
+//!    its convex hull), `ψ` a bound of the frames' rotation over the interval (the turning
+//!    of the tangent, which bounds a rotation-minimizing frame's rotation and is the planar
+//!    frame's: at most the angles between consecutive control legs of the sub-cubic, whose
+//!    hodograph lies in their cone, π when they do not lie in a half-space), and `r` the
+//!    profile polyline's reach (`|x|` in the plane, where `y` rides along the fixed `B`;
+//!    `|q|` off it). For a circular path this is the revolution lemma above; for other
+//!    paths it is the osculating circle's version of it, **argued to leading order in the
+//!    interval, not proved** (the exact offset curve of a non-circular arc differs at the
+//!    next order);
+//! 3. the twist term `α(1−α)·|(F₁ − F₀)(c₁ − c₀)| ≤ ¼·|Δq|·2 sin(ψ/2)`, `|Δq|` the longest
+//!    profile chord. To first order this displacement runs along the path's tangent (the
+//!    rotation's axis is `B` in the plane, `κ·B_Frenet ⊥ T` for rotation-minimizing frames,
+//!    and `c₁ − c₀ ⊥ T`), and the surface's tangent plane at `S(u, ·)` contains `T(u)`
+//!    (`∂S/∂u ∥ T` for both kinds of frames), within `ψ` of it: the term is taken as its
+//!    part off the bisector `t_b` of the end tangents plus `sin ψ` times the rest, measured
+//!    on the frames as built for a 3D path, `¼·|Δq|·2 sin(ψ/2)·sin ψ` in the plane (where it
+//!    lies along `t_b`). The displacement's own curvature effect (`O(|Δq|²ψ²)`) is left out;
+//! 4. off the plane, the frames' error: the mesh's frames come from double reflection on the
+//!    plan's samples (and its own closed-curve correction), not the exact ones; each vertex
+//!    moves by at most `2r·sin(e/2)` for a frame angle error `e`, estimated as 1.25 times the
+//!    difference from the same frames on [`FRAME_CHECK_REFINE`] times as many samples (the
+//!    method's error is `O(h⁴)`). An estimate, not a bound.
+//!
+//! So **the mesh-to-surface distance is at most `ε + max over path pieces of (d + r·(1 −
+//! cos(ψ/2)) + twist + frames)`**, with the caveats of 2–4. The surface-to-mesh direction is
+//! not claimed (it holds for circular paths, by the revolution's argument; elsewhere the
+//! same decomposition read backwards gives it to the same leading order). Joints of the
+//! welded layout (a corner of a C0 path is sampled twice and joined by
+//! [`super::welded`]'s mitre or round joint) are left out: the bound covers the pieces
+//! between path samples only, not the joint's own geometry. Sequential, Frenet and Z-up
+//! frames off the plane are planned the same way, with no error estimate and no claim:
+//! their exact frames turn about `T` too, which `ψ` does not bound.
+//!
+//! **The plan.** [`cylinder_plan`] splits `T` into the profile's share `ε = s·T` (the whole
+//! profile flattened to it) and the path's `(1 − s)·T`; each cubic segment of the path is
+//! cut by a greedy march (the longest piece within the budget, found by bisection, then
+//! equal steps of the same count when they all fit). The triangle count `2·(profile points −
+//! 1)·(path points − 1)` is minimised over `s` on a grid (and ±[`SHARE_REFINE`] around the
+//! best). Off the plane a reserve of the path's budget is kept for terms 3–4 and grown
+//! while the plan's checked bound exceeds `T`. A circle path (always about the origin in the
+//! xy plane, `N` toward its centre) with a chain-of-cubics profile is exactly the surface of
+//! revolution of the meridian `(R − x, y)` about `+z`, planned by [`revolution_plan`] (its
+//! inflated rings included, [`CylinderPlan::ring_scale`]): every claim of the sections
+//! above holds for it. A path that is neither a chain of cubics nor a circle (helix, knot,
+//! Bézier of any degree, NURBS) gets both curves flattened to [`MIN_SHARE`] of `T`, with no
+//! bound claimed.
+//!
+//! Bounded work: no profile flattening finer than [`MIN_SHARE`] of `T` (callers bound its
+//! points beforehand), at most `max_path_points` path points (counted as the march goes;
+//! past them the fallback), each piece's bisection [`BISECTIONS`] steps, and a piece no budget admits (a
+//! cusp) one step of `2⁻²⁰` of its segment.
 
 use glam::{DVec2, DVec3};
 
 use crate::curve::{AnyCurve, CubicBezier, ParamCurve};
 use crate::flatten::{self, Tessellation};
+use crate::frame::Frame;
 
 /// The most times a profile segment is halved so that each half gets a tolerance suited to
 /// its own distance from the axis.
@@ -559,4 +638,581 @@ fn chord_bound(c: &Chord, prev: Option<&Chord>, next: Option<&Chord>, shift: (f6
     }
     let end = delta * (a.abs() + 2.0 * b.abs() * psi.tan());
     main.max(end.min(old))
+}
+
+// ---------------------------------------------------------------------------------------
+// Generalized cylinders
+
+/// The most path points [`cylinder_plan`] makes when its caller gives no smaller limit.
+pub const MAX_PATH_POINTS: usize = 1 << 24;
+
+/// The shares of the tolerance the profile is tried at (the path gets the rest), before the
+/// best is refined by [`SHARE_REFINE`] on either side.
+const SHARES: [f64; 8] = [MIN_SHARE, 0.15, 0.25, 0.35, 0.45, 0.55, 0.7, 0.85];
+const SHARE_REFINE: f64 = 0.025;
+
+/// Bisection steps of a path piece's end in [`cylinder_plan`]'s march.
+const BISECTIONS: usize = 32;
+
+/// How much finer than the plan the path is sampled to estimate the error of discrete
+/// rotation-minimizing frames (the double reflection is `O(h⁴)`: the finer frames are
+/// `8⁴` times closer, so the difference is the coarse frames' error to a few parts in 1000).
+const FRAME_CHECK_REFINE: usize = 8;
+
+/// What [`cylinder_plan`] chose.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CylinderPlan {
+    /// Parameters of the profile samples, ascending over its domain.
+    pub profile_params: Vec<f64>,
+    /// Parameters of the path samples, ascending over its domain (every segment joint of a
+    /// chain of cubics among them).
+    pub path_params: Vec<f64>,
+    /// The bound of the distance from the mesh to the exact surface (see the
+    /// [module docs](self), "Generalized cylinders"), computed on the chosen samples; at most
+    /// the tolerance when the plan succeeded, infinity when the path is a curve the bound
+    /// does not cover (a helix, knot, Bézier curve of any degree or NURBS: the fallback plan).
+    pub bound: f64,
+    /// The factor the path (a circle about the origin) and the profile's `x` are scaled by
+    /// in the mesh: the inflated rings of a revolution ([`RevolutionPlan::ring_scale`]); 1
+    /// for every other path.
+    pub ring_scale: f64,
+}
+
+/// The frames a generalized cylinder's mesh gets along its path, as far as the plan needs
+/// to know them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CylinderFrames {
+    /// The frame options the mesh's frames are computed with (from the path's samples).
+    pub options: crate::frame::FrameOptions,
+    /// `Some(angle)` when the path is sampled with [`crate::frame::sample_with_corners`]
+    /// (two samples at joints turning by more than `angle`), `None` with
+    /// [`crate::frame::sample`].
+    pub corner_angle: Option<f64>,
+}
+
+/// The path as the plan sees it.
+enum PathPieces<'a> {
+    /// A chain of cubics; `planar` when every control point has the same `z` (the frames
+    /// then turn about `±z` only).
+    Cubics { segments: &'a [CubicBezier<DVec3>], planar: bool },
+    /// A circle of this radius in the xy plane (`AnyCurve::Circle`, parameter `[0, 1]`).
+    Circle(f64),
+}
+
+/// The path's pieces and their exact tangent-turning bounds, for [`path_bounds`].
+fn piece_of(pieces: &PathPieces<'_>, w: [f64; 2]) -> (f64, f64) {
+    match pieces {
+        PathPieces::Cubics { segments, .. } => {
+            let k = (w[0].floor() as usize).min(segments.len().saturating_sub(1));
+            piece_terms(&segments[k].subsegment(w[0] - k as f64, (w[1] - k as f64).min(1.0)))
+        }
+        PathPieces::Circle(radius) => {
+            let psi = std::f64::consts::TAU * (w[1] - w[0]);
+            (radius * (1.0 - (0.5 * psi).cos()), psi)
+        }
+    }
+}
+
+/// What a path piece contributes, with the profile fixed: the profile's reach `r` (`|x|` for
+/// a planar path, `|q|` otherwise) and longest chord `lq`.
+#[derive(Clone, Copy)]
+struct ProfileReach {
+    r: f64,
+    lq: f64,
+}
+
+/// The terms of a path piece: the chord's own deviation and a bound of the frames' rotation.
+fn piece_terms(c: &CubicBezier<DVec3>) -> (f64, f64) {
+    let [q0, p1, p2, q3] = [c.p0, c.p1, c.p2, c.p3];
+    let chord = q3 - q0;
+    let len = chord.length();
+    let legs = [p1 - q0, p2 - p1, q3 - p2];
+    let scale = legs.iter().map(|d| d.length()).sum::<f64>();
+    // the rotation of the frames is at most the turning of the tangent; the tangent is a
+    // positive combination of the (non-zero) legs, and its path on the sphere (the central
+    // projection of the hodograph, a planar parabola) is convex inside their spherical
+    // triangle: no longer than the two sides through the middle leg
+    let mut dirs = [DVec3::ZERO; 3];
+    let mut m = 0;
+    for d in legs {
+        if d.length() > 1e-14 * scale {
+            dirs[m] = d.normalize();
+            m += 1;
+        }
+    }
+    let dirs = &dirs[..m];
+    let mut psi = 0.0;
+    for w in dirs.windows(2) {
+        psi += w[0].cross(w[1]).length().atan2(w[0].dot(w[1]));
+    }
+    let half_space = dirs.iter().all(|a| dirs.iter().all(|b| a.dot(*b) > 0.0));
+    if !half_space || !psi.is_finite() {
+        psi = std::f64::consts::PI;
+    }
+    // the chord's deviation (two-sided Hausdorff): a graph over the chord (every leg
+    // forward) lies within the largest height of 3(1−s)s((1−s)|h1| + s|h2|)
+    let forward = len > 0.0 && legs.iter().all(|d| d.dot(chord) > 0.0 || d.length() <= 1e-14 * scale);
+    let dev = if forward {
+        let t = chord / len;
+        let perp = |v: DVec3| (v - t * v.dot(t)).length();
+        let (h1, h2) = (perp(p1 - q0), perp(p2 - q0));
+        let h = |s: f64| 3.0 * (1.0 - s) * s * ((1.0 - s) * h1 + s * h2);
+        let (qa, qb, qc) = (3.0 * h1 - 3.0 * h2, 2.0 * h2 - 4.0 * h1, h1);
+        let mut best = h(0.5);
+        if qa.abs() < 1e-300 {
+            if qb != 0.0 {
+                best = best.max(h((-qc / qb).clamp(0.0, 1.0)));
+            }
+        } else {
+            let disc = qb * qb - 4.0 * qa * qc;
+            if disc >= 0.0 {
+                let r = disc.sqrt();
+                best = best.max(h(((-qb + r) / (2.0 * qa)).clamp(0.0, 1.0)));
+                best = best.max(h(((-qb - r) / (2.0 * qa)).clamp(0.0, 1.0)));
+            }
+        }
+        best + 1e-12 * len
+    } else {
+        // the convex hull: every control point's distance from the chord's start
+        [p1, p2, q3].iter().map(|p| p.distance(q0)).fold(0.0, f64::max)
+    };
+    (dev, psi)
+}
+
+/// The bound of a path piece, without the profile's and the frames' own errors: the
+/// chord's deviation, the slices' shrinking of the profile's reach and the diagonal's twist.
+fn piece_bound(dev: f64, psi: f64, reach: ProfileReach, planar: bool) -> f64 {
+    piece_shrink(dev, psi, reach) + twist_model(psi, reach, planar)
+}
+
+/// The chord's deviation and the slices' shrinking of the profile's reach.
+fn piece_shrink(dev: f64, psi: f64, reach: ProfileReach) -> f64 {
+    dev + reach.r * (1.0 - (0.5 * psi).cos())
+}
+
+/// The diagonal's twist term: `¼·|Δq|·2·sin(ψ/2)` along the path's tangent, of which at
+/// most `sin ψ` leaves the surface's tangent plane (see the [module docs](self)); off the
+/// plane the rotation's axis may tilt from the normal plane, which the plan guesses at as
+/// much again and [`path_bounds`] checks on the frames as built.
+fn twist_model(psi: f64, reach: ProfileReach, planar: bool) -> f64 {
+    let t = 0.5 * reach.lq * (0.5 * psi).sin() * psi.min(std::f64::consts::FRAC_PI_2).sin();
+    if planar { t } else { 2.0 * t }
+}
+
+impl PathPieces<'_> {
+    fn planar(&self) -> bool {
+        match self {
+            PathPieces::Cubics { planar, .. } => *planar,
+            PathPieces::Circle(_) => true,
+        }
+    }
+
+    /// The bound of the piece `[a, b]` of segment `k` (parameter `[a, b]` of the circle).
+    fn bound(&self, k: usize, a: f64, b: f64, reach: ProfileReach) -> f64 {
+        match self {
+            PathPieces::Cubics { segments, planar } => {
+                let (dev, psi) = piece_terms(&segments[k].subsegment(a, b));
+                piece_bound(dev, psi, reach, *planar)
+            }
+            PathPieces::Circle(radius) => {
+                let psi = std::f64::consts::TAU * (b - a);
+                piece_bound(radius * (1.0 - (0.5 * psi).cos()), psi, reach, true)
+            }
+        }
+    }
+
+    /// The path parameters whose every piece is within `budget` (appended to `out` when
+    /// given), or `None` past `max_points`.
+    fn plan(
+        &self,
+        budget: f64,
+        reach: ProfileReach,
+        max_points: usize,
+        mut out: Option<&mut Vec<f64>>,
+    ) -> Option<usize> {
+        if let Some(out) = out.as_deref_mut() {
+            out.clear();
+            out.push(0.0);
+        }
+        let mut points = 1usize;
+        match self {
+            PathPieces::Circle(_) => {
+                // equal steps: the fewest whose step is within the budget
+                let ok = |n: usize| self.bound(0, 0.0, 1.0 / n as f64, reach) <= budget;
+                let mut n = 3usize;
+                if !ok(n) {
+                    let mut hi = 6usize;
+                    while !ok(hi) {
+                        if hi >= max_points {
+                            return None;
+                        }
+                        hi = (hi * 2).min(max_points);
+                    }
+                    let mut lo = hi / 2;
+                    while hi - lo > 1 {
+                        let mid = lo + (hi - lo) / 2;
+                        if ok(mid) { hi = mid } else { lo = mid }
+                    }
+                    n = hi;
+                }
+                if n + 1 > max_points {
+                    return None;
+                }
+                if let Some(out) = out {
+                    out.extend((1..n).map(|i| i as f64 / n as f64));
+                    out.push(1.0);
+                }
+                Some(n + 1)
+            }
+            PathPieces::Cubics { segments, .. } => {
+                let mut pieces = Vec::new();
+                for k in 0..segments.len() {
+                    self.segment_pieces(k, budget, reach, max_points.saturating_sub(points), &mut pieces)?;
+                    points += pieces.len();
+                    if points > max_points {
+                        return None;
+                    }
+                    if let Some(out) = out.as_deref_mut() {
+                        out.extend(pieces.iter().map(|&t| if t >= 1.0 { (k + 1) as f64 } else { k as f64 + t }));
+                    }
+                }
+                Some(points)
+            }
+        }
+    }
+
+    /// The ends (after 0, up to 1) of the pieces of segment `k`: equal steps when they are
+    /// all within the budget, else the greedy march (each piece the longest found within the
+    /// budget by bisection) that found their count.
+    fn segment_pieces(&self, k: usize, budget: f64, reach: ProfileReach, max: usize, out: &mut Vec<f64>) -> Option<()> {
+        out.clear();
+        let ok = |a: f64, b: f64| self.bound(k, a, b, reach) <= budget;
+        let mut a = 0.0;
+        // the last piece's length: where the next one's search starts
+        let mut step: f64 = 1.0;
+        while a < 1.0 {
+            if out.len() >= max {
+                return None;
+            }
+            if ok(a, 1.0) {
+                out.push(1.0);
+                break;
+            }
+            // bracket the end from the last length (growing it while it fits), then bisect
+            // to a thousandth of the piece
+            let (mut lo, mut hi) = (a, 1.0);
+            let mut probe = (a + step).min(1.0);
+            for _ in 0..BISECTIONS {
+                if probe >= hi {
+                    break;
+                }
+                if ok(a, probe) {
+                    lo = probe;
+                    probe = a + 2.0 * (probe - a);
+                } else {
+                    hi = probe;
+                    break;
+                }
+            }
+            for _ in 0..BISECTIONS {
+                if hi - lo <= 1e-3 * (lo - a) {
+                    break;
+                }
+                let mid = 0.5 * (lo + hi);
+                if ok(a, mid) { lo = mid } else { hi = mid }
+            }
+            step = (lo - a).max(1e-9);
+            // a piece no budget admits (a cusp): one step of the bisection's resolution
+            let b = if lo > a { lo } else { (a + 1.0 / (1u64 << 20) as f64).min(1.0) };
+            out.push(b);
+            a = b;
+        }
+        let m = out.len();
+        if m > 1 && (0..m).all(|i| ok(i as f64 / m as f64, (i + 1) as f64 / m as f64)) {
+            out.clear();
+            out.extend((1..=m).map(|i| i as f64 / m as f64));
+        }
+        Some(())
+    }
+}
+
+/// The reach around `anchor` of the profile's polyline at `params` (`|x|` for a planar path,
+/// `|q|` otherwise: every chord point is within it) and its longest chord.
+fn profile_reach(profile: &AnyCurve<DVec3>, anchor: DVec2, params: &[f64], planar: bool) -> ProfileReach {
+    let pts: Vec<DVec2> = params.iter().map(|&v| profile.eval(v).truncate() - anchor).collect();
+    let r = pts.iter().map(|p| if planar { p.x.abs() } else { p.length() }).fold(0.0, f64::max);
+    let lq = pts.windows(2).map(|w| w[0].distance(w[1])).fold(0.0, f64::max);
+    ProfileReach { r, lq }
+}
+
+/// The profile and path samples of a generalized cylinder (the profile `q`, less `anchor`,
+/// carried along `path` by the frames `frames`) whose mesh stays within `tolerance` of the
+/// exact surface `S(u, v) = P(u) + N(u)·q(v).x + B(u)·q(v).y`, with about the fewest
+/// triangles the bound allows; see the [module docs](self), "Generalized cylinders".
+///
+/// At most `max_path_points` path points: a plan that needs more (or a path the bound does
+/// not cover) falls back to flattening both curves to [`MIN_SHARE`] of the tolerance (the
+/// path within `max_path_points` points, [`flatten::flatten_at_most`]), with `bound`
+/// infinite. The profile is never flattened finer than [`MIN_SHARE`] of the tolerance
+/// (callers bound its points beforehand with [`flatten::flatten_count`]).
+#[must_use]
+pub fn cylinder_plan(
+    profile: &AnyCurve<DVec3>,
+    anchor: DVec2,
+    path: &AnyCurve<DVec3>,
+    frames: &CylinderFrames,
+    tolerance: f64,
+    max_path_points: usize,
+) -> CylinderPlan {
+    let tolerance = if tolerance > 0.0 && tolerance.is_finite() { tolerance } else { flatten::DEFAULT_TOLERANCE };
+    let max_points = max_path_points.clamp(2, MAX_PATH_POINTS);
+    let fallback = || {
+        let eps = MIN_SHARE * tolerance;
+        CylinderPlan {
+            profile_params: flatten::flatten_any(profile, Tessellation::Distance { tolerance: eps }),
+            path_params: flatten::flatten_at_most(path, Tessellation::Distance { tolerance: eps }, max_points),
+            bound: f64::INFINITY,
+            ring_scale: 1.0,
+        }
+    };
+    // a circle (about the origin in the xy plane, N toward its centre): the surface of
+    // revolution of the meridian (R − x, y) about +z, planned as one
+    if let (AnyCurve::Circle(c), AnyCurve::Piecewise(q)) = (path, profile) {
+        let meridian = |p: DVec3| DVec3::new(c.radius - (p.x - anchor.x), p.y - anchor.y, 0.0);
+        let segments: Vec<CubicBezier<DVec3>> = q
+            .segments()
+            .iter()
+            .map(|b| CubicBezier::new(meridian(b.p0), meridian(b.p1), meridian(b.p2), meridian(b.p3)))
+            .collect();
+        if let Ok(m) = crate::curve::PiecewiseCubic::new(segments, q.is_closed()) {
+            let plan = revolution_plan(&AnyCurve::Piecewise(m), tolerance, max_points - 1);
+            let n = plan.slices;
+            let mut path_params: Vec<f64> = (0..n).map(|i| i as f64 / n as f64).collect();
+            path_params.push(1.0);
+            return CylinderPlan {
+                profile_params: plan.params,
+                path_params,
+                bound: plan.bound,
+                ring_scale: plan.ring_scale,
+            };
+        }
+    }
+    let pieces = match path {
+        AnyCurve::Piecewise(c) if !c.segments().is_empty() => {
+            let s = c.segments();
+            let z0 = s[0].p0.z;
+            let size =
+                s.iter().flat_map(|b| [b.p0, b.p1, b.p2, b.p3]).fold(0.0, |m: f64, p| m.max(p.abs().max_element()));
+            let planar = s.iter().flat_map(|b| [b.p0, b.p1, b.p2, b.p3]).all(|p| (p.z - z0).abs() <= 1e-12 * size);
+            PathPieces::Cubics { segments: s, planar }
+        }
+        AnyCurve::Circle(c) => PathPieces::Circle(c.radius),
+        _ => return fallback(),
+    };
+    let planar = pieces.planar();
+    // frames whose error the bound estimates: rotation-minimizing frames off the plane
+    let rmf = !planar && matches!(frames.options.method, crate::frame::FrameMethod::RotationMinimizing(_));
+    // the frames' error is found once a plan is made: keep a reserve of the path's budget
+    // for it (and for the twist term off the plane), grown while the plan's checked bound
+    // exceeds the tolerance
+    let mut reserve = if planar { 0.0 } else { 0.05 };
+    let try_share = |share: f64, reserve: f64| -> Option<(u64, Vec<f64>, ProfileReach)> {
+        let eps = share * tolerance;
+        let params = flatten::flatten_any(profile, Tessellation::Distance { tolerance: eps });
+        let reach = profile_reach(profile, anchor, &params, planar);
+        let budget = (1.0 - share) * tolerance * (1.0 - reserve);
+        let n = pieces.plan(budget, reach, max_points, None)?;
+        Some((2 * (params.len() as u64).saturating_sub(1).max(1) * (n as u64 - 1).max(1), params, reach))
+    };
+    // the share with the fewest triangles: a grid, then a finer step around the best
+    let mut choice: Option<(u64, f64)> = None;
+    for share in SHARES {
+        if let Some((t, _, _)) = try_share(share, reserve) {
+            choice = Some(choice.map_or((t, share), |c| if t < c.0 { (t, share) } else { c }));
+        }
+    }
+    let Some((mut count, mut share)) = choice else { return fallback() };
+    let base = share;
+    for d in [-2.0, -1.0, 1.0, 2.0] {
+        let s = (base + d * SHARE_REFINE).clamp(MIN_SHARE, 0.95);
+        if let Some((t, _, _)) = try_share(s, reserve)
+            && t < count
+        {
+            (count, share) = (t, s);
+        }
+    }
+    let mut best: Option<CylinderPlan> = None;
+    for _attempt in 0..6 {
+        let Some((_, profile_params, reach)) = try_share(share, reserve) else { break };
+        let budget = (1.0 - share) * tolerance * (1.0 - reserve);
+        let mut path_params = Vec::new();
+        if pieces.plan(budget, reach, max_points, Some(&mut path_params)).is_none() {
+            break;
+        }
+        let eps = share * tolerance;
+        let mesh = (!planar).then(|| mesh_frames(path, &path_params, frames, rmf));
+        let bound = eps + path_bounds(&pieces, &path_params, reach, mesh.as_deref());
+        let plan = CylinderPlan { profile_params, path_params, bound, ring_scale: 1.0 };
+        if bound <= tolerance {
+            return plan;
+        }
+        if best.as_ref().is_none_or(|b| plan.bound < b.bound) {
+            best = Some(plan);
+        }
+        // the reserve did not cover what the checks found: twice the excess, at least
+        let over = (bound - tolerance) / ((1.0 - share) * tolerance);
+        reserve = (reserve + 2.0 * over).min(0.9);
+    }
+    best.unwrap_or_else(fallback)
+}
+
+/// The mesh's frames at one path parameter: at its first and last sample (two at a corner
+/// of the welded layout), and an estimate of their angle from the exact frames.
+#[derive(Clone, Copy)]
+struct ParamFrames {
+    first: Frame,
+    last: Frame,
+    err: f64,
+}
+
+/// The largest bound over the path's pieces at `params` (without the profile's own error):
+/// [`piece_shrink`], the twist term (measured on the mesh's frames `frames` when given, else
+/// [`twist_model`] of a planar path) and the frames' error as `2r·sin(e/2)`.
+fn path_bounds(pieces: &PathPieces<'_>, params: &[f64], reach: ProfileReach, frames: Option<&[ParamFrames]>) -> f64 {
+    let mut worst: f64 = 0.0;
+    for (i, w) in params.windows(2).enumerate() {
+        let (dev, psi) = piece_of(pieces, [w[0], w[1]]);
+        let mut b = piece_shrink(dev, psi, reach);
+        match frames {
+            None => b += twist_model(psi, reach, true),
+            Some(f) => {
+                let (f0, f1) = (f[i].last, f[i + 1].first);
+                let (a, c) = (f1.n - f0.n, f1.b - f0.b);
+                let tb = (f0.t + f1.t).try_normalize().unwrap_or(f0.t);
+                let perp = |v: DVec3| v - tb * v.dot(tb);
+                let off = (perp(a).length_squared() + perp(c).length_squared()).sqrt();
+                let along = (a.length_squared() + c.length_squared()).sqrt();
+                b += 0.25 * reach.lq * (off + along * psi.min(std::f64::consts::FRAC_PI_2).sin());
+                b += 2.0 * reach.r * (0.5 * f[i].err.max(f[i + 1].err)).min(std::f64::consts::FRAC_PI_2).sin();
+            }
+        }
+        worst = worst.max(b);
+    }
+    worst
+}
+
+/// The mesh's frames at `params` ([`ParamFrames`]); with `estimate`, their error against the
+/// exact rotation-minimizing frames: the difference from the frames computed the same way on
+/// [`FRAME_CHECK_REFINE`] times as many samples, times 1.25.
+fn mesh_frames(path: &AnyCurve<DVec3>, params: &[f64], frames: &CylinderFrames, estimate: bool) -> Vec<ParamFrames> {
+    let sample = |params: &[f64]| match (path, frames.corner_angle) {
+        (AnyCurve::Piecewise(pc), Some(angle)) => crate::frame::sample_with_corners(pc, params, angle),
+        _ => crate::frame::sample(path, params),
+    };
+    let cs = sample(params);
+    let cf = crate::frame::frames_for_samples(&cs, &frames.options);
+    let (fs, ff) = if estimate {
+        let mut fine_params = Vec::with_capacity(params.len().saturating_mul(FRAME_CHECK_REFINE));
+        for w in params.windows(2) {
+            fine_params
+                .extend((0..FRAME_CHECK_REFINE).map(|j| w[0] + (w[1] - w[0]) * j as f64 / FRAME_CHECK_REFINE as f64));
+        }
+        fine_params.extend(params.last());
+        let fs = sample(&fine_params);
+        let ff = crate::frame::frames_for_samples(&fs, &frames.options);
+        (fs, ff)
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let mut out: Vec<Option<ParamFrames>> = vec![None; params.len()];
+    let (mut j, mut p) = (0usize, 0usize);
+    for (s, f) in cs.iter().zip(&cf) {
+        while p + 1 < params.len() && (params[p + 1] - s.u).abs() <= (params[p] - s.u).abs() {
+            p += 1;
+        }
+        let mut e = 0.0;
+        if estimate && !ff.is_empty() {
+            // the fine sample at the same point (and the same side of a corner)
+            while j + 1 < fs.len() && !(fs[j].u == s.u && fs[j].tangent == s.tangent) {
+                j += 1;
+            }
+            let g = ff[j.min(ff.len() - 1)];
+            e = 1.25 * f.n.cross(g.n).length().atan2(f.n.dot(g.n));
+            j += 1;
+        }
+        let Some(slot) = out.get_mut(p) else { continue };
+        *slot = Some(match *slot {
+            None => ParamFrames { first: *f, last: *f, err: e },
+            Some(q) => ParamFrames { first: q.first, last: *f, err: q.err.max(e) },
+        });
+    }
+    let fallback = ParamFrames { first: Frame::IDENTITY, last: Frame::IDENTITY, err: std::f64::consts::PI };
+    out.into_iter().map(|o| o.unwrap_or(fallback)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::{Circle, Helix, PiecewiseCubic};
+    use crate::frame::{FrameMethod, FrameOptions, Side, StartNormal};
+
+    fn cubic(points: [[f64; 3]; 4]) -> AnyCurve<DVec3> {
+        let [a, b, c, d] = points.map(DVec3::from);
+        AnyCurve::Piecewise(PiecewiseCubic::new(vec![CubicBezier::new(a, b, c, d)], false).unwrap())
+    }
+
+    fn rmf() -> CylinderFrames {
+        let method = FrameMethod::RotationMinimizing(StartNormal::Auto(Side::Left));
+        CylinderFrames { options: FrameOptions::DEFAULT.with_method(method), corner_angle: Some(0.01) }
+    }
+
+    #[test]
+    fn odd_input_gives_bounded_plans_without_panics() {
+        let profile = cubic([[0.0, 0.0, 0.0], [0.3, 0.1, 0.0], [0.2, 0.4, 0.0], [-0.1, 0.3, 0.0]]);
+        let point = cubic([[1.0, 1.0, 0.0]; 4]);
+        let path = cubic([[0.0, 0.0, 0.0], [1.0, 0.0, 0.5], [2.0, 1.0, -0.5], [3.0, 1.0, 1.0]]);
+        let cusp = cubic([[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]);
+        let circle = AnyCurve::Circle(Circle::new(0.5));
+        let helix = AnyCurve::Helix(Helix::new(1.0, 0.5, 3.0));
+        let cases: [(&AnyCurve<DVec3>, &AnyCurve<DVec3>); 7] = [
+            (&point, &path),
+            (&profile, &point),
+            (&point, &point),
+            (&circle, &path),
+            (&profile, &circle),
+            (&profile, &cusp),
+            (&profile, &helix),
+        ];
+        for (i, (q, p)) in cases.iter().enumerate() {
+            for t in [1e-2, 1e-4, 0.0, f64::NAN, f64::INFINITY] {
+                let plan = cylinder_plan(q, DVec2::ZERO, p, &rmf(), t, 10_000);
+                assert!(plan.path_params.len() >= 2 && plan.path_params.len() <= 10_000, "{i} {t}");
+                assert!(plan.profile_params.len() >= 2, "{i} {t}");
+                assert!(plan.ring_scale >= 1.0 && plan.ring_scale.is_finite(), "{i} {t}");
+                let t = if t > 0.0 && t.is_finite() { t } else { flatten::DEFAULT_TOLERANCE };
+                // a path the bound covers gets a plan within the tolerance
+                if i != 6 {
+                    assert!(plan.bound <= t, "{i} {t}: {}", plan.bound);
+                } else {
+                    assert!(plan.bound.is_infinite());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_path_pieces_meet_their_budget() {
+        // a planar S-curve: every piece of the plan is within the path's share
+        let profile = cubic([[-0.2, 0.0, 0.0], [0.0, 0.3, 0.0], [0.1, -0.3, 0.0], [0.2, 0.0, 0.0]]);
+        let path = cubic([[0.0, 0.0, 0.0], [2.0, 2.0, 0.0], [2.0, -2.0, 0.0], [4.0, 0.0, 0.0]]);
+        let frames = CylinderFrames { options: FrameOptions::DEFAULT, corner_angle: None };
+        let plan = cylinder_plan(&profile, DVec2::ZERO, &path, &frames, 1e-3, 100_000);
+        assert!(plan.bound <= 1e-3);
+        let AnyCurve::Piecewise(pc) = &path else { unreachable!() };
+        let pieces = PathPieces::Cubics { segments: pc.segments(), planar: true };
+        let reach = profile_reach(&profile, DVec2::ZERO, &plan.profile_params, true);
+        assert!(reach.r > 0.1 && reach.lq > 0.0);
+        let path_part = path_bounds(&pieces, &plan.path_params, reach, None);
+        assert!(path_part > 0.0 && path_part < 1e-3);
+    }
 }
