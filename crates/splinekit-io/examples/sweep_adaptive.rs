@@ -11,11 +11,20 @@
 #[path = "../tests/deviation/mod.rs"]
 mod deviation;
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use splinekit::TriMesh;
 use splinekit::sweep::{MeshLayout, SweepOptions};
-use splinekit_io::surface::{SurfaceOptions, SurfaceTessellation};
+use splinekit_io::surface::{SurfaceFrames, SurfaceOptions, SurfaceTessellation};
 use splinekit_io::swp::{SwpDocument, SwpSurfaceKind};
+
+/// How a file's exact surface is measured.
+#[derive(Clone, Copy)]
+enum Exact {
+    /// A revolution of the profile (curve 0) as `(r0 + sx·x, y)` about `axis`.
+    Revolution(f64, f64, DVec3),
+    /// A generalized cylinder of curve 0 along curve 1 (exact frames: `deviation::Cylinder`).
+    Cylinder,
+}
 
 /// One row: a tolerance, the adaptive mesh and its measured deviation, and the uniform
 /// mesh (the file's steps, every curve's and the revolution's scaled by one factor) with the
@@ -26,23 +35,40 @@ fn main() {
         let path = format!("{dir}/{f}");
         SwpDocument::parse(&std::fs::read_to_string(&path).expect("read"), &path).expect("parse")
     };
-    let opts = |t: SurfaceTessellation| SurfaceOptions {
+    let opts = |t: SurfaceTessellation, frames: SurfaceFrames| SurfaceOptions {
         sweep: SweepOptions { layout: MeshLayout::Compat, uvs: false, caps: false, ..SweepOptions::default() },
         tessellation: t,
+        frames,
         ..SurfaceOptions::default()
     };
-    // (file, profile index, r0, sx, axis): the exact surface as a revolution of the profile
-    // (gentorus: a profile along a circle of radius 2.2 about +z, N toward the centre)
-    let files = [("srev/wineglass.swp", 0.0, 1.0, DVec3::Y), ("gcyl/gentorus.swp", 2.2, -1.0, DVec3::Z)];
+    // (file, exact surface, frames): gentorus is a profile along a circle of radius 2.2
+    // about +z, N toward the centre, so a revolution; weirder's path leaves the xy plane and
+    // is measured with rotation-minimizing frames
+    let files = [
+        ("srev/wineglass.swp", Exact::Revolution(0.0, 1.0, DVec3::Y), SurfaceFrames::Sequential),
+        ("gcyl/gentorus.swp", Exact::Revolution(2.2, -1.0, DVec3::Z), SurfaceFrames::Sequential),
+        ("gcyl/weirder.swp", Exact::Cylinder, SurfaceFrames::RotationMinimizing),
+    ];
     println!(
         "| file | T | adaptive triangles | adaptive deviation | uniform triangles (steps ×f) | uniform deviation |"
     );
     println!("|---|---|---|---|---|---|");
-    for (file, r0, sx, axis) in files {
+    for (file, exact, frames) in files {
         let doc = load(file);
-        let curve = doc.curves[0].to_curve().unwrap();
-        let surface = deviation::Revolution::new(&curve, r0, sx, axis);
-        let measure = |m: &TriMesh| deviation::deviation(m, &surface, 6).0;
+        let profile = doc.curves[0].to_curve().unwrap();
+        let path = doc.curves.get(1).map(|c| c.to_curve().unwrap());
+        let (revolution, cylinder) = match exact {
+            Exact::Revolution(r0, sx, axis) => (Some(deviation::Revolution::new(&profile, r0, sx, axis)), None),
+            Exact::Cylinder => {
+                let path = path.as_ref().expect("a path");
+                (None, Some(deviation::Cylinder::new(&profile, DVec2::ZERO, path, 2048, 512)))
+            }
+        };
+        let measure = |m: &TriMesh| match (&revolution, &cylinder) {
+            (Some(r), _) => deviation::deviation(m, r, 6).0,
+            (_, Some(c)) => deviation::cylinder_deviation(m, c, 6).0,
+            _ => unreachable!(),
+        };
         let uniform = |f: f64| {
             let mut d = doc.clone();
             for c in &mut d.curves {
@@ -53,13 +79,13 @@ fn main() {
                     *steps = ((f64::from(*steps) * f).round() as u32).max(3);
                 }
             }
-            let m = d.surface_mesh(0, &opts(SurfaceTessellation::FileSteps)).unwrap();
+            let m = d.surface_mesh(0, &opts(SurfaceTessellation::FileSteps, frames)).unwrap();
             let dev = measure(&m);
             (m.num_triangles(), dev)
         };
-        let (n1, d1) = uniform(1.0);
+        let (_, d1) = uniform(1.0);
         for t in [2.0 * d1, d1, 0.5 * d1, 0.25 * d1, 0.1 * d1] {
-            let m = doc.surface_mesh(0, &opts(SurfaceTessellation::Distance(t))).unwrap();
+            let m = doc.surface_mesh(0, &opts(SurfaceTessellation::Distance(t), frames)).unwrap();
             let dm = measure(&m);
             // deviation ~ 1/f²: start there and step by 2 % until within t
             let mut f = (d1 / t).sqrt();
@@ -75,7 +101,6 @@ fn main() {
                 }
                 (f, nu, du) = (f / 1.02, n2, d2);
             }
-            let _ = n1;
             println!("| {file} | {t:.3e} | {} | {dm:.3e} | {nu} (×{f:.2}) | {du:.3e} |", m.num_triangles());
         }
     }
