@@ -149,10 +149,12 @@
 //!    profile chord. To first order this displacement runs along the path's tangent (the
 //!    rotation's axis is `B` in the plane, `κ·B_Frenet ⊥ T` for rotation-minimizing frames,
 //!    and `c₁ − c₀ ⊥ T`), and the surface's tangent plane at `S(u, ·)` contains `T(u)`
-//!    (`∂S/∂u ∥ T` for both kinds of frames), within `ψ` of it: the term is taken as its
-//!    part off the bisector `t_b` of the end tangents plus `sin ψ` times the rest, measured
-//!    on the frames as built for a 3D path, `¼·|Δq|·2 sin(ψ/2)·sin ψ` in the plane (where it
-//!    lies along `t_b`). The displacement's own curvature effect (`O(|Δq|²ψ²)`) is left out;
+//!    (`∂S/∂u ∥ T` for both kinds of frames), within `ψ` of it: the term is taken as
+//!    `¼·|Δq|` times the part of `F₁ − F₀` off the bisector `t_b` of the end tangents plus
+//!    `sin ψ` times its whole, measured on the frames (for a 3D path: while planning on the
+//!    frames computed on [`FRAME_TABLE_STEPS`] samples a segment and interpolated, in the
+//!    final check on the mesh's own), `¼·|Δq|·2 sin(ψ/2)·sin ψ` in the plane (where it lies
+//!    along `t_b`). The displacement's own curvature effect (`O(|Δq|²ψ²)`) is left out;
 //! 4. off the plane, the frames' error: the mesh's frames come from double reflection on the
 //!    plan's samples (and its own closed-curve correction), not the exact ones; each vertex
 //!    moves by at most `2r·sin(e/2)` for a frame angle error `e`, estimated as 1.25 times the
@@ -174,8 +176,9 @@
 //! cut by a greedy march (the longest piece within the budget, found by bisection, then
 //! equal steps of the same count when they all fit). The triangle count `2·(profile points −
 //! 1)·(path points − 1)` is minimised over `s` on a grid (and ±[`SHARE_REFINE`] around the
-//! best). Off the plane a reserve of the path's budget is kept for terms 3–4 and grown
-//! while the plan's checked bound exceeds `T`. A circle path (always about the origin in the
+//! best). Off the plane a reserve of the path's budget (1 %) is kept for term 4 and the
+//! difference between the table's frames and the mesh's, and grown while the plan's checked
+//! bound (every term on the mesh's own frames) exceeds `T`. A circle path (always about the origin in the
 //! xy plane, `N` toward its centre) with a chain-of-cubics profile is exactly the surface of
 //! revolution of the meridian `(R − x, y)` about `+z`, planned by [`revolution_plan`] (its
 //! inflated rings included, [`CylinderPlan::ring_scale`]): every claim of the sections
@@ -693,8 +696,9 @@ pub struct CylinderFrames {
 /// The path as the plan sees it.
 enum PathPieces<'a> {
     /// A chain of cubics; `planar` when every control point has the same `z` (the frames
-    /// then turn about `±z` only).
-    Cubics { segments: &'a [CubicBezier<DVec3>], planar: bool },
+    /// then turn about `±z` only); off the plane, `table` holds the frames of every segment
+    /// at [`FRAME_TABLE_STEPS`] equal steps (computed as the mesh's are, on those samples).
+    Cubics { segments: &'a [CubicBezier<DVec3>], planar: bool, table: Vec<Frame> },
     /// A circle of this radius in the xy plane (`AnyCurve::Circle`, parameter `[0, 1]`).
     Circle(f64),
 }
@@ -810,9 +814,14 @@ impl PathPieces<'_> {
     /// The bound of the piece `[a, b]` of segment `k` (parameter `[a, b]` of the circle).
     fn bound(&self, k: usize, a: f64, b: f64, reach: ProfileReach) -> f64 {
         match self {
-            PathPieces::Cubics { segments, planar } => {
+            PathPieces::Cubics { segments, planar, table } => {
                 let (dev, psi) = piece_terms(&segments[k].subsegment(a, b));
-                piece_bound(dev, psi, reach, *planar)
+                if *planar || table.is_empty() {
+                    piece_bound(dev, psi, reach, *planar)
+                } else {
+                    let at = |u: f64| table_frame(table, k, u);
+                    piece_shrink(dev, psi, reach) + twist_of(at(a), at(b), psi, reach)
+                }
             }
             PathPieces::Circle(radius) => {
                 let psi = std::f64::consts::TAU * (b - a);
@@ -1004,7 +1013,8 @@ pub fn cylinder_plan(
             let size =
                 s.iter().flat_map(|b| [b.p0, b.p1, b.p2, b.p3]).fold(0.0, |m: f64, p| m.max(p.abs().max_element()));
             let planar = s.iter().flat_map(|b| [b.p0, b.p1, b.p2, b.p3]).all(|p| (p.z - z0).abs() <= 1e-12 * size);
-            PathPieces::Cubics { segments: s, planar }
+            let table = if planar { Vec::new() } else { frame_table(s, &frames.options) };
+            PathPieces::Cubics { segments: s, planar, table }
         }
         AnyCurve::Circle(c) => PathPieces::Circle(c.radius),
         _ => return fallback(),
@@ -1015,7 +1025,7 @@ pub fn cylinder_plan(
     // the frames' error is found once a plan is made: keep a reserve of the path's budget
     // for it (and for the twist term off the plane), grown while the plan's checked bound
     // exceeds the tolerance
-    let mut reserve = if planar { 0.0 } else { 0.05 };
+    let mut reserve = if planar { 0.0 } else { 0.01 };
     let try_share = |share: f64, reserve: f64| -> Option<(u64, Vec<f64>, ProfileReach)> {
         let eps = share * tolerance;
         let params = flatten::flatten_any(profile, Tessellation::Distance { tolerance: eps });
@@ -1059,11 +1069,55 @@ pub fn cylinder_plan(
         if best.as_ref().is_none_or(|b| plan.bound < b.bound) {
             best = Some(plan);
         }
-        // the reserve did not cover what the checks found: twice the excess, at least
+        // the reserve did not cover what the checks found: the excess and half again
         let over = (bound - tolerance) / ((1.0 - share) * tolerance);
-        reserve = (reserve + 2.0 * over).min(0.9);
+        reserve = (reserve + 1.5 * over).min(0.9);
     }
     best.unwrap_or_else(fallback)
+}
+
+/// The twist term of a piece between the frames `f0` and `f1` (see the
+/// [module docs](self)): `¼·|Δq|` times the part of `(F₁ − F₀)` off the end tangents'
+/// bisector, plus `sin ψ` times its whole.
+fn twist_of(f0: Frame, f1: Frame, psi: f64, reach: ProfileReach) -> f64 {
+    let (a, c) = (f1.n - f0.n, f1.b - f0.b);
+    let tb = (f0.t + f1.t).try_normalize().unwrap_or(f0.t);
+    let perp = |v: DVec3| v - tb * v.dot(tb);
+    let off = (perp(a).length_squared() + perp(c).length_squared()).sqrt();
+    let along = (a.length_squared() + c.length_squared()).sqrt();
+    0.25 * reach.lq * (off + along * psi.min(std::f64::consts::FRAC_PI_2).sin())
+}
+
+/// Steps per segment of the frame table the march reads the twist term from.
+const FRAME_TABLE_STEPS: usize = 64;
+
+/// The frames of every segment at `FRAME_TABLE_STEPS + 1` equal steps (each segment's ends
+/// sampled with its own tangents, so a corner turns between two samples at one point), as
+/// `options` computes them on those samples, closed-curve correction included.
+fn frame_table(segments: &[CubicBezier<DVec3>], options: &crate::frame::FrameOptions) -> Vec<Frame> {
+    let steps = FRAME_TABLE_STEPS;
+    let samples: Vec<crate::frame::CurveSample> = segments
+        .iter()
+        .enumerate()
+        .flat_map(|(k, seg)| {
+            (0..=steps).map(move |j| {
+                let t = j as f64 / steps as f64;
+                crate::frame::CurveSample { u: k as f64 + t, ..crate::frame::CurveSample::at(seg, t) }
+            })
+        })
+        .collect();
+    crate::frame::frames_for_samples(&samples, options)
+}
+
+/// The frame of segment `k` at its parameter `u ∈ [0, 1]`, interpolated in [`frame_table`].
+fn table_frame(table: &[Frame], k: usize, u: f64) -> Frame {
+    let steps = FRAME_TABLE_STEPS;
+    let x = (u.clamp(0.0, 1.0) * steps as f64).min(steps as f64);
+    let j = (x.floor() as usize).min(steps - 1);
+    let base = k * (steps + 1) + j;
+    let (Some(a), Some(b)) = (table.get(base), table.get(base + 1)) else { return Frame::IDENTITY };
+    let f = x - j as f64;
+    Frame::from_tangent_normal(a.t.lerp(b.t, f), a.n.lerp(b.n, f))
 }
 
 /// The mesh's frames at one path parameter: at its first and last sample (two at a corner
@@ -1086,13 +1140,7 @@ fn path_bounds(pieces: &PathPieces<'_>, params: &[f64], reach: ProfileReach, fra
         match frames {
             None => b += twist_model(psi, reach, true),
             Some(f) => {
-                let (f0, f1) = (f[i].last, f[i + 1].first);
-                let (a, c) = (f1.n - f0.n, f1.b - f0.b);
-                let tb = (f0.t + f1.t).try_normalize().unwrap_or(f0.t);
-                let perp = |v: DVec3| v - tb * v.dot(tb);
-                let off = (perp(a).length_squared() + perp(c).length_squared()).sqrt();
-                let along = (a.length_squared() + c.length_squared()).sqrt();
-                b += 0.25 * reach.lq * (off + along * psi.min(std::f64::consts::FRAC_PI_2).sin());
+                b += twist_of(f[i].last, f[i + 1].first, psi, reach);
                 b += 2.0 * reach.r * (0.5 * f[i].err.max(f[i + 1].err)).min(std::f64::consts::FRAC_PI_2).sin();
             }
         }
@@ -1209,7 +1257,7 @@ mod tests {
         let plan = cylinder_plan(&profile, DVec2::ZERO, &path, &frames, 1e-3, 100_000);
         assert!(plan.bound <= 1e-3);
         let AnyCurve::Piecewise(pc) = &path else { unreachable!() };
-        let pieces = PathPieces::Cubics { segments: pc.segments(), planar: true };
+        let pieces = PathPieces::Cubics { segments: pc.segments(), planar: true, table: Vec::new() };
         let reach = profile_reach(&profile, DVec2::ZERO, &plan.profile_params, true);
         assert!(reach.r > 0.1 && reach.lq > 0.0);
         let path_part = path_bounds(&pieces, &plan.path_params, reach, None);
