@@ -421,6 +421,8 @@ impl SwpDocument {
             }
             SwpSurfaceKind::GeneralizedCylinder { profile, sweep: path, scale, twist } => {
                 let mut prof = profile_of(profile)?;
+                // the anchor of the profile as each mode tessellates it alone (an adaptive
+                // plan keeps it: with `align centre` the centre of the points flattened to T)
                 let anchor = options.align.anchor(&prof.points);
                 let c = curve(path)?;
                 let mut ring_scale = 1.0;
