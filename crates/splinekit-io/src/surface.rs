@@ -425,6 +425,7 @@ impl SwpDocument {
                 // plan keeps it: with `align centre` the centre of the points flattened to T)
                 let anchor = options.align.anchor(&prof.points);
                 let c = curve(path)?;
+                let frame_kind = path_frames(options, &c);
                 let mut ring_scale = 1.0;
                 let mut samples = match options.tessellation {
                     // adaptive: planned together so that the surface, not each curve, is
@@ -440,7 +441,7 @@ impl SwpDocument {
                             format!("its profile alone could have up to {bound} points")
                         })?;
                         let frames = adaptive::CylinderFrames {
-                            options: frame_options(options.frames),
+                            options: frame_options(frame_kind),
                             corner_angle: (options.sweep.layout == MeshLayout::Welded).then_some(CREASE_ANGLE),
                         };
                         // every path point makes two triangles at least
@@ -464,7 +465,7 @@ impl SwpDocument {
                 limit.check(2 * (p as u64).saturating_sub(1) * (s as u64).saturating_sub(1) + caps, || {
                     format!("a {p}-point profile swept along {s} points")
                 })?;
-                let mut frames = frames_for(&samples, path_frames(options, &samples));
+                let mut frames = frames_for(&samples, frame_kind);
                 // a scale or twist curve: 2D, read at the samples' normalized arc length
                 let shape = |i: Option<usize>, role: SwpClause| -> Result<Option<AnyCurve<DVec3>>, SurfaceError> {
                     let Some(i) = i else { return Ok(None) };
@@ -723,26 +724,24 @@ fn normalized_arclen(curve: &AnyCurve<DVec3>, samples: &[CurveSample]) -> Vec<f6
     s
 }
 
-/// The frames [`SurfaceFrames::Auto`] stands for along a path with these samples (any
-/// other choice as it is).
-fn path_frames(options: &SurfaceOptions, samples: &[CurveSample]) -> SurfaceFrames {
+/// The frames [`SurfaceFrames::Auto`] stands for along `path` (any other choice as it is).
+fn path_frames(options: &SurfaceOptions, path: &AnyCurve<DVec3>) -> SurfaceFrames {
     if options.frames != SurfaceFrames::Auto {
         return options.frames;
     }
-    if options.sweep.layout == MeshLayout::Compat || in_z_plane(samples) {
+    if options.sweep.layout == MeshLayout::Compat || in_z_plane(path) {
         SurfaceFrames::Sequential
     } else {
         SurfaceFrames::RotationMinimizing
     }
 }
 
-/// Whether every sample lies in one plane `z = const` (to 1e-12 of the samples' extent).
-fn in_z_plane(samples: &[CurveSample]) -> bool {
-    let Some(first) = samples.first() else { return true };
-    let (lo, hi) =
-        samples.iter().fold((first.position, first.position), |(lo, hi), s| (lo.min(s.position), hi.max(s.position)));
-    let extent = (hi - lo).max_element();
-    hi.z - lo.z <= 1e-12 * extent
+/// Whether the curve lies in one plane `z = const` (its bounding box's depth within 1e-12 of
+/// its largest side).
+fn in_z_plane(curve: &AnyCurve<DVec3>) -> bool {
+    let b = curve.bounding_box();
+    let extent = (b.max - b.min).max_element();
+    !(b.max.z - b.min.z > 1e-12 * extent)
 }
 
 fn frames_for(samples: &[CurveSample], method: SurfaceFrames) -> Vec<Frame> {
