@@ -6,7 +6,7 @@
 //! cargo run --release -p splinekit-io --example sweep_adaptive [DATA_DIR]
 //! ```
 //!
-//! `DATA_DIR` holds `srev/wineglass.swp` and `gcyl/{gentorus,weirder}.swp`.
+//! `DATA_DIR` (default: the crate's `tests/data/swp`) holds `srev/wineglass.swp` and `gcyl/{gentorus,weirder}.swp`.
 
 #[path = "../tests/deviation/mod.rs"]
 mod deviation;
@@ -30,7 +30,8 @@ enum Exact {
 /// mesh (the file's steps, every curve's and the revolution's scaled by one factor) with the
 /// fewest steps whose measured deviation is within the tolerance.
 fn main() {
-    let dir = std::env::args().nth(1).unwrap_or_else(|| "/work/shared/data/swp".to_owned());
+    let dir =
+        std::env::args().nth(1).unwrap_or_else(|| concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/swp").to_owned());
     let load = |f: &str| {
         let path = format!("{dir}/{f}");
         SwpDocument::parse(&std::fs::read_to_string(&path).expect("read"), &path).expect("parse")
