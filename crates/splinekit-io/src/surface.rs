@@ -444,8 +444,13 @@ impl SwpDocument {
                             options: frame_options(frame_kind),
                             corner_angle: (options.sweep.layout == MeshLayout::Welded).then_some(CREASE_ANGLE),
                         };
-                        // every path point makes two triangles at least
-                        let max_path = options.max_triangles.map_or(adaptive::MAX_PATH_POINTS, |m| m / 2 + 2);
+                        // every path point makes two triangles per profile chord, and no plan
+                        // flattens the profile coarser than T: past this many path points the
+                        // mesh would be too large whatever the plan
+                        let coarsest = flatten::flatten_count(&pc, Tessellation::Distance { tolerance });
+                        let chords = usize::try_from(coarsest.saturating_sub(1)).unwrap_or(usize::MAX).max(1);
+                        let max_path =
+                            options.max_triangles.map_or(adaptive::MAX_PATH_POINTS, |m| m / chords.saturating_mul(2) + 2);
                         let plan = adaptive::cylinder_plan(&pc, anchor, &c, &frames, tolerance, max_path);
                         prof = profile_at(profile, Some(&plan.profile_params))?;
                         ring_scale = plan.ring_scale;
