@@ -445,7 +445,9 @@ fn sweep(doc: &SwpDocument, k: usize, rng: &mut Rng) -> Result<(), Finding> {
         scale_mode: if align == ProfileAlign::Centre { ScaleMode::Override } else { ScaleMode::Multiply },
         max_triangles: Some(MAX_TRIANGLES),
     };
-    let Ok(mesh) = doc.surface_mesh(k, &options) else { return Ok(()) };
+    let mesh = doc.surface_mesh(k, &options);
+    trace("sweep mesh", format_args!("surface {k} with {options:?}"));
+    let Ok(mesh) = mesh else { return Ok(()) };
     check::tri_mesh(&mesh, &format!("surface {k} swept with {options:?}"))?;
     // the file's mesh: the same triangles, welded
     if let Ok(swept) = doc.surface_poly(k, &options) {

@@ -449,8 +449,9 @@ impl SwpDocument {
                         // mesh would be too large whatever the plan
                         let coarsest = flatten::flatten_count(&pc, Tessellation::Distance { tolerance });
                         let chords = usize::try_from(coarsest.saturating_sub(1)).unwrap_or(usize::MAX).max(1);
-                        let max_path =
-                            options.max_triangles.map_or(adaptive::MAX_PATH_POINTS, |m| m / chords.saturating_mul(2) + 2);
+                        let max_path = options
+                            .max_triangles
+                            .map_or(adaptive::MAX_PATH_POINTS, |m| m / chords.saturating_mul(2) + 2);
                         let plan = adaptive::cylinder_plan(&pc, anchor, &c, &frames, tolerance, max_path);
                         prof = profile_at(profile, Some(&plan.profile_params))?;
                         ring_scale = plan.ring_scale;

@@ -429,16 +429,22 @@ fn best_plan(pieces: &Pieces<'_>, tolerance: f64, max_slices: usize, inflate: Op
     };
     // a geometric grid from there up to 16× (the optimum splits the tolerance between the
     // profile and the slices, a few times the fewest), then every n around the best
+    // (each candidate is a whole plan of the profile: for a profile of many thousands of
+    // points a coarser grid, and around the best at most 33 candidates, so the work stays a
+    // few hundred plans whatever the tolerance)
     let mut best = (u64::MAX, first);
+    let points_at_first = triangles(first).map_or(0, |t| t / (2 * first as u64) + 1);
+    let factor = if points_at_first as usize > INFLATE_MAX_POINTS { 1.08 } else { 1.02 };
     let mut n = first;
     while n <= max_slices && n <= first.saturating_mul(16) {
         if let Some(t) = triangles(n) {
             best = best.min((t, n));
         }
-        n = (n + 1).max((n as f64 * 1.02) as usize);
+        n = (n + 1).max((n as f64 * factor) as usize);
     }
     let around = best.1;
-    for n in around.saturating_sub(around / 40 + 2).max(first)..=(around + around / 40 + 2).min(max_slices) {
+    let (lo, hi) = (around.saturating_sub(around / 40 + 2).max(first), (around + around / 40 + 2).min(max_slices));
+    for n in (lo..=hi).step_by(((hi - lo.min(hi)) / 32).max(1)) {
         if let Some(t) = triangles(n) {
             best = best.min((t, n));
         }
@@ -1026,18 +1032,31 @@ pub fn cylinder_plan(
     // for it (and for the twist term off the plane), grown while the plan's checked bound
     // exceeds the tolerance
     let mut reserve = if planar { 0.0 } else { 0.01 };
-    let try_share = |share: f64, reserve: f64| -> Option<(u64, Vec<f64>, ProfileReach)> {
+    // Before marching the path for a share (tens of bound evaluations a point), its points are
+    // estimated by flattening it to the whole path budget (the chord term alone, counted
+    // without placing a chord): a share whose estimate exceeds the point limit twice over, or
+    // whose triangles by that estimate cannot beat the best plan so far, is not marched.
+    let triangles = |profile_points: usize, path_points: u64| {
+        2 * (profile_points as u64).saturating_sub(1).max(1) * path_points.saturating_sub(1).max(1)
+    };
+    let try_share = |share: f64, reserve: f64, beat: Option<u64>| -> Option<(u64, Vec<f64>, ProfileReach)> {
         let eps = share * tolerance;
         let params = flatten::flatten_any(profile, Tessellation::Distance { tolerance: eps });
-        let reach = profile_reach(profile, anchor, &params, planar);
         let budget = (1.0 - share) * tolerance * (1.0 - reserve);
+        if let AnyCurve::Piecewise(_) = path {
+            let estimate = flatten::flatten_count(path, Tessellation::Distance { tolerance: budget });
+            if estimate > 2 * max_points as u64 || beat.is_some_and(|b| triangles(params.len(), estimate) >= 2 * b) {
+                return None;
+            }
+        }
+        let reach = profile_reach(profile, anchor, &params, planar);
         let n = pieces.plan(budget, reach, max_points, None)?;
-        Some((2 * (params.len() as u64).saturating_sub(1).max(1) * (n as u64 - 1).max(1), params, reach))
+        Some((triangles(params.len(), n as u64), params, reach))
     };
     // the share with the fewest triangles: a grid, then a finer step around the best
     let mut choice: Option<(u64, f64)> = None;
     for share in SHARES {
-        if let Some((t, _, _)) = try_share(share, reserve) {
+        if let Some((t, _, _)) = try_share(share, reserve, choice.map(|c| c.0)) {
             choice = Some(choice.map_or((t, share), |c| if t < c.0 { (t, share) } else { c }));
         }
     }
@@ -1045,7 +1064,7 @@ pub fn cylinder_plan(
     let base = share;
     for d in [-2.0, -1.0, 1.0, 2.0] {
         let s = (base + d * SHARE_REFINE).clamp(MIN_SHARE, 0.95);
-        if let Some((t, _, _)) = try_share(s, reserve)
+        if let Some((t, _, _)) = try_share(s, reserve, Some(count))
             && t < count
         {
             (count, share) = (t, s);
@@ -1053,7 +1072,7 @@ pub fn cylinder_plan(
     }
     let mut best: Option<CylinderPlan> = None;
     for _attempt in 0..6 {
-        let Some((_, profile_params, reach)) = try_share(share, reserve) else { break };
+        let Some((_, profile_params, reach)) = try_share(share, reserve, None) else { break };
         let budget = (1.0 - share) * tolerance * (1.0 - reserve);
         let mut path_params = Vec::new();
         if pieces.plan(budget, reach, max_points, Some(&mut path_params)).is_none() {
