@@ -9,11 +9,11 @@ use clap::ValueEnum;
 use splinekit::TriMesh;
 use splinekit::mesh::PolyMesh;
 use splinekit::sweep::{DEFAULT_MITRE_LIMIT, Join, MeshLayout, SweepOptions};
-use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildError, RebuildOptions, SplineHeader, stage_poly};
 use splinekit_io::surface::{
     DEFAULT_MAX_TRIANGLES, ProfileAlign, ScaleMode, SurfaceError, SurfaceFrames, SurfaceOptions, SurfaceTessellation,
 };
+use splinekit_io::{SwpDocument, SwpSurfaceKind};
 
 use crate::select;
 
@@ -74,7 +74,8 @@ pub struct SweepArgs {
     #[arg(long)]
     pub compat: bool,
 
-    /// Adaptive tessellation: every polyline within T (length units) of its curve (SWP only)
+    /// Adaptive tessellation: the surface within T (length units) of the exact sweep, triangle
+    /// interiors included (a gcyl with a scale or twist curve: each curve within T) (SWP only)
     #[arg(long, value_name = "T", conflicts_with = "angle_tolerance", allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
 
@@ -359,6 +360,23 @@ fn sweep_surfaces(
             };
             anyhow!("{}: {e}{hint}", args.file.display())
         })?;
+        // the surface bound of a distance tolerance does not cover scale and twist curves yet
+        let own = opts.with_settings(&doc.surfaces[k].settings);
+        if let (SurfaceTessellation::Distance(t), SwpSurfaceKind::GeneralizedCylinder { scale, twist, .. }) =
+            (own.tessellation, &doc.surfaces[k].kind)
+            && (scale.is_some() || twist.is_some())
+        {
+            let note = format!(
+                "note: {}: surface {}: with a scale or twist curve the tolerance {t} bounds each curve's \
+                 tessellation, not the surface, which may stray further from the exact sweep",
+                args.file.display(),
+                doc.surfaces[k].display_name(k),
+            );
+            match bar {
+                Some(bar) => bar.suspend(|| eprintln!("{note}")),
+                None => eprintln!("{note}"),
+            }
+        }
         for corner in &swept.unfit_corners {
             let p = corner.position;
             let warning = format!(

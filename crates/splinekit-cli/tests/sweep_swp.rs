@@ -363,6 +363,19 @@ fn scale_mode_flag() {
     assert_eq!(read(&plain, &["--scale-mode", "override"]), overridden);
     assert_eq!(read(&over, &["--scale-mode", "multiply"]), multiplied);
     assert_eq!(read(&plain, &["--frames", "auto"]), multiplied);
+    // a distance tolerance's surface bound does not cover scale curves: said, once a surface
+    let run = splinekit(&["sweep", &plain, "-o", dir.path().join("t").to_str().unwrap(), "--tolerance", "0.01"]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert_eq!(
+        run.stderr.matches("surface tube: with a scale or twist curve the tolerance 0.01").count(),
+        1,
+        "{}",
+        run.stderr
+    );
+    let bare = write("bare.swp", "");
+    fs::write(&bare, fs::read_to_string(&bare).unwrap().replace(" scale s", "")).unwrap();
+    let run = splinekit(&["sweep", &bare, "-o", dir.path().join("b").to_str().unwrap(), "--tolerance", "0.01"]);
+    assert!(run.code == Some(0) && !run.stderr.contains("note:"), "{}", run.stderr);
     let run = splinekit(&["sweep", &plain, "-o", dir.path().join("x").to_str().unwrap(), "--scale-mode", "add"]);
     assert_eq!(run.code, Some(2));
     assert!(run.stderr.contains("possible values: multiply, override"), "{}", run.stderr);
