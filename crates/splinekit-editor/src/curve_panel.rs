@@ -88,7 +88,9 @@ impl EditorApp {
             let label = ui.label("Degree");
             let mut d = degree;
             let max = splinekit::MAX_NURBS_DEGREE as u32;
-            let r = ui.add(egui::DragValue::new(&mut d).range(1..=max).speed(0.05)).labelled_by(label.id);
+            let r = ui
+                .add(egui::DragValue::new(&mut d).update_while_editing(false).range(1..=max).speed(0.05))
+                .labelled_by(label.id);
             if r.changed() && d != degree {
                 self.doc.set_degree(d);
             }

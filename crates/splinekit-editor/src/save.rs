@@ -116,7 +116,9 @@ impl EditorApp {
                 true
             }
             Err(e) => {
-                self.status = format!("Error: cannot write {}: {e}", path.display());
+                // the editor has no --force: its way out is another file
+                let why = e.to_string().replace(splinekit_io::atomic::READ_ONLY_HINT, "Save as… writes another file");
+                self.status = format!("Error: cannot write {}: {why}", path.display());
                 false
             }
         }

@@ -296,7 +296,7 @@ impl EditorApp {
         let steps = self.doc.swp.curves.get(curve).map_or(1, |c| c.steps);
         let mut k = steps;
         let label = ui.label(format!("{name} steps")).on_hover_text("tessellation steps of each segment of the curve");
-        let r = ui.add(egui::DragValue::new(&mut k).range(1..=1000)).labelled_by(label.id);
+        let r = ui.add(egui::DragValue::new(&mut k).update_while_editing(false).range(1..=1000)).labelled_by(label.id);
         if r.changed() && k != steps {
             self.edit_value(&r);
             self.doc.set_curve_steps(curve, k);
@@ -415,7 +415,7 @@ fn int_value(
     hint: &str,
 ) -> Option<egui::Response> {
     let label = ui.label(label).on_hover_text(hint);
-    let r = ui.add(egui::DragValue::new(value).range(range)).labelled_by(label.id);
+    let r = ui.add(egui::DragValue::new(value).update_while_editing(false).range(range)).labelled_by(label.id);
     r.changed().then_some(r)
 }
 
@@ -429,7 +429,9 @@ fn float_value(
 ) -> Option<egui::Response> {
     let label = ui.label(label).on_hover_text(hint);
     let speed = 0.005 * value.abs().max(1e-3);
-    let r = ui.add(egui::DragValue::new(value).range(range).speed(speed).max_decimals(6)).labelled_by(label.id);
+    let r = ui
+        .add(egui::DragValue::new(value).update_while_editing(false).range(range).speed(speed).max_decimals(6))
+        .labelled_by(label.id);
     r.changed().then_some(r)
 }
 

@@ -970,3 +970,57 @@ fn a_click_on_a_3d_handle_selects_it_and_its_z_can_be_typed() {
     assert_eq!(h.state().doc.points()[2], DVec3::new(2.0, 1.0, 3.0));
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// A number is applied when typed in full (Enter), not at each key: typing "0.005" into a
+/// tolerance does not first sweep at "0" (the smallest tolerance, a surface far too large,
+/// whose progress line used to move the field from under the cursor and end the typing).
+#[test]
+fn typed_numbers_apply_on_enter_not_at_each_key() {
+    let dir = tempfile_dir("typed");
+    let path = dir.join("tube.swp");
+    std::fs::write(
+        &path,
+        "circ ring 12 0.2\nbez3 path 8 4 [0 0 0] [1 0 0.5] [2 1 0] [3 1 0.5]\ngcyl tube ring path tolerance 0.01\n",
+    )
+    .unwrap();
+    let mut h = harness(EditorApp::new(Some(&path)));
+    h.run();
+    let before = h.state_mut().surface_triangles();
+    assert!(before > 0, "{}", h.state().status);
+    h.get_by_label("tube tolerance").click();
+    h.run();
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text("0".to_owned()));
+    h.run();
+    assert_eq!(h.state_mut().surface_triangles(), before, "a half-typed number was applied");
+    h.event(egui::Event::Text(".002".to_owned()));
+    h.key_press(egui::Key::Enter);
+    h.run();
+    let after = h.state_mut().surface_triangles();
+    assert!(after > before, "{before} → {after}");
+    assert!(h.state().doc.swp.to_swp_string().contains("gcyl tube ring path tolerance 0.002"));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A read-only file is not replaced by Save, and the message names the editor's way out
+/// (Save as), not the command line's flag.
+#[test]
+fn saving_over_a_read_only_file_is_refused_with_the_editors_way_out() {
+    let dir = tempfile_dir("readonly");
+    let path = dir.join("locked.swp");
+    let text = "bez2 c 4 4 [0 0] [1 1] [2 1] [3 0]\n";
+    std::fs::write(&path, text).unwrap();
+    let mut perms = std::fs::metadata(&path).unwrap().permissions();
+    perms.set_readonly(true);
+    std::fs::set_permissions(&path, perms).unwrap();
+    let mut app = EditorApp::new(Some(&path));
+    assert!(!app.save_swp(&path));
+    assert!(app.status.contains("read-only") && app.status.contains("Save as"), "{}", app.status);
+    assert!(!app.status.contains("--force"), "{}", app.status);
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
+    let mut perms = std::fs::metadata(&path).unwrap().permissions();
+    #[allow(clippy::permissions_set_readonly_false)]
+    perms.set_readonly(false);
+    std::fs::set_permissions(&path, perms).unwrap();
+    let _ = std::fs::remove_dir_all(dir);
+}

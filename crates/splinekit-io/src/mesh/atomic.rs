@@ -156,6 +156,10 @@ pub struct Staged {
     dir: PathBuf,
 }
 
+/// The way out that the refusal to replace a read-only file names: the command line's flag (a
+/// program without it, such as the editor, puts its own in its place).
+pub const READ_ONLY_HINT: &str = "--force replaces it";
+
 /// Whether [`write_file`] may replace a read-only file (off unless a program's `--force` turns
 /// it on for the whole process).
 static REPLACE_READ_ONLY: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
@@ -225,7 +229,8 @@ where
             return Ok((Staged { guard: None, target: path.to_path_buf(), dir: dir.to_path_buf() }, value));
         }
         if kind.is_file() && meta.permissions().readonly() && !REPLACE_READ_ONLY.load(Ordering::Relaxed) {
-            let error = io::Error::new(io::ErrorKind::PermissionDenied, "the file is read-only (--force replaces it)");
+            let error =
+                io::Error::new(io::ErrorKind::PermissionDenied, format!("the file is read-only ({READ_ONLY_HINT})"));
             return Err(fail("replace", error));
         }
     }
