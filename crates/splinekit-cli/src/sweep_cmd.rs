@@ -333,6 +333,14 @@ pub fn run(args: &SweepArgs, out: &mut impl Write) -> anyhow::Result<()> {
     result
 }
 
+/// Prints a note or warning on standard error, above the progress bar when there is one.
+fn say(bar: Option<&indicatif::ProgressBar>, text: &str) {
+    match bar {
+        Some(bar) => bar.suspend(|| eprintln!("{text}")),
+        None => eprintln!("{text}"),
+    }
+}
+
 /// Sweeps every surface of `doc`, then writes them (an error while sweeping leaves no files),
 /// moving `bar` along.
 fn sweep_surfaces(
@@ -372,10 +380,7 @@ fn sweep_surfaces(
                 args.file.display(),
                 doc.surfaces[k].display_name(k),
             );
-            match bar {
-                Some(bar) => bar.suspend(|| eprintln!("{note}")),
-                None => eprintln!("{note}"),
-            }
+            say(bar, &note);
         }
         for corner in &swept.unfit_corners {
             let p = corner.position;
@@ -390,10 +395,7 @@ fn sweep_surfaces(
                 p.y,
                 p.z,
             );
-            match bar {
-                Some(bar) => bar.suspend(|| eprintln!("{warning}")),
-                None => eprintln!("{warning}"),
-            }
+            say(bar, &warning);
         }
         meshes.push(swept.mesh);
     }
@@ -425,10 +427,7 @@ fn sweep_surfaces(
                      normals; write .obj, or use --split-seams, to keep them",
                     path.display()
                 );
-                match bar {
-                    Some(bar) => bar.suspend(|| eprintln!("{note}")),
-                    None => eprintln!("{note}"),
-                }
+                say(bar, &note);
             }
             (file, saved.vertices)
         };

@@ -394,13 +394,7 @@ impl SwpDocument {
                 let (prof, steps) = match options.tessellation {
                     SurfaceTessellation::Distance(tolerance) if self.curves[profile].dim != 3 => {
                         let c = curve(profile)?;
-                        // the plan flattens the profile to no less than a share of the
-                        // tolerance: bounded before it starts
-                        let finest = Tessellation::Distance { tolerance: tolerance * adaptive::MIN_SHARE };
-                        let bound = flatten::flatten_count(&c, finest);
-                        limit.check(2u64.saturating_mul(bound.saturating_sub(1)), || {
-                            format!("its profile alone could have up to {bound} points")
-                        })?;
+                        limit.check_planned_profile(&c, tolerance)?;
                         let plan = adaptive::revolution_plan(&c, tolerance, MAX_SLICES);
                         let mut prof = profile_at(profile, Some(&plan.params))?;
                         prof.points.iter_mut().for_each(|p| p.x *= plan.ring_scale);
@@ -433,13 +427,7 @@ impl SwpDocument {
                     // bound does not cover: those keep each curve flattened to it)
                     SurfaceTessellation::Distance(tolerance) if scale.is_none() && twist.is_none() => {
                         let pc = curve(profile)?;
-                        // the plan flattens the profile to no less than a share of the
-                        // tolerance: bounded before it starts
-                        let finest = Tessellation::Distance { tolerance: tolerance * adaptive::MIN_SHARE };
-                        let bound = flatten::flatten_count(&pc, finest);
-                        limit.check(2u64.saturating_mul(bound.saturating_sub(1)), || {
-                            format!("its profile alone could have up to {bound} points")
-                        })?;
+                        limit.check_planned_profile(&pc, tolerance)?;
                         let frames = adaptive::CylinderFrames {
                             options: frame_options(frame_kind),
                             corner_angle: (options.sweep.layout == MeshLayout::Welded).then_some(CREASE_ANGLE),
@@ -650,6 +638,16 @@ struct Limit<'a> {
 }
 
 impl Limit<'_> {
+    /// Fails when an adaptive plan's profile could alone pass the limit: a plan flattens it to
+    /// no less than [`adaptive::MIN_SHARE`] of `tolerance`, so this bounds it before it starts.
+    fn check_planned_profile(&self, profile: &AnyCurve<DVec3>, tolerance: f64) -> Result<(), SurfaceError> {
+        let finest = Tessellation::Distance { tolerance: tolerance * adaptive::MIN_SHARE };
+        let bound = flatten::flatten_count(profile, finest);
+        self.check(2u64.saturating_mul(bound.saturating_sub(1)), || {
+            format!("its profile alone could have up to {bound} points")
+        })
+    }
+
     /// Fails when `triangles` exceed the limit; `why` says where they come from.
     fn check(&self, triangles: u64, why: impl FnOnce() -> String) -> Result<(), SurfaceError> {
         match self.max {
