@@ -17,14 +17,14 @@ impl EditorApp {
         ui.label(format!("Selected P{i}"));
         let axes: &[(&str, usize)] =
             if self.doc.is_2d() { &[("x", 0), ("y", 1)] } else { &[("x", 0), ("y", 1), ("z", 2)] };
+        // (applied at each key, unlike the surface's numbers: a coordinate typed halfway is a
+        // cheap, nearby edit that moves nothing else on the screen)
         ui.horizontal_wrapped(|ui| {
             for &(name, k) in axes {
                 let label = ui.label(format!("Point {name}"));
                 let mut v = p[k];
                 let speed = 0.01 * (1.0 + p.length());
-                let r = ui
-                    .add(egui::DragValue::new(&mut v).update_while_editing(false).speed(speed).max_decimals(6))
-                    .labelled_by(label.id);
+                let r = ui.add(egui::DragValue::new(&mut v).speed(speed).max_decimals(6)).labelled_by(label.id);
                 if r.changed() && v != p[k] && v.is_finite() {
                     self.edit_value(&r);
                     let mut q = p;
@@ -39,13 +39,7 @@ impl EditorApp {
                 let label = ui.label("Weight");
                 let mut v = w;
                 let r = ui
-                    .add(
-                        egui::DragValue::new(&mut v)
-                            .update_while_editing(false)
-                            .range(1e-6..=1e6)
-                            .speed(0.01 * w)
-                            .max_decimals(6),
-                    )
+                    .add(egui::DragValue::new(&mut v).range(1e-6..=1e6).speed(0.01 * w).max_decimals(6))
                     .labelled_by(label.id);
                 if r.changed() && v != w {
                     self.edit_value(&r);
@@ -61,13 +55,7 @@ impl EditorApp {
                 let label = ui.label(name);
                 let mut v = values[k];
                 let r = ui
-                    .add(
-                        egui::DragValue::new(&mut v)
-                            .update_while_editing(false)
-                            .range(-1.0..=1.0)
-                            .speed(0.01)
-                            .max_decimals(4),
-                    )
+                    .add(egui::DragValue::new(&mut v).range(-1.0..=1.0).speed(0.01).max_decimals(4))
                     .labelled_by(label.id);
                 if r.changed() && v != values[k] {
                     self.edit_value(&r);

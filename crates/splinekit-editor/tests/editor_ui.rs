@@ -1024,3 +1024,26 @@ fn saving_over_a_read_only_file_is_refused_with_the_editors_way_out() {
     std::fs::set_permissions(&path, perms).unwrap();
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// A value typed and left with Tab is applied (the field commits when it loses focus), and
+/// the next field starts from its own value.
+#[test]
+fn a_typed_value_left_with_tab_is_applied() {
+    let mut h = four_points();
+    h.get_by_label("P1").click();
+    h.run();
+    h.get_by_label("Point x").click();
+    h.run();
+    h.key_press_modifiers(Modifiers::COMMAND, egui::Key::A);
+    h.event(egui::Event::Text("3.25".to_owned()));
+    h.run();
+    h.key_press(egui::Key::Tab);
+    h.run();
+    h.run();
+    assert_eq!(h.state().doc.points()[1], DVec3::new(3.25, 2.0, 0.0));
+    h.event(egui::Event::Text("-0.5".to_owned()));
+    h.key_press(egui::Key::Tab);
+    h.run();
+    h.run();
+    assert_eq!(h.state().doc.points()[1], DVec3::new(3.25, -0.5, 0.0));
+}
