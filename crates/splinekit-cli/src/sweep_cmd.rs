@@ -9,11 +9,11 @@ use clap::ValueEnum;
 use splinekit::TriMesh;
 use splinekit::mesh::PolyMesh;
 use splinekit::sweep::{DEFAULT_MITRE_LIMIT, Join, MeshLayout, SweepOptions};
+use splinekit_io::SwpDocument;
 use splinekit_io::mesh::{MeshFormat, RebuildError, RebuildOptions, SplineHeader, stage_poly};
 use splinekit_io::surface::{
     DEFAULT_MAX_TRIANGLES, ProfileAlign, ScaleMode, SurfaceError, SurfaceFrames, SurfaceOptions, SurfaceTessellation,
 };
-use splinekit_io::{SwpDocument, SwpSurfaceKind};
 
 use crate::select;
 
@@ -75,7 +75,7 @@ pub struct SweepArgs {
     pub compat: bool,
 
     /// Adaptive tessellation: the surface within T (length units) of the exact sweep, triangle
-    /// interiors included (a gcyl with a scale or twist curve: each curve within T) (SWP only)
+    /// interiors included (SWP only)
     #[arg(long, value_name = "T", conflicts_with = "angle_tolerance", allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
 
@@ -368,15 +368,16 @@ fn sweep_surfaces(
             };
             anyhow!("{}: {e}{hint}", args.file.display())
         })?;
-        // the surface bound of a distance tolerance does not cover scale and twist curves yet
+        // the surface bound of a distance tolerance covers scale and twist curves that are
+        // chains of cubics along such paths and circles; otherwise each curve is within T
         let own = opts.with_settings(&doc.surfaces[k].settings);
-        if let (SurfaceTessellation::Distance(t), SwpSurfaceKind::GeneralizedCylinder { scale, twist, .. }) =
-            (own.tessellation, &doc.surfaces[k].kind)
-            && (scale.is_some() || twist.is_some())
+        if let SurfaceTessellation::Distance(t) = own.tessellation
+            && !doc.tolerance_bounds_surface(k, opts)
         {
             let note = format!(
-                "note: {}: surface {}: with a scale or twist curve the tolerance {t} bounds each curve's \
-                 tessellation, not the surface, which may stray further from the exact sweep",
+                "note: {}: surface {}: with this scale or twist curve the tolerance {t} bounds each curve's \
+                 tessellation, not the surface, which may stray further from the exact sweep (the surface \
+                 is bounded for scale and twist curves and paths made of cubic segments, and circle paths)",
                 args.file.display(),
                 doc.surfaces[k].display_name(k),
             );

@@ -363,11 +363,16 @@ fn scale_mode_flag() {
     assert_eq!(read(&plain, &["--scale-mode", "override"]), overridden);
     assert_eq!(read(&over, &["--scale-mode", "multiply"]), multiplied);
     assert_eq!(read(&plain, &["--frames", "auto"]), multiplied);
-    // a distance tolerance's surface bound does not cover scale curves: said, once a surface
+    // a distance tolerance bounds the surface with a scale curve made of cubics (no note);
+    // a twist curve the bound does not cover (a circle) is said, once a surface
     let run = splinekit(&["sweep", &plain, "-o", dir.path().join("t").to_str().unwrap(), "--tolerance", "0.01"]);
+    assert!(run.code == Some(0) && !run.stderr.contains("note:"), "{}", run.stderr);
+    let circled = write("circled.swp", "");
+    fs::write(&circled, fs::read_to_string(&circled).unwrap().replace(" scale s", " twist c")).unwrap();
+    let run = splinekit(&["sweep", &circled, "-o", dir.path().join("c").to_str().unwrap(), "--tolerance", "0.01"]);
     assert_eq!(run.code, Some(0), "{}", run.stderr);
     assert_eq!(
-        run.stderr.matches("surface tube: with a scale or twist curve the tolerance 0.01").count(),
+        run.stderr.matches("surface tube: with this scale or twist curve the tolerance 0.01").count(),
         1,
         "{}",
         run.stderr

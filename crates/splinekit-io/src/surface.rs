@@ -134,16 +134,16 @@ pub enum ScaleMode {
 }
 
 impl ScaleMode {
-    /// The factors this mode applies to a profile's `points` (already relative to the point
-    /// that rides on the path) before the scale curve's: `(1, 1)` for [`Self::Multiply`].
+    /// The factors this mode applies to a profile before the scale curve's, given the
+    /// profile's largest `|x|` and `|y|` from the point that rides on the path: `(1, 1)` for
+    /// [`Self::Multiply`].
     #[must_use]
-    pub fn unit_factors(self, points: &[DVec2]) -> DVec2 {
+    pub fn unit_factors(self, reach: DVec2) -> DVec2 {
         match self {
             Self::Multiply => DVec2::ONE,
             Self::Override => {
-                let reach = points.iter().fold(DVec2::ZERO, |r, p| r.max(p.abs()));
                 let unit = |r: f64| if r > 0.0 && r.is_finite() { 1.0 / r } else { 1.0 };
-                DVec2::new(unit(reach.x), unit(reach.y))
+                DVec2::new(unit(reach.x.abs()), unit(reach.y.abs()))
             }
         }
     }
@@ -356,6 +356,36 @@ impl SwpDocument {
         self.surface(index, options)
     }
 
+    /// Whether a distance tolerance bounds surface `index`'s mesh as a whole (triangle
+    /// interiors included) rather than each curve's tessellation alone: false only for a
+    /// `gcyl` with a scale or twist curve that the shaped plan does not cover (a scale or
+    /// twist curve that is not a chain of cubics, a path that is neither a chain of cubics nor
+    /// a circle, or frames other than rotation-minimizing along a path off the plane; see
+    /// [`adaptive::shape_covered`]), and for an unknown index or curves that do not compile.
+    #[must_use]
+    pub fn tolerance_bounds_surface(&self, index: usize, options: &SurfaceOptions) -> bool {
+        let Some(surface) = self.surfaces.get(index) else { return false };
+        let SwpSurfaceKind::GeneralizedCylinder { sweep: path, scale, twist, .. } = surface.kind else { return true };
+        if scale.is_none() && twist.is_none() {
+            return true;
+        }
+        let options = options.with_settings(&surface.settings);
+        let compile = |i: Option<usize>| i.map(|i| self.curves.get(i).and_then(|c| c.to_curve().ok()));
+        let (Some(c), Some(sc), Some(tw)) = (
+            self.curves.get(path).and_then(|c| c.to_curve().ok()),
+            compile(scale).map_or(Some(None), |c| c.map(Some)),
+            compile(twist).map_or(Some(None), |c| c.map(Some)),
+        ) else {
+            return false;
+        };
+        let frames = adaptive::CylinderFrames {
+            options: frame_options(path_frames(&options, &c)),
+            corner_angle: (options.sweep.layout == MeshLayout::Welded).then_some(CREASE_ANGLE),
+        };
+        let shape = adaptive::CylinderShape { scale: sc.as_ref(), twist: tw.as_ref(), unit: DVec2::ONE };
+        adaptive::shape_covered(&c, &frames, &shape)
+    }
+
     /// [`Self::surface_mesh`], or its counts.
     fn surface<B: Built>(&self, index: usize, options: &SurfaceOptions) -> Result<B, SurfaceError> {
         let surface = self.surfaces.get(index).ok_or(SurfaceError::NoSuchSurface(index))?;
@@ -416,34 +446,83 @@ impl SwpDocument {
             SwpSurfaceKind::GeneralizedCylinder { profile, sweep: path, scale, twist } => {
                 let mut prof = profile_of(profile)?;
                 // the anchor of the profile as each mode tessellates it alone (an adaptive
-                // plan keeps it: with `align centre` the centre of the points flattened to T)
+                // plan keeps it: with `align centre` the centre of the points flattened to T);
+                // so are an overriding scale's unit factors
                 let anchor = options.align.anchor(&prof.points);
                 let c = curve(path)?;
                 let frame_kind = path_frames(options, &c);
+                // a scale or twist curve: 2D, read at the samples' normalized arc length
+                let shape = |i: Option<usize>, role: SwpClause| -> Result<Option<AnyCurve<DVec3>>, SurfaceError> {
+                    let Some(i) = i else { return Ok(None) };
+                    if self.curves[i].dim == 3 {
+                        return Err(SurfaceError::ShapeNot2d {
+                            role,
+                            curve: self.curves[i].display_name(i),
+                            surface: surface_name.clone(),
+                        });
+                    }
+                    curve(i).map(Some)
+                };
+                let (scale, twist) = (shape(scale, SwpClause::Scale)?, shape(twist, SwpClause::Twist)?);
+                let unit = if scale.is_some() {
+                    // the size of the profile curve itself (its tight bounding box), whatever
+                    // its tessellation
+                    let b = curve(profile)?.bounding_box();
+                    let (lo, hi) = (b.min.truncate() - anchor, b.max.truncate() - anchor);
+                    options.scale_mode.unit_factors(lo.abs().max(hi.abs()))
+                } else {
+                    DVec2::ONE
+                };
+                let cylinder_frames = adaptive::CylinderFrames {
+                    options: frame_options(frame_kind),
+                    corner_angle: (options.sweep.layout == MeshLayout::Welded).then_some(CREASE_ANGLE),
+                };
+                let shaped = adaptive::CylinderShape { scale: scale.as_ref(), twist: twist.as_ref(), unit };
                 let mut ring_scale = 1.0;
                 let mut samples = match options.tessellation {
                     // adaptive: planned together so that the surface, not each curve, is
-                    // within the tolerance (without scale or twist curves, which the plan's
-                    // bound does not cover: those keep each curve flattened to it)
+                    // within the tolerance
                     SurfaceTessellation::Distance(tolerance) if scale.is_none() && twist.is_none() => {
                         let pc = curve(profile)?;
                         limit.check_planned_profile(&pc, tolerance)?;
-                        let frames = adaptive::CylinderFrames {
-                            options: frame_options(frame_kind),
-                            corner_angle: (options.sweep.layout == MeshLayout::Welded).then_some(CREASE_ANGLE),
-                        };
-                        // every path point makes two triangles per profile chord, and no plan
-                        // flattens the profile coarser than T: past this many path points the
-                        // mesh would be too large whatever the plan
-                        let coarsest = flatten::flatten_count(&pc, Tessellation::Distance { tolerance });
-                        let chords = usize::try_from(coarsest.saturating_sub(1)).unwrap_or(usize::MAX).max(1);
-                        let max_path = options
-                            .max_triangles
-                            .map_or(adaptive::MAX_PATH_POINTS, |m| m / chords.saturating_mul(2) + 2);
-                        let plan = adaptive::cylinder_plan(&pc, anchor, &c, &frames, tolerance, max_path);
+                        let max_path = max_path_points(&pc, tolerance, options);
+                        let plan = adaptive::cylinder_plan(&pc, anchor, &c, &cylinder_frames, tolerance, max_path);
                         prof = profile_at(profile, Some(&plan.profile_params))?;
                         ring_scale = plan.ring_scale;
                         samples_at(&c, &plan.path_params, options, &limit)?
+                    }
+                    // with a scale or twist curve, when the bound covers the curves (else
+                    // each curve is flattened to the tolerance)
+                    SurfaceTessellation::Distance(tolerance)
+                        if adaptive::shape_covered(&c, &cylinder_frames, &shaped) =>
+                    {
+                        let pc = curve(profile)?;
+                        let largest = shaped.largest_factor().filter(|f| *f > 0.0).unwrap_or(1.0);
+                        limit.check_planned_profile(&pc, tolerance / largest)?;
+                        let max_path = max_path_points(&pc, tolerance / largest, options);
+                        let plan = adaptive::shaped_cylinder_plan(
+                            &pc,
+                            anchor,
+                            &c,
+                            &cylinder_frames,
+                            &shaped,
+                            tolerance,
+                            max_path,
+                        );
+                        match plan {
+                            Some(plan) => {
+                                if !plan.bound.is_finite() {
+                                    // the plan needs more path points than the limit leaves
+                                    let chords = plan.profile_params.len().saturating_sub(1).max(1) as u64;
+                                    limit.check(2 * chords * max_path as u64, || {
+                                        format!("the tolerance needs more than {max_path} points along its path")
+                                    })?;
+                                }
+                                prof = profile_at(profile, Some(&plan.profile_params))?;
+                                samples_at(&c, &plan.path_params, options, &limit)?
+                            }
+                            None => sample_curve(&c, self.curves[path].steps, options, &limit)?,
+                        }
                     }
                     _ => sample_curve(&c, self.curves[path].steps, options, &limit)?,
                 };
@@ -460,25 +539,11 @@ impl SwpDocument {
                     format!("a {p}-point profile swept along {s} points")
                 })?;
                 let mut frames = frames_for(&samples, frame_kind);
-                // a scale or twist curve: 2D, read at the samples' normalized arc length
-                let shape = |i: Option<usize>, role: SwpClause| -> Result<Option<AnyCurve<DVec3>>, SurfaceError> {
-                    let Some(i) = i else { return Ok(None) };
-                    if self.curves[i].dim == 3 {
-                        return Err(SurfaceError::ShapeNot2d {
-                            role,
-                            curve: self.curves[i].display_name(i),
-                            surface: surface_name.clone(),
-                        });
-                    }
-                    curve(i).map(Some)
-                };
-                let (scale, twist) = (shape(scale, SwpClause::Scale)?, shape(twist, SwpClause::Twist)?);
                 if scale.is_some() {
                     // the profile at unit size for an overriding scale (normals as the
                     // inverse transpose carries them)
-                    let f = options.scale_mode.unit_factors(&prof.points);
-                    prof.points.iter_mut().for_each(|p| *p *= f);
-                    prof.normals.iter_mut().for_each(|n| *n = (*n / f).try_normalize().unwrap_or(*n));
+                    prof.points.iter_mut().for_each(|p| *p *= unit);
+                    prof.normals.iter_mut().for_each(|n| *n = (*n / unit).try_normalize().unwrap_or(*n));
                 }
                 let mut scales = Vec::new();
                 if scale.is_some() || twist.is_some() {
@@ -628,6 +693,16 @@ fn revolution_steps(profile: &Profile, file_steps: u32, mode: SurfaceTessellatio
         SurfaceTessellation::Distance(tol) => slice_count(slice_angle(radius, tol)),
         SurfaceTessellation::Angle(a) => slice_count(a),
     }
+}
+
+/// The most path points an adaptive gcyl plan may place: every path point makes two
+/// triangles per profile chord, and no plan flattens the profile coarser than `tolerance`
+/// (the profile's share over the shape's largest factor), so past this many the mesh would
+/// be too large whatever the plan.
+fn max_path_points(profile: &AnyCurve<DVec3>, tolerance: f64, options: &SurfaceOptions) -> usize {
+    let coarsest = flatten::flatten_count(profile, Tessellation::Distance { tolerance });
+    let chords = usize::try_from(coarsest.saturating_sub(1)).unwrap_or(usize::MAX).max(1);
+    options.max_triangles.map_or(adaptive::MAX_PATH_POINTS, |m| m / chords.saturating_mul(2) + 2)
 }
 
 /// The triangle limit of one surface's mesh.

@@ -172,3 +172,79 @@ fn the_cylinder_measure_agrees_with_the_revolution_measure() {
     // the points are off the surface (the check compared something)
     assert!(largest > 1e-3, "{largest:e}");
 }
+
+/// A gcyl file with extra 2D curves and `clauses` after its gcyl line (`scale NAME`,
+/// `twist NAME`).
+fn with_shape(file: &str, curves: &str, clauses: &str) -> SwpDocument {
+    let path = format!("{}/tests/data/swp/{file}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut out = String::new();
+    for line in text.lines() {
+        if line.starts_with("gcyl ") {
+            out.push_str(curves);
+            out.push_str(&format!("{line} {clauses}\n"));
+        } else {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    SwpDocument::parse(&out, &path).unwrap()
+}
+
+fn named(doc: &SwpDocument, name: &str) -> splinekit::AnyCurve<DVec3> {
+    doc.curves.iter().find(|c| c.name.as_deref() == Some(name)).unwrap().to_curve().unwrap()
+}
+
+/// Asserts that the adaptive mesh of surface 0 at each tolerance is within it of `surface`,
+/// and returns the triangle counts.
+fn assert_shaped_within(name: &str, doc: &SwpDocument, surface: &Cylinder<'_>, tolerances: &[f64]) -> Vec<usize> {
+    tolerances
+        .iter()
+        .map(|&t| {
+            let mesh = gcyl_mesh(doc, SurfaceTessellation::Distance(t), SurfaceFrames::Auto);
+            let (d, at) = deviation::cylinder_deviation(&mesh, surface, 4);
+            assert!(d <= t, "{name} at T = {t:e}: {d:e} at {at} ({} triangles)", mesh.num_triangles());
+            eprintln!("{name} at T = {t:e}: {d:e}, {} triangles", mesh.num_triangles());
+            mesh.num_triangles()
+        })
+        .collect()
+}
+
+/// With a scale or a twist curve, `--tolerance` bounds the surface too (the bound of
+/// `sweep::adaptive`'s shaped plan), measured against the exact shaped surface: a 3D path
+/// (weirder, rotation-minimizing frames) scaled and twisted a full turn.
+#[test]
+fn a_scaled_and_twisted_3d_sweep_stays_within_the_tolerance() {
+    let doc = with_shape(
+        "gcyl/weirder.swp",
+        "bez2 sc 4 7 [1 1] [1.8 1] [1.8 0.5] [1 0.5] [0.4 0.5] [0.4 1] [1 1]\nbez2 tw 4 4 [0 0] [120 0] [240 0] [360 0]\n",
+        "scale sc twist tw",
+    );
+    let (profile, path) = (named(&doc, "profile"), named(&doc, "sweep"));
+    let (sc, tw) = (named(&doc, "sc"), named(&doc, "tw"));
+    let surface = Cylinder::shaped(&profile, DVec2::ZERO, &path, Some(&sc), Some(&tw), DVec2::ONE, 1024, 256);
+    let counts = assert_shaped_within("weirder scaled and twisted", &doc, &surface, &[2e-2, 8e-3]);
+    assert!(counts[1] > counts[0], "{counts:?}");
+}
+
+/// A twist along a circle (gentorus: the surface is no longer one of revolution) and an
+/// overriding scale along an open planar path with an open profile.
+#[test]
+fn twisted_and_overridden_planar_sweeps_stay_within_the_tolerance() {
+    let doc = with_shape("gcyl/gentorus.swp", "bez2 tw 4 4 [0 0] [120 0] [240 0] [360 0]\n", "twist tw");
+    let (profile, path, tw) = (named(&doc, "profile"), named(&doc, "sweep"), named(&doc, "tw"));
+    let surface = Cylinder::shaped(&profile, DVec2::ZERO, &path, None, Some(&tw), DVec2::ONE, 1024, 256);
+    assert_shaped_within("gentorus twisted", &doc, &surface, &[1.5e-2, 4e-3]);
+
+    let text = "bez2 profile 4 4 [0 -0.6] [0.5 -0.3] [0.5 0.3] [0 0.6]\n\
+                bez2 path 4 7 [0 0] [2 1] [3 -1] [5 0] [6 0.5] [7 2] [8 2]\n\
+                bez2 sc 4 4 [1 1] [0.3 0.8] [0.3 0.4] [0.5 0.2]\n\
+                gcyl bend profile path scale sc scale-mode override\n";
+    let doc = SwpDocument::parse(text, "override.swp").unwrap();
+    let (profile, path, sc) = (named(&doc, "profile"), named(&doc, "path"), named(&doc, "sc"));
+    // the profile's reach from the origin, the size an overriding scale divides by: 0.6
+    // along y, and its bulge's 1.5·t(1 − t)·… = 0.375 along x at t = ½
+    let unit = DVec2::new(1.0 / 0.375, 1.0 / 0.6);
+    let surface = Cylinder::shaped(&profile, DVec2::ZERO, &path, Some(&sc), None, unit, 1024, 256);
+    assert_shaped_within("override", &doc, &surface, &[1e-2, 4e-3]);
+}

@@ -123,8 +123,9 @@ fn tessellation(tolerance: Option<f64>) -> PyResult<Option<SwpTessellation>> {
 /// ``sx`` away along N and ``sy`` along B); ``twist``: a 2D Curve whose x is an angle in degrees, or a number of degrees turned
 /// evenly from start to end (both read along the path by normalized arc length).
 /// ``frames``: ``"rmf"``, ``"sequential"``, ``"frenet"`` or ``"zup"``. ``caps``: close an open
-/// sweep of a closed profile with flat caps. ``tolerance``: every curve within this distance
-/// of its polyline (default: each curve's ``steps``). ``align``: which point of the profile
+/// sweep of a closed profile with flat caps. ``tolerance``: an adaptive mesh, triangle
+/// interiors included, within this distance of the exact surface, as ``splinekit sweep
+/// --tolerance`` (default: each curve's ``steps``). ``align``: which point of the profile
 /// rides on the path (``"origin"``, ``"centre"``, ``"start"``). ``join``: how the walls meet at
 /// a sharp corner of the path (``"mitre"``, ``"round"``, ``"bevel"``); ``mitre_limit``: the
 /// longest mitre, times the profile's offset, before a mitre becomes a bevel. ``normals``:

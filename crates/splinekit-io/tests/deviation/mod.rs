@@ -172,7 +172,10 @@ pub fn deviation(mesh: &TriMesh, surface: &Revolution<'_>, m: usize) -> (f64, DV
 
 /// The exact surface of a generalized cylinder, `S(u, v) = P(u) + N(u)·x(v) + B(u)·y(v)`
 /// (`(x, y)` the profile less its anchor), for a distance measure independent of the sweep
-/// code.
+/// code. With a shape ([`Cylinder::shaped`]), `(x, y)` is also multiplied by the unit factors
+/// and the scale curve's point and `(N, B)` turned by the twist curve's angle (degrees, `N`
+/// toward `B`), both read at the path's normalized arc length `σ` as the curve's parameter
+/// `σ·(its domain's end)`; `σ` from chord lengths on the reference samples.
 ///
 /// The frames are the exact ones: for a path in a plane `z = const`, `N` the left normal of
 /// the exact tangent and `B = +z`; otherwise rotation-minimizing frames integrated by the
@@ -191,15 +194,52 @@ pub struct Cylinder<'a> {
     frames: Vec<(DVec3, DVec3)>,
     path_closed: bool,
     profile_closed: bool,
+    shape: Option<Shape<'a>>,
     /// The coarse grid: `(u, v, S(u, v))`, hashed by cells of side `cell`.
     grid: Vec<(f64, f64, DVec3)>,
     cell: f64,
     cells: std::collections::HashMap<(i64, i64, i64), Vec<u32>>,
 }
 
+/// A gcyl's scale and twist curves, and the normalized arc length at the reference samples.
+struct Shape<'a> {
+    scale: Option<&'a AnyCurve<DVec3>>,
+    twist: Option<&'a AnyCurve<DVec3>>,
+    unit: DVec2,
+    sigma: Vec<f64>,
+}
+
 impl<'a> Cylinder<'a> {
     /// Rotation-minimizing frames are integrated on this many steps.
     pub const REFERENCE_SAMPLES: usize = 100_000;
+
+    /// The gcyl with a scale curve (`(x, y)` factors) and a twist curve (`x` in degrees), the
+    /// profile (less `anchor`) multiplied by `unit` first.
+    #[allow(clippy::too_many_arguments)]
+    pub fn shaped(
+        profile: &'a AnyCurve<DVec3>,
+        anchor: DVec2,
+        path: &'a AnyCurve<DVec3>,
+        scale: Option<&'a AnyCurve<DVec3>>,
+        twist: Option<&'a AnyCurve<DVec3>>,
+        unit: DVec2,
+        grid_u: usize,
+        grid_v: usize,
+    ) -> Self {
+        let (a, b) = path.domain();
+        let n = Self::REFERENCE_SAMPLES;
+        let mut sigma = Vec::with_capacity(n + 1);
+        let mut acc = 0.0;
+        let mut last = path.eval(a);
+        for i in 0..=n {
+            let p = path.eval(a + (b - a) * i as f64 / n as f64);
+            acc += p.distance(last);
+            last = p;
+            sigma.push(acc);
+        }
+        sigma.iter_mut().for_each(|s| *s /= acc);
+        Self::build(profile, anchor, path, Some(Shape { scale, twist, unit, sigma }), grid_u, grid_v)
+    }
 
     /// The gcyl of `profile` (less `anchor`) along `path`, with a coarse grid of
     /// `grid_u × grid_v` points.
@@ -207,6 +247,17 @@ impl<'a> Cylinder<'a> {
         profile: &'a AnyCurve<DVec3>,
         anchor: DVec2,
         path: &'a AnyCurve<DVec3>,
+        grid_u: usize,
+        grid_v: usize,
+    ) -> Self {
+        Self::build(profile, anchor, path, None, grid_u, grid_v)
+    }
+
+    fn build(
+        profile: &'a AnyCurve<DVec3>,
+        anchor: DVec2,
+        path: &'a AnyCurve<DVec3>,
+        shape: Option<Shape<'a>>,
         grid_u: usize,
         grid_v: usize,
     ) -> Self {
@@ -235,6 +286,7 @@ impl<'a> Cylinder<'a> {
             frames,
             path_closed,
             profile_closed,
+            shape,
             grid: Vec::new(),
             cell: 1.0,
             cells: std::collections::HashMap::new(),
@@ -287,8 +339,24 @@ impl<'a> Cylinder<'a> {
 
     /// `S(u, v)`.
     pub fn eval(&self, u: f64, v: f64) -> DVec3 {
-        let q = self.profile.eval(v).truncate() - self.anchor;
-        let (n, b) = self.frame(u);
+        let mut q = self.profile.eval(v).truncate() - self.anchor;
+        let (mut n, mut b) = self.frame(u);
+        if let Some(shape) = &self.shape {
+            let (a, e) = self.path.domain();
+            let m = Self::REFERENCE_SAMPLES;
+            let x = ((u - a) / (e - a) * m as f64).clamp(0.0, m as f64);
+            let i = (x.floor() as usize).min(m - 1);
+            let sigma = shape.sigma[i] + (shape.sigma[i + 1] - shape.sigma[i]) * (x - i as f64);
+            let at = |c: &AnyCurve<DVec3>| c.eval(sigma * c.domain().1);
+            q *= shape.unit;
+            if let Some(c) = shape.scale {
+                q *= at(c).truncate();
+            }
+            if let Some(c) = shape.twist {
+                let (sn, cs) = at(c).x.to_radians().sin_cos();
+                (n, b) = (n * cs + b * sn, b * cs - n * sn);
+            }
+        }
         self.path.eval(u) + n * q.x + b * q.y
     }
 

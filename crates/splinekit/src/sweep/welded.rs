@@ -307,14 +307,39 @@ impl Builder<'_> {
         // a point that has not moved since the previous copy, or that meets another point
         // of this copy (a pinch), is the same vertex
         let previous = self.rings.last().map(|r| r.pids.clone());
+        // earlier slots of this copy by cells of the tolerance's size (a long profile would
+        // otherwise compare every pair)
+        let cell = self.tolerance.max(f64::MIN_POSITIVE);
+        let key = |p: DVec3| {
+            let c = (p / cell).floor();
+            (c.x as i64, c.y as i64, c.z as i64)
+        };
+        let mut cells: std::collections::HashMap<(i64, i64, i64), Vec<usize>> = std::collections::HashMap::new();
         for s in 0..pids.len() {
             let p = self.positions[pids[s] as usize];
             let close = |id: u32| self.positions[id as usize].distance(p) <= self.tolerance;
             if let Some(&id) = previous.as_ref().map(|prev| &prev[s]).filter(|&&id| close(id)) {
                 pids[s] = id;
-            } else if let Some(&id) = pids[..s].iter().find(|&&id| close(id)) {
-                pids[s] = id;
+            } else {
+                // the first earlier slot within the tolerance, as a scan in slot order finds
+                let (cx, cy, cz) = key(p);
+                let mut first: Option<usize> = None;
+                for x in [cx.saturating_sub(1), cx, cx.saturating_add(1)] {
+                    for y in [cy.saturating_sub(1), cy, cy.saturating_add(1)] {
+                        for z in [cz.saturating_sub(1), cz, cz.saturating_add(1)] {
+                            for &t in cells.get(&(x, y, z)).into_iter().flatten() {
+                                if first.is_none_or(|f| t < f) && close(pids[t]) {
+                                    first = Some(t);
+                                }
+                            }
+                        }
+                    }
+                }
+                if let Some(t) = first {
+                    pids[s] = pids[t];
+                }
             }
+            cells.entry(key(self.positions[pids[s] as usize])).or_default().push(s);
         }
         let normals = self.normals(frame, DQuat::IDENTITY);
         self.rings.push(Ring { pids, normals, centre, u });

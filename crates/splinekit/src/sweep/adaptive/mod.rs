@@ -152,13 +152,13 @@
 //!    (`∂S/∂u ∥ T` for both kinds of frames), within `ψ` of it: the term is taken as
 //!    `¼·|Δq|` times the part of `F₁ − F₀` off the bisector `t_b` of the end tangents plus
 //!    `sin ψ` times its whole, measured on the frames (for a 3D path: while planning on the
-//!    frames computed on [`FRAME_TABLE_STEPS`] samples a segment and interpolated, in the
+//!    frames computed on `FRAME_TABLE_STEPS` samples a segment and interpolated, in the
 //!    final check on the mesh's own), `¼·|Δq|·2 sin(ψ/2)·sin ψ` in the plane (where it lies
 //!    along `t_b`). The displacement's own curvature effect (`O(|Δq|²ψ²)`) is left out;
 //! 4. off the plane, the frames' error: the mesh's frames come from double reflection on the
 //!    plan's samples (and its own closed-curve correction), not the exact ones; each vertex
 //!    moves by at most `2r·sin(e/2)` for a frame angle error `e`, estimated as 1.25 times the
-//!    difference from the same frames on [`FRAME_CHECK_REFINE`] times as many samples (the
+//!    difference from the same frames on `FRAME_CHECK_REFINE` times as many samples (the
 //!    method's error is `O(h⁴)`). An estimate, not a bound.
 //!
 //! So **the mesh-to-surface distance is at most `ε + max over path pieces of (d + r·(1 −
@@ -175,7 +175,7 @@
 //! profile flattened to it) and the path's `(1 − s)·T`; each cubic segment of the path is
 //! cut by a greedy march (the longest piece within the budget, found by bisection, then
 //! equal steps of the same count when they all fit). The triangle count `2·(profile points −
-//! 1)·(path points − 1)` is minimised over `s` on a grid (and ±[`SHARE_REFINE`] around the
+//! 1)·(path points − 1)` is minimised over `s` on a grid (and ±`SHARE_REFINE` around the
 //! best). Off the plane a reserve of the path's budget (1 %) is kept for term 4 and the
 //! difference between the table's frames and the mesh's, and grown while the plan's checked
 //! bound (every term on the mesh's own frames) exceeds `T`. A circle path (always about the origin in the
@@ -186,12 +186,19 @@
 //! Bézier of any degree, NURBS) gets both curves flattened to [`MIN_SHARE`] of `T`, with no
 //! bound claimed.
 //!
+//! A generalized cylinder with a **scale or twist curve** is planned by
+//! [`shaped_cylinder_plan`], with its own bound (proved for the exact frames; see
+//! [`shaped`]).
+//!
 //! Bounded work: no profile flattening finer than [`MIN_SHARE`] of `T` (callers bound its
 //! points beforehand), at most `max_path_points` path points (counted as the march goes;
-//! past them the fallback), each piece's bisection [`BISECTIONS`] steps, and a piece no budget admits (a
+//! past them the fallback), each piece's bisection `BISECTIONS` steps, and a piece no budget admits (a
 //! cusp) one step of `2⁻²⁰` of its segment.
 
 use glam::{DVec2, DVec3};
+
+pub mod shaped;
+pub use self::shaped::{CylinderShape, shape_covered, shaped_cylinder_plan};
 
 use crate::curve::{AnyCurve, CubicBezier, ParamCurve};
 use crate::flatten::{self, Tessellation};
@@ -656,7 +663,7 @@ fn chord_bound(c: &Chord, prev: Option<&Chord>, next: Option<&Chord>, shift: (f6
 pub const MAX_PATH_POINTS: usize = 1 << 24;
 
 /// The shares of the tolerance the profile is tried at (the path gets the rest), before the
-/// best is refined by [`SHARE_REFINE`] on either side.
+/// best is refined by `SHARE_REFINE` on either side.
 const SHARES: [f64; 8] = [MIN_SHARE, 0.15, 0.25, 0.35, 0.45, 0.55, 0.7, 0.85];
 const SHARE_REFINE: f64 = 0.025;
 
@@ -703,7 +710,7 @@ pub struct CylinderFrames {
 enum PathPieces<'a> {
     /// A chain of cubics; `planar` when every control point has the same `z` (the frames
     /// then turn about `±z` only); off the plane, `table` holds the frames of every segment
-    /// at [`FRAME_TABLE_STEPS`] equal steps (computed as the mesh's are, on those samples).
+    /// at `FRAME_TABLE_STEPS` equal steps (computed as the mesh's are, on those samples).
     Cubics { segments: &'a [CubicBezier<DVec3>], planar: bool, table: Vec<Frame> },
     /// A circle of this radius in the xy plane (`AnyCurve::Circle`, parameter `[0, 1]`).
     Circle(f64),
@@ -896,59 +903,63 @@ impl PathPieces<'_> {
         }
     }
 
-    /// The ends (after 0, up to 1) of the pieces of segment `k`: equal steps when they are
-    /// all within the budget, else the greedy march (each piece the longest found within the
-    /// budget by bisection) that found their count.
+    /// The ends (after 0, up to 1) of the pieces of segment `k` within the budget ([`march`]).
     fn segment_pieces(&self, k: usize, budget: f64, reach: ProfileReach, max: usize, out: &mut Vec<f64>) -> Option<()> {
-        out.clear();
-        let ok = |a: f64, b: f64| self.bound(k, a, b, reach) <= budget;
-        let mut a = 0.0;
-        // the last piece's length: where the next one's search starts
-        let mut step: f64 = 1.0;
-        while a < 1.0 {
-            if out.len() >= max {
-                return None;
-            }
-            if ok(a, 1.0) {
-                out.push(1.0);
+        march(&|a, b| self.bound(k, a, b, reach) <= budget, max, out)
+    }
+}
+
+/// The ends (after 0, up to 1) of pieces of `[0, 1]` that are each `ok`, at most `max` of
+/// them (`None` past that): equal steps when they are all `ok`, else the greedy march (each
+/// piece the longest found `ok` by bisection) that found their count.
+fn march(ok: &dyn Fn(f64, f64) -> bool, max: usize, out: &mut Vec<f64>) -> Option<()> {
+    out.clear();
+    let mut a = 0.0;
+    // the last piece's length: where the next one's search starts
+    let mut step: f64 = 1.0;
+    while a < 1.0 {
+        if out.len() >= max {
+            return None;
+        }
+        if ok(a, 1.0) {
+            out.push(1.0);
+            break;
+        }
+        // bracket the end from the last length (growing it while it fits), then bisect
+        // to a thousandth of the piece
+        let (mut lo, mut hi) = (a, 1.0);
+        let mut probe = (a + step).min(1.0);
+        for _ in 0..BISECTIONS {
+            if probe >= hi {
                 break;
             }
-            // bracket the end from the last length (growing it while it fits), then bisect
-            // to a thousandth of the piece
-            let (mut lo, mut hi) = (a, 1.0);
-            let mut probe = (a + step).min(1.0);
-            for _ in 0..BISECTIONS {
-                if probe >= hi {
-                    break;
-                }
-                if ok(a, probe) {
-                    lo = probe;
-                    probe = a + 2.0 * (probe - a);
-                } else {
-                    hi = probe;
-                    break;
-                }
+            if ok(a, probe) {
+                lo = probe;
+                probe = a + 2.0 * (probe - a);
+            } else {
+                hi = probe;
+                break;
             }
-            for _ in 0..BISECTIONS {
-                if hi - lo <= 1e-3 * (lo - a) {
-                    break;
-                }
-                let mid = 0.5 * (lo + hi);
-                if ok(a, mid) { lo = mid } else { hi = mid }
+        }
+        for _ in 0..BISECTIONS {
+            if hi - lo <= 1e-3 * (lo - a) {
+                break;
             }
-            step = (lo - a).max(1e-9);
-            // a piece no budget admits (a cusp): one step of the bisection's resolution
-            let b = if lo > a { lo } else { (a + 1.0 / (1u64 << 20) as f64).min(1.0) };
-            out.push(b);
-            a = b;
+            let mid = 0.5 * (lo + hi);
+            if ok(a, mid) { lo = mid } else { hi = mid }
         }
-        let m = out.len();
-        if m > 1 && (0..m).all(|i| ok(i as f64 / m as f64, (i + 1) as f64 / m as f64)) {
-            out.clear();
-            out.extend((1..=m).map(|i| i as f64 / m as f64));
-        }
-        Some(())
+        step = (lo - a).max(1e-9);
+        // a piece no budget admits (a cusp): one step of the bisection's resolution
+        let b = if lo > a { lo } else { (a + 1.0 / (1u64 << 20) as f64).min(1.0) };
+        out.push(b);
+        a = b;
     }
+    let m = out.len();
+    if m > 1 && (0..m).all(|i| ok(i as f64 / m as f64, (i + 1) as f64 / m as f64)) {
+        out.clear();
+        out.extend((1..=m).map(|i| i as f64 / m as f64));
+    }
+    Some(())
 }
 
 /// The reach around `anchor` of the profile's polyline at `params` (`|x|` for a planar path,
@@ -1170,7 +1181,7 @@ fn path_bounds(pieces: &PathPieces<'_>, params: &[f64], reach: ProfileReach, fra
 
 /// The mesh's frames at `params` ([`ParamFrames`]); with `estimate`, their error against the
 /// exact rotation-minimizing frames: the difference from the frames computed the same way on
-/// [`FRAME_CHECK_REFINE`] times as many samples, times 1.25.
+/// `FRAME_CHECK_REFINE` times as many samples, times 1.25.
 fn mesh_frames(path: &AnyCurve<DVec3>, params: &[f64], frames: &CylinderFrames, estimate: bool) -> Vec<ParamFrames> {
     let sample = |params: &[f64]| match (path, frames.corner_angle) {
         (AnyCurve::Piecewise(pc), Some(angle)) => crate::frame::sample_with_corners(pc, params, angle),
