@@ -248,3 +248,28 @@ fn twisted_and_overridden_planar_sweeps_stay_within_the_tolerance() {
     let surface = Cylinder::shaped(&profile, DVec2::ZERO, &path, Some(&sc), None, unit, 1024, 256);
     assert_shaped_within("override", &doc, &surface, &[1e-2, 4e-3]);
 }
+
+/// Along a helix (rotation-minimizing frames, constant curvature and torsion): with no shape
+/// and with a twist, within the tolerance.
+#[test]
+fn sweeps_along_a_helix_stay_within_the_tolerance() {
+    let text = "bez2 p 4 7 [0 -0.3] [0.17 -0.3] [0.3 -0.17] [0.3 0] [0.3 0.17] [0.17 0.3] [0 0.3]\n\
+                helix coil 120 1.5 1 2\n\
+                bez2 tw 4 4 [0 0] [60 0] [120 0] [180 0]\n\
+                gcyl plain p coil\n\
+                gcyl twisted p coil twist tw\n";
+    let doc = SwpDocument::parse(text, "helix.swp").unwrap();
+    let (profile, path, tw) = (named(&doc, "p"), named(&doc, "coil"), named(&doc, "tw"));
+    for (index, surface) in [
+        (0, Cylinder::new(&profile, DVec2::ZERO, &path, 1024, 128)),
+        (1, Cylinder::shaped(&profile, DVec2::ZERO, &path, None, Some(&tw), DVec2::ONE, 1024, 128)),
+    ] {
+        for t in [1e-2, 3e-3] {
+            let o = SurfaceOptions { tessellation: SurfaceTessellation::Distance(t), ..SurfaceOptions::default() };
+            let mesh = doc.surface_mesh(index, &o).unwrap();
+            let (d, at) = deviation::cylinder_deviation(&mesh, &surface, 4);
+            assert!(d <= t, "helix surface {index} at T = {t:e}: {d:e} at {at} ({} triangles)", mesh.num_triangles());
+            eprintln!("helix surface {index} at T = {t:e}: {d:e}, {} triangles", mesh.num_triangles());
+        }
+    }
+}

@@ -182,9 +182,9 @@
 //! xy plane, `N` toward its centre) with a chain-of-cubics profile is exactly the surface of
 //! revolution of the meridian `(R − x, y)` about `+z`, planned by [`revolution_plan`] (its
 //! inflated rings included, [`CylinderPlan::ring_scale`]): every claim of the sections
-//! above holds for it. A path that is neither a chain of cubics nor a circle (helix, knot,
-//! Bézier of any degree, NURBS) gets both curves flattened to [`MIN_SHARE`] of `T`, with no
-//! bound claimed.
+//! above holds for it. A helix is planned by [`shaped_cylinder_plan`] (no shape; its
+//! curvature and torsion are constants). A path of another kind (knot, Bézier of any degree,
+//! NURBS) gets both curves flattened to [`MIN_SHARE`] of `T`, with no bound claimed.
 //!
 //! A generalized cylinder with a **scale or twist curve** is planned by
 //! [`shaped_cylinder_plan`], with its own bound (proved for the exact frames; see
@@ -686,7 +686,7 @@ pub struct CylinderPlan {
     /// The bound of the distance from the mesh to the exact surface (see the
     /// [module docs](self), "Generalized cylinders"), computed on the chosen samples; at most
     /// the tolerance when the plan succeeded, infinity when the path is a curve the bound
-    /// does not cover (a helix, knot, Bézier curve of any degree or NURBS: the fallback plan).
+    /// does not cover (a knot, Bézier curve of any degree or NURBS: the fallback plan).
     pub bound: f64,
     /// The factor the path (a circle about the origin) and the profile's `x` are scaled by
     /// in the mesh: the inflated rings of a revolution ([`RevolutionPlan::ring_scale`]); 1
@@ -1034,7 +1034,13 @@ pub fn cylinder_plan(
             PathPieces::Cubics { segments: s, planar, table }
         }
         AnyCurve::Circle(c) => PathPieces::Circle(c.radius),
-        _ => return fallback(),
+        // a helix: the shaped plan's bound (its curvature and torsion are constants), with no
+        // shape
+        _ => {
+            let shape = CylinderShape { scale: None, twist: None, unit: DVec2::ONE };
+            return shaped_cylinder_plan(profile, anchor, path, frames, &shape, tolerance, max_path_points)
+                .unwrap_or_else(fallback);
+        }
     };
     let planar = pieces.planar();
     // frames whose error the bound estimates: rotation-minimizing frames off the plane
@@ -1268,12 +1274,9 @@ mod tests {
                 assert!(plan.profile_params.len() >= 2, "{i} {t}");
                 assert!(plan.ring_scale >= 1.0 && plan.ring_scale.is_finite(), "{i} {t}");
                 let t = if t > 0.0 && t.is_finite() { t } else { flatten::DEFAULT_TOLERANCE };
-                // a path the bound covers gets a plan within the tolerance
-                if i != 6 {
-                    assert!(plan.bound <= t, "{i} {t}: {}", plan.bound);
-                } else {
-                    assert!(plan.bound.is_infinite());
-                }
+                // every path here is one the bound covers (the helix by the shaped plan):
+                // a plan within the tolerance
+                assert!(plan.bound <= t, "{i} {t}: {}", plan.bound);
             }
         }
     }

@@ -46,14 +46,15 @@
 //! scale and twist curves' values and derivatives over the piece's `σ` range from the control
 //! points of their restrictions (the range itself enclosed by a table of arc lengths at
 //! `STEPS` steps a segment and chords: `s(u) ≥ s(uⱼ) + |P(u) − P(uⱼ)|`).
-//! A circle path has `κ = 1/R`, `κ' = 0` and exact `h`.
+//! A circle path has `κ = 1/R`, `κ' = 0` and exact `h`; a helix `(r cos θ, r sin θ, cθ)` has
+//! `κ = r/(r² + c²)`, `τ = c/(r² + c²)`, `κ' = 0` and exact `h`.
 //!
 //! So **the mesh-to-surface distance is at most `a₀,max·ε + max over path pieces of (h²/8 ·
 //! max|γ''| + ¼·|Δq|·(ω·a₀ + a₁)·h)`**, plus, off the plane, the mesh's frames' error (the
 //! double reflection's, estimated as in the parent module: each vertex within `2·r·a₀·sin(e/2)`
 //! of where the exact frames put it). The arc length the mesh reads the curves at is exact
 //! to 1e-9 relative (left out). Corners of a C0 path are joints, left out as in the parent
-//! module. Paths that are neither chains of cubics nor circles, shape curves that are not
+//! module. Paths that are not chains of cubics, circles or helices, shape curves that are not
 //! chains of cubics, and frames other than rotation-minimizing off the plane are not covered
 //! ([`shaped_cylinder_plan`] returns `None`).
 //!
@@ -206,6 +207,9 @@ enum Path<'a> {
     Cubics { segments: &'a [CubicBezier<DVec3>], planar: bool, table: Vec<f64> },
     /// A circle of this radius (parameter `[0, 1]`).
     Circle(f64),
+    /// A helix (parameter `[0, 1]`, constant speed): its curvature, curvature times torsion
+    /// and length.
+    Helix { kappa: f64, ktau: f64, length: f64 },
 }
 
 /// Steps a segment of the path's arc length table (which encloses where the scale and twist
@@ -217,21 +221,22 @@ impl Path<'_> {
         match self {
             Path::Cubics { table, .. } => table.last().copied().unwrap_or(0.0),
             Path::Circle(r) => std::f64::consts::TAU * r,
+            Path::Helix { length, .. } => *length,
         }
     }
 
     fn segments(&self) -> usize {
         match self {
             Path::Cubics { segments, .. } => segments.len(),
-            Path::Circle(_) => 1,
+            Path::Circle(_) | Path::Helix { .. } => 1,
         }
     }
 
     /// An enclosure of the arc length at `u ∈ [0, 1]` of segment `k`.
     fn arclen(&self, k: usize, u: f64) -> (f64, f64) {
         match self {
-            Path::Circle(r) => {
-                let s = std::f64::consts::TAU * r * u;
+            Path::Circle(_) | Path::Helix { .. } => {
+                let s = self.length() * u;
                 (s, s)
             }
             Path::Cubics { segments, table, .. } => {
@@ -260,6 +265,9 @@ impl Path<'_> {
             }
             Path::Circle(r) => {
                 Bending { kappa: 1.0 / r, dkappa: 0.0, ktau: 0.0, length: std::f64::consts::TAU * r * (b - a) }
+            }
+            Path::Helix { kappa, ktau, length } => {
+                Bending { kappa: *kappa, dkappa: 0.0, ktau: *ktau, length: length * (b - a) }
             }
         }
     }
@@ -373,8 +381,8 @@ impl Context<'_> {
 }
 
 /// Whether [`shaped_cylinder_plan`] bounds the surface of `shape` along `path` with `frames`:
-/// the path a chain of cubics or a circle, the scale and twist curves chains of cubics, and
-/// rotation-minimizing frames when the path leaves the plane `z = const`.
+/// the path a chain of cubics, a circle or a helix, the scale and twist curves chains of
+/// cubics, and rotation-minimizing frames when the path leaves the plane `z = const`.
 #[must_use]
 pub fn shape_covered(path: &AnyCurve<DVec3>, frames: &CylinderFrames, shape: &CylinderShape<'_>) -> bool {
     let shape_ok = chain(shape.scale).is_some() && chain(shape.twist).is_some() && shape.unit.is_finite();
@@ -383,6 +391,10 @@ pub fn shape_covered(path: &AnyCurve<DVec3>, frames: &CylinderFrames, shape: &Cy
             planar(c.segments()) || matches!(frames.options.method, FrameMethod::RotationMinimizing(_))
         }
         AnyCurve::Circle(c) => c.radius > 0.0 && c.radius.is_finite(),
+        AnyCurve::Helix(h) => {
+            let finite = h.radius.is_finite() && h.pitch.is_finite() && h.turns.is_finite() && h.turns != 0.0;
+            finite && (h.pitch == 0.0 || matches!(frames.options.method, FrameMethod::RotationMinimizing(_)))
+        }
         _ => false,
     };
     shape_ok && path_ok && shape.largest_factor().is_some_and(f64::is_finite)
@@ -398,7 +410,8 @@ fn planar(s: &[CubicBezier<DVec3>]) -> bool {
 /// The profile and path samples of a generalized cylinder with a scale or twist curve
 /// (`shape`) whose mesh stays within `tolerance` of the exact surface (see the
 /// [module docs](self)), with about the fewest triangles the bound allows; `None` when the
-/// bound does not cover the curves ([`shape_covered`]). A plan that needs more than
+/// bound does not cover the curves ([`shape_covered`]), or is infinite somewhere along the
+/// path (a cusp, a path of no length). A plan that needs more than
 /// `max_path_points` path points falls back, as [`super::cylinder_plan`]'s does, to both
 /// curves flattened to [`MIN_SHARE`] of the tolerance (the path within `max_path_points`
 /// points), with `bound` infinite. The profile is never flattened finer than [`MIN_SHARE`] of
@@ -448,9 +461,22 @@ pub fn shaped_cylinder_plan(
             (Path::Cubics { segments: s, planar, table }, correction)
         }
         AnyCurve::Circle(c) => (Path::Circle(c.radius), 0.0),
+        // (r cos θ, r sin θ, c·θ), θ = 2π·turns·u: κ = r/(r² + c²), τ = c/(r² + c²), and no
+        // closed-curve correction (a helix that rises is open; one that does not is planar)
+        AnyCurve::Helix(h) => {
+            let c = h.pitch / std::f64::consts::TAU;
+            let q = h.radius * h.radius + c * c;
+            let length = std::f64::consts::TAU * h.turns.abs() * q.sqrt();
+            let (kappa, ktau) = if q > 0.0 { (h.radius / q, h.radius * c.abs() / (q * q)) } else { (0.0, 0.0) };
+            (Path::Helix { kappa, ktau, length }, 0.0)
+        }
         _ => return None,
     };
-    let planar = !matches!(path_kind, Path::Cubics { planar: false, .. });
+    let planar = match &path_kind {
+        Path::Cubics { planar, .. } => *planar,
+        Path::Circle(_) => true,
+        Path::Helix { ktau, .. } => *ktau == 0.0,
+    };
     let ctx = Context { path: path_kind, scale, twist, unit: shape.unit, correction };
     let reach_of = |params: &[f64]| {
         let pts: Vec<DVec2> = params.iter().map(|&v| profile.eval(v).truncate() - anchor).collect();
@@ -483,14 +509,20 @@ pub fn shaped_cylinder_plan(
         (triangles(params.len(), path_points.min(1e15) as usize), path_points)
     };
     let mut choice: Option<(u64, f64)> = None;
+    let mut bounded = false;
     for share in SHARES {
         let (guess, points) = estimate(share, reserve);
+        bounded |= points.is_finite();
         if points > 2.0 * max_points as f64 || choice.is_some_and(|c| guess >= 2 * c.0) {
             continue;
         }
         if let Some((t, ..)) = try_share(share, reserve) {
             choice = Some(choice.map_or((t, share), |c| if t < c.0 { (t, share) } else { c }));
         }
+    }
+    // a bound infinite somewhere (a cusp, a path of no length) covers nothing
+    if !bounded {
+        return None;
     }
     let Some((mut count, mut share)) = choice else { return fallback() };
     let base = share;
