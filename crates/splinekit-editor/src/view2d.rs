@@ -240,17 +240,19 @@ impl View2d {
     }
 
     /// Frames the active curve's points and curve, and the other curves when they are drawn
-    /// (with a margin).
+    /// (with a margin), but for curves that only shape a sweep (a scale or twist curve lives
+    /// in its own units: a twist of 360° would shrink the scene to a dot).
     pub fn fit(&mut self, doc: &Document) {
         let plane = self.plane_for(doc);
         let mut pts: Vec<DVec2> = doc.points().iter().map(|&p| plane.project(p)).collect();
+        let shapes = shape_only_curves(&doc.swp);
         // the active curve, and the others when they are drawn: the whole scene
         let curves = doc
             .swp
             .curves
             .iter()
             .enumerate()
-            .filter(|(i, _)| *i == doc.active || self.show.curves)
+            .filter(|(i, _)| *i == doc.active || (self.show.curves && !shapes[*i]))
             .filter_map(|(_, c)| c.to_curve().ok());
         for c in curves {
             let n = c.num_segments().max(1) * 16;
@@ -717,9 +719,67 @@ fn closest_param(a: Pos2, b: Pos2, p: Pos2) -> f64 {
     if l2 > 0.0 { f64::from(((p - a).dot(e) / l2).clamp(0.0, 1.0)) } else { 0.0 }
 }
 
+/// Which curves of `swp` only shape sweeps: named as a `gcyl`'s scale or twist curve and as
+/// no surface's profile, path or lathe curve.
+fn shape_only_curves(swp: &splinekit_io::SwpDocument) -> Vec<bool> {
+    use splinekit_io::SwpSurfaceKind as K;
+    let mut shape = vec![false; swp.curves.len()];
+    let mut geometry = vec![false; swp.curves.len()];
+    let mark = |list: &mut Vec<bool>, i: usize| {
+        if let Some(x) = list.get_mut(i) {
+            *x = true;
+        }
+    };
+    for surface in &swp.surfaces {
+        match surface.kind {
+            K::GeneralizedCylinder { profile, sweep, scale, twist } => {
+                mark(&mut geometry, profile);
+                mark(&mut geometry, sweep);
+                for i in [scale, twist].into_iter().flatten() {
+                    mark(&mut shape, i);
+                }
+            }
+            K::Revolution { profile, .. } | K::RevolutionZ { profile, .. } => mark(&mut geometry, profile),
+            K::ToolSweep { profile, path, .. } => {
+                mark(&mut geometry, profile);
+                mark(&mut geometry, path);
+            }
+            K::Lathe { radius, height, .. } => {
+                mark(&mut geometry, radius);
+                mark(&mut geometry, height);
+            }
+        }
+    }
+    shape.iter().zip(&geometry).map(|(s, g)| *s && !g).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A twist curve in degrees (x up to 360) does not shrink the fitted scene: only the
+    /// profile and path (both within 8 units) are framed, unless the twist curve is the one
+    /// being edited.
+    #[test]
+    fn fitting_leaves_out_curves_that_only_shape_a_sweep() {
+        let text = "bez2 p 4 4 [0 -0.5] [0.3 -0.2] [0.3 0.2] [0 0.5]\n\
+                    bez2 path 8 4 [0 0] [3 1] [5 -1] [8 0]\n\
+                    bez2 tw 4 4 [0 0] [120 0] [240 0] [360 0]\n\
+                    bez2 both 4 4 [0 0] [1 0] [2 0] [3 0]\n\
+                    gcyl a p path twist tw\n\
+                    gcyl b p both scale both\n";
+        let swp = splinekit_io::SwpDocument::parse(text, "fit.swp").unwrap();
+        // a curve that is also a path is geometry
+        assert_eq!(shape_only_curves(&swp), vec![false, false, true, false]);
+        let mut doc = Document::from_swp(swp, None);
+        let mut view = View2d { rect: Rect::from_min_size(Pos2::ZERO, egui::vec2(800.0, 600.0)), ..View2d::default() };
+        view.fit(&doc);
+        // 8 units across 80% of 800 points
+        assert!((view.scale - 80.0).abs() < 1e-9, "{}", view.scale);
+        doc.active = 2;
+        view.fit(&doc);
+        assert!(view.scale < 3.0, "the twist curve framed when it is the active one: {}", view.scale);
+    }
 
     #[test]
     fn planes_project_and_replace() {
