@@ -360,7 +360,7 @@ impl SwpDocument {
     /// interiors included) rather than each curve's tessellation alone: false only for a
     /// `gcyl` with a scale or twist curve that the shaped plan does not cover (a scale or
     /// twist curve that is not a chain of cubics, a path that is not a chain of cubics, a circle
-    /// or a helix, or frames other than rotation-minimizing along a path off the plane; see
+    /// or a helix, Frenet frames, or frames other than rotation-minimizing along a path off the plane; see
     /// [`adaptive::shape_covered`]), and for an unknown index or curves that do not compile.
     #[must_use]
     pub fn tolerance_bounds_surface(&self, index: usize, options: &SurfaceOptions) -> bool {

@@ -55,7 +55,8 @@
 //! of where the exact frames put it). The arc length the mesh reads the curves at is exact
 //! to 1e-9 relative (left out). Corners of a C0 path are joints, left out as in the parent
 //! module. Paths that are not chains of cubics, circles or helices, shape curves that are not
-//! chains of cubics, and frames other than rotation-minimizing off the plane are not covered
+//! chains of cubics, Frenet frames, and frames other than rotation-minimizing off the plane
+//! are not covered
 //! ([`shaped_cylinder_plan`] returns `None`).
 //!
 //! The bound is not as tight as the parent module's for a plain cylinder (it uses the same
@@ -382,10 +383,15 @@ impl Context<'_> {
 
 /// Whether [`shaped_cylinder_plan`] bounds the surface of `shape` along `path` with `frames`:
 /// the path a chain of cubics, a circle or a helix, the scale and twist curves chains of
-/// cubics, and rotation-minimizing frames when the path leaves the plane `z = const`.
+/// cubics, frames other than Frenet's (which flip at inflections), and rotation-minimizing
+/// ones when the path leaves the plane `z = const`.
 #[must_use]
 pub fn shape_covered(path: &AnyCurve<DVec3>, frames: &CylinderFrames, shape: &CylinderShape<'_>) -> bool {
     let shape_ok = chain(shape.scale).is_some() && chain(shape.twist).is_some() && shape.unit.is_finite();
+    // Frenet frames flip at an inflection, even in the plane: not the frames of the bound
+    if matches!(frames.options.method, FrameMethod::Frenet) {
+        return false;
+    }
     let path_ok = match path {
         AnyCurve::Piecewise(c) if !c.segments().is_empty() => {
             planar(c.segments()) || matches!(frames.options.method, FrameMethod::RotationMinimizing(_))
