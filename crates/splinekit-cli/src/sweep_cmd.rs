@@ -368,16 +368,17 @@ fn sweep_surfaces(
             };
             anyhow!("{}: {e}{hint}", args.file.display())
         })?;
-        // the surface bound of a distance tolerance covers scale and twist curves that are
-        // chains of cubics along such paths, circles and helices; otherwise each curve is within T
+        // the surface bound of a distance tolerance covers paths, scale and twist curves that
+        // are chains of cubics, and circle and helix paths; otherwise each curve is within T
         let own = opts.with_settings(&doc.surfaces[k].settings);
         if let SurfaceTessellation::Distance(t) = own.tessellation
             && !doc.tolerance_bounds_surface(k, opts)
         {
             let note = format!(
-                "note: {}: surface {}: with this scale or twist curve the tolerance {t} bounds each curve's \
-                 tessellation, not the surface, which may stray further from the exact sweep (the surface \
-                 is bounded for scale and twist curves and paths made of cubic segments, and circle and helix paths)",
+                "note: {}: surface {}: with this path, scale or twist curve the tolerance {t} bounds each \
+                 curve's tessellation, not the surface, which may stray further from the exact sweep (the \
+                 surface is bounded for paths, scale and twist curves made of cubic segments, and circle and \
+                 helix paths)",
                 args.file.display(),
                 doc.surfaces[k].display_name(k),
             );

@@ -372,7 +372,7 @@ fn scale_mode_flag() {
     let run = splinekit(&["sweep", &circled, "-o", dir.path().join("c").to_str().unwrap(), "--tolerance", "0.01"]);
     assert_eq!(run.code, Some(0), "{}", run.stderr);
     assert_eq!(
-        run.stderr.matches("surface tube: with this scale or twist curve the tolerance 0.01").count(),
+        run.stderr.matches("surface tube: with this path, scale or twist curve the tolerance 0.01").count(),
         1,
         "{}",
         run.stderr
@@ -381,6 +381,23 @@ fn scale_mode_flag() {
     fs::write(&bare, fs::read_to_string(&bare).unwrap().replace(" scale s", "")).unwrap();
     let run = splinekit(&["sweep", &bare, "-o", dir.path().join("b").to_str().unwrap(), "--tolerance", "0.01"]);
     assert!(run.code == Some(0) && !run.stderr.contains("note:"), "{}", run.stderr);
+    // a path the bound does not cover (a trefoil knot), without a scale or twist: said too
+    let knot = dir.path().join("knot.swp");
+    fs::write(&knot, "circ c 12 0.2\ntrefoil k 64 1\ngcyl tube c k\n").unwrap();
+    let run = splinekit(&[
+        "sweep",
+        knot.to_str().unwrap(),
+        "-o",
+        dir.path().join("k").to_str().unwrap(),
+        "--tolerance",
+        "0.05",
+    ]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("surface tube: with this path, scale or twist curve the tolerance 0.05"),
+        "{}",
+        run.stderr
+    );
     let run = splinekit(&["sweep", &plain, "-o", dir.path().join("x").to_str().unwrap(), "--scale-mode", "add"]);
     assert_eq!(run.code, Some(2));
     assert!(run.stderr.contains("possible values: multiply, override"), "{}", run.stderr);

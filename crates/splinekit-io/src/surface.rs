@@ -358,16 +358,23 @@ impl SwpDocument {
 
     /// Whether a distance tolerance bounds surface `index`'s mesh as a whole (triangle
     /// interiors included) rather than each curve's tessellation alone: false only for a
-    /// `gcyl` with a scale or twist curve that the shaped plan does not cover (a scale or
-    /// twist curve that is not a chain of cubics, a path that is not a chain of cubics, a circle
-    /// or a helix, Frenet frames, or frames other than rotation-minimizing along a path off the plane; see
-    /// [`adaptive::shape_covered`]), and for an unknown index or curves that do not compile.
+    /// `gcyl` whose path is not a chain of cubics, a circle or a helix, or with a scale or
+    /// twist curve that the shaped plan does not cover (one that is not a chain of cubics,
+    /// Frenet frames, or frames other than rotation-minimizing along a path off the plane;
+    /// see [`adaptive::shape_covered`]), and for an unknown index or curves that do not
+    /// compile.
     #[must_use]
     pub fn tolerance_bounds_surface(&self, index: usize, options: &SurfaceOptions) -> bool {
         let Some(surface) = self.surfaces.get(index) else { return false };
         let SwpSurfaceKind::GeneralizedCylinder { sweep: path, scale, twist, .. } = surface.kind else { return true };
         if scale.is_none() && twist.is_none() {
-            return true;
+            // the plain plan covers chains of cubics and circles, and hands helices to the
+            // shaped one
+            match self.curves.get(path).and_then(|c| c.to_curve().ok()) {
+                Some(AnyCurve::Piecewise(_) | AnyCurve::Circle(_)) => return true,
+                Some(AnyCurve::Helix(_)) => {}
+                _ => return false,
+            }
         }
         let options = options.with_settings(&surface.settings);
         let compile = |i: Option<usize>| i.map(|i| self.curves.get(i).and_then(|c| c.to_curve().ok()));
