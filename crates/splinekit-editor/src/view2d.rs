@@ -719,35 +719,15 @@ fn closest_param(a: Pos2, b: Pos2, p: Pos2) -> f64 {
     if l2 > 0.0 { f64::from(((p - a).dot(e) / l2).clamp(0.0, 1.0)) } else { 0.0 }
 }
 
-/// Which curves of `swp` only shape sweeps: named as a `gcyl`'s scale or twist curve and as
-/// no surface's profile, path or lathe curve.
+/// Which curves of `swp` only shape sweeps: named as a `gcyl`'s scale or twist curve and in
+/// no other role (profile, path, lathe curve).
 fn shape_only_curves(swp: &splinekit_io::SwpDocument) -> Vec<bool> {
-    use splinekit_io::SwpSurfaceKind as K;
-    let mut shape = vec![false; swp.curves.len()];
-    let mut geometry = vec![false; swp.curves.len()];
-    let mark = |list: &mut Vec<bool>, i: usize| {
+    use splinekit_io::SwpCurveRole as R;
+    let (mut shape, mut geometry) = (vec![false; swp.curves.len()], vec![false; swp.curves.len()]);
+    for (role, i) in swp.surfaces.iter().flat_map(|s| s.kind.references()) {
+        let list = if matches!(role, R::Scale | R::Twist) { &mut shape } else { &mut geometry };
         if let Some(x) = list.get_mut(i) {
             *x = true;
-        }
-    };
-    for surface in &swp.surfaces {
-        match surface.kind {
-            K::GeneralizedCylinder { profile, sweep, scale, twist } => {
-                mark(&mut geometry, profile);
-                mark(&mut geometry, sweep);
-                for i in [scale, twist].into_iter().flatten() {
-                    mark(&mut shape, i);
-                }
-            }
-            K::Revolution { profile, .. } | K::RevolutionZ { profile, .. } => mark(&mut geometry, profile),
-            K::ToolSweep { profile, path, .. } => {
-                mark(&mut geometry, profile);
-                mark(&mut geometry, path);
-            }
-            K::Lathe { radius, height, .. } => {
-                mark(&mut geometry, radius);
-                mark(&mut geometry, height);
-            }
         }
     }
     shape.iter().zip(&geometry).map(|(s, g)| *s && !g).collect()

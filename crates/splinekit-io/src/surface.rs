@@ -367,29 +367,24 @@ impl SwpDocument {
     pub fn tolerance_bounds_surface(&self, index: usize, options: &SurfaceOptions) -> bool {
         let Some(surface) = self.surfaces.get(index) else { return false };
         let SwpSurfaceKind::GeneralizedCylinder { sweep: path, scale, twist, .. } = surface.kind else { return true };
-        if scale.is_none() && twist.is_none() {
-            // the plain plan covers chains of cubics and circles, and hands helices to the
-            // shaped one
-            match self.curves.get(path).and_then(|c| c.to_curve().ok()) {
-                Some(AnyCurve::Piecewise(_) | AnyCurve::Circle(_)) => return true,
-                Some(AnyCurve::Helix(_)) => {}
-                _ => return false,
-            }
+        let compile = |i: usize| self.curves.get(i).and_then(|c| c.to_curve().ok());
+        let Some(c) = compile(path) else { return false };
+        if scale.is_none() && twist.is_none() && matches!(c, AnyCurve::Piecewise(_) | AnyCurve::Circle(_)) {
+            // the plain plan's paths (it hands a helix to the shaped plan)
+            return true;
+        }
+        // a scale or twist curve named but not compiling covers nothing
+        let (sc, tw) = (scale.map(compile), twist.map(compile));
+        if matches!(sc, Some(None)) || matches!(tw, Some(None)) {
+            return false;
         }
         let options = options.with_settings(&surface.settings);
-        let compile = |i: Option<usize>| i.map(|i| self.curves.get(i).and_then(|c| c.to_curve().ok()));
-        let (Some(c), Some(sc), Some(tw)) = (
-            self.curves.get(path).and_then(|c| c.to_curve().ok()),
-            compile(scale).map_or(Some(None), |c| c.map(Some)),
-            compile(twist).map_or(Some(None), |c| c.map(Some)),
-        ) else {
-            return false;
+        let frames = cylinder_frames(&options, path_frames(&options, &c));
+        let shape = adaptive::CylinderShape {
+            scale: sc.as_ref().and_then(Option::as_ref),
+            twist: tw.as_ref().and_then(Option::as_ref),
+            unit: DVec2::ONE,
         };
-        let frames = adaptive::CylinderFrames {
-            options: frame_options(path_frames(&options, &c)),
-            corner_angle: (options.sweep.layout == MeshLayout::Welded).then_some(CREASE_ANGLE),
-        };
-        let shape = adaptive::CylinderShape { scale: sc.as_ref(), twist: tw.as_ref(), unit: DVec2::ONE };
         adaptive::shape_covered(&c, &frames, &shape)
     }
 
@@ -480,10 +475,7 @@ impl SwpDocument {
                 } else {
                     DVec2::ONE
                 };
-                let cylinder_frames = adaptive::CylinderFrames {
-                    options: frame_options(frame_kind),
-                    corner_angle: (options.sweep.layout == MeshLayout::Welded).then_some(CREASE_ANGLE),
-                };
+                let cylinder_frames = cylinder_frames(options, frame_kind);
                 let shaped = adaptive::CylinderShape { scale: scale.as_ref(), twist: twist.as_ref(), unit };
                 let mut ring_scale = 1.0;
                 let mut samples = match options.tessellation {
@@ -832,6 +824,15 @@ fn in_z_plane(curve: &AnyCurve<DVec3>) -> bool {
 
 fn frames_for(samples: &[CurveSample], method: SurfaceFrames) -> Vec<Frame> {
     frame::frames_for_samples(samples, &frame_options(method))
+}
+
+/// The frames an adaptive gcyl plan expects the mesh to get: `method`'s, on samples with
+/// corners sampled twice in the welded layout.
+fn cylinder_frames(options: &SurfaceOptions, method: SurfaceFrames) -> adaptive::CylinderFrames {
+    adaptive::CylinderFrames {
+        options: frame_options(method),
+        corner_angle: (options.sweep.layout == MeshLayout::Welded).then_some(CREASE_ANGLE),
+    }
 }
 
 /// The frame options of `method`.

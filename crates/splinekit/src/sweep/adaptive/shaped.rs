@@ -329,7 +329,7 @@ impl Context<'_> {
         if !(len > 0.0) || !len.is_finite() {
             return (f64::INFINITY, 0.0);
         }
-        let bend = self.bending(k, a, b);
+        let bend = self.path.bending(k, a, b);
         let (s0, s1) = (self.path.arclen(k, a).0 / len, self.path.arclen(k, b).1 / len);
         let (a0, a1, a2) = self.shape_norms(s0.clamp(0.0, 1.0), s1.clamp(0.0, 1.0));
         let omega = bend.kappa + self.correction;
@@ -339,10 +339,6 @@ impl Context<'_> {
         let h = bend.length;
         let b = h * h / 8.0 * curvature + 0.25 * reach.lq * (omega * a0 + a1) * h;
         (if b.is_finite() { b } else { f64::INFINITY }, a0)
-    }
-
-    fn bending(&self, k: usize, a: f64, b: f64) -> Bending {
-        self.path.bending(k, a, b)
     }
 
     /// An estimate of the path points a plan within `budget` takes: on each of `STEPS`
@@ -495,56 +491,67 @@ pub fn shaped_cylinder_plan(
         2 * (profile_points as u64).saturating_sub(1).max(1) * (path_points as u64).saturating_sub(1).max(1)
     };
     let mut reserve: f64 = if planar { 0.0 } else { 0.01 };
-    let try_share = |share: f64, reserve: f64| -> Option<(u64, Vec<f64>, Vec<f64>, Reach)> {
-        let eps = share * tolerance / divisor;
-        let params = flatten::flatten_any(profile, Tessellation::Distance { tolerance: eps });
+    // A share's profile, flattened once. Its path points are estimated before the path is
+    // marched (tens of bound evaluations a point): a share whose estimate passes the point
+    // limit twice over, or whose triangles by the estimate are twice `beat`, is not marched
+    // (`Err` with whether the estimate was finite, `Ok(None)` when the march passes the limit).
+    let try_share = |share: f64, reserve: f64, beat: Option<u64>| -> Result<Option<Share>, bool> {
+        let params = flatten::flatten_any(profile, Tessellation::Distance { tolerance: share * tolerance / divisor });
         let reach = reach_of(&params);
         let budget = (1.0 - share) * tolerance * (1.0 - reserve);
+        let estimate = ctx.estimate(budget, reach);
+        let guess = triangles(params.len(), estimate.min(1e15) as usize);
+        if estimate > 2.0 * max_points as f64 || beat.is_some_and(|b| guess >= 2 * b) {
+            return Err(estimate.is_finite());
+        }
         let mut path_params = Vec::new();
-        ctx.plan(budget, reach, max_points, &mut path_params)?;
-        Some((triangles(params.len(), path_params.len()), params, path_params, reach))
+        Ok(ctx.plan(budget, reach, max_points, &mut path_params).map(|()| Share {
+            triangles: triangles(params.len(), path_params.len()),
+            share,
+            profile_params: params,
+            path_params,
+            reach,
+        }))
     };
-    // Each share's path points are estimated before it is marched (tens of bound evaluations
-    // a point): a share whose estimate passes the point limit twice over, or whose triangles
-    // by the estimate are twice the best so far, is not marched.
-    let estimate = |share: f64, reserve: f64| -> (u64, f64) {
-        let eps = share * tolerance / divisor;
-        let params = flatten::flatten_any(profile, Tessellation::Distance { tolerance: eps });
-        let budget = (1.0 - share) * tolerance * (1.0 - reserve);
-        let path_points = ctx.estimate(budget, reach_of(&params));
-        (triangles(params.len(), path_points.min(1e15) as usize), path_points)
-    };
-    let mut choice: Option<(u64, f64)> = None;
+    let mut choice: Option<Share> = None;
     let mut bounded = false;
     for share in SHARES {
-        let (guess, points) = estimate(share, reserve);
-        bounded |= points.is_finite();
-        if points > 2.0 * max_points as f64 || choice.is_some_and(|c| guess >= 2 * c.0) {
-            continue;
-        }
-        if let Some((t, ..)) = try_share(share, reserve) {
-            choice = Some(choice.map_or((t, share), |c| if t < c.0 { (t, share) } else { c }));
+        match try_share(share, reserve, choice.as_ref().map(|c| c.triangles)) {
+            Err(finite) => bounded |= finite,
+            Ok(s) => {
+                bounded = true;
+                if let Some(s) = s.filter(|s| choice.as_ref().is_none_or(|c| s.triangles < c.triangles)) {
+                    choice = Some(s);
+                }
+            }
         }
     }
     // a bound infinite somewhere (a cusp, a path of no length) covers nothing
     if !bounded {
         return None;
     }
-    let Some((mut count, mut share)) = choice else { return fallback() };
-    let base = share;
+    let Some(mut best) = choice else { return fallback() };
+    let base = best.share;
     for d in [-2.0, -1.0, 1.0, 2.0] {
         let s = (base + d * SHARE_REFINE).clamp(MIN_SHARE, 0.95);
-        if estimate(s, reserve).0 >= 2 * count {
-            continue;
-        }
-        if let Some((t, ..)) = try_share(s, reserve)
-            && t < count
+        if let Ok(Some(plan)) = try_share(s, reserve, Some(best.triangles))
+            && plan.triangles < best.triangles
         {
-            (count, share) = (t, s);
+            best = plan;
         }
     }
+    let share = best.share;
+    let mut marched = Some(best);
     for _attempt in 0..6 {
-        let Some((_, profile_params, path_params, reach)) = try_share(share, reserve) else { break };
+        // the best share as marched, then again with the reserve grown
+        let plan = match marched.take() {
+            Some(plan) => plan,
+            None => match try_share(share, reserve, None) {
+                Ok(Some(plan)) => plan,
+                _ => break,
+            },
+        };
+        let Share { profile_params, path_params, reach, .. } = plan;
         let eps = share * tolerance / divisor;
         let mut worst: f64 = 0.0;
         let errors = (!planar).then(|| super::mesh_frames(path, &path_params, frames, true));
@@ -567,6 +574,15 @@ pub fn shaped_cylinder_plan(
         reserve = (reserve + 1.5 * over).min(0.9);
     }
     fallback()
+}
+
+/// One share's samples, as [`shaped_cylinder_plan`] marched them.
+struct Share {
+    triangles: u64,
+    share: f64,
+    profile_params: Vec<f64>,
+    path_params: Vec<f64>,
+    reach: Reach,
 }
 
 /// The segments of a shape curve that is a chain of cubics (`Some(None)` for no curve, `None`
